@@ -1,0 +1,210 @@
+// The streaming ring decoder: validates messages at their destination (PROTOCOL.md 1.4).
+//
+// The caller owns the decoder and feeds it bytes; it never blocks, allocates or reads a clock.
+//
+//   byte in      state            result
+//   header A>0   any              begins a message; `interrupted` if one was open, else incomplete
+//   header A=0   any              `interrupted` if a message was open, else `zero_hops`; then skips to
+//                                  that message's end of message or the next header
+//   data         in a message     stored (up to the capacity; a longer message is counted, not stored)
+//   data         outside          `stray_data` once per run of such bytes
+//   end of msg   in a message     the message, a frame error, or a CRC error
+//   end of msg   outside          `stray_eom` (none when it closes a skipped A=0 message)
+//
+// At an end of message the checks run in this order: end-of-message A equals header A (`eom_mismatch`),
+// type 1..4 (`unknown_type`), data length for the type (`bad_length`), for type 2 the CRC (a CRC error),
+// then the fields (`bad_field`). Whatever the input, the decoder re-synchronises at the next header.
+//
+// Cost: RAM = max(MaxCharacters, 14) bytes + 2 words; per byte O(1), no allocation. `push` may be called
+// from an ISR. A decoded message's `text` points into the decoder and is valid until the next push.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "trionet/ring/bytes.hpp"
+#include "trionet/ring/crc.hpp"
+#include "trionet/ring/message.hpp"
+#include "trionet/span.hpp"
+
+namespace trionet::ring {
+
+enum class decode_status : std::uint8_t {
+  incomplete,   ///< nothing to report yet
+  message,      ///< a valid message: see `decode_result::msg`
+  frame_error,  ///< a message or byte was discarded: see `decode_result::error`
+  crc_error,    ///< a direct variable transfer failed its CRC; `msg.hops` and `msg.vr` are as received
+};
+
+enum class frame_error : std::uint8_t {
+  none,
+  stray_data,     ///< data bytes outside any message (one report per run)
+  stray_eom,      ///< end of message with no open message
+  interrupted,    ///< a header arrived before the open message's end of message
+  eom_mismatch,   ///< end of message A differs from the header's
+  bad_length,     ///< data length wrong for the type (or longer than the capacity)
+  bad_field,      ///< a field out of range: offset, mode, or X9 bits 6..1
+  unknown_type,   ///< message type 5..7
+  zero_hops,      ///< header with A = 0
+};
+
+constexpr const char* to_string(frame_error error) noexcept {
+  switch (error) {
+    case frame_error::none: return "none";
+    case frame_error::stray_data: return "stray_data";
+    case frame_error::stray_eom: return "stray_eom";
+    case frame_error::interrupted: return "interrupted";
+    case frame_error::eom_mismatch: return "eom_mismatch";
+    case frame_error::bad_length: return "bad_length";
+    case frame_error::bad_field: return "bad_field";
+    case frame_error::unknown_type: return "unknown_type";
+    case frame_error::zero_hops: return "zero_hops";
+  }
+  return "unknown";
+}
+
+struct decode_result {
+  decode_status status = decode_status::incomplete;
+  frame_error error = frame_error::none;
+  message msg;  ///< meaningful for `message`; `hops` and `vr` also for `crc_error`
+};
+
+/// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes (no checks).
+constexpr void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
+  vr = static_cast<std::uint16_t>(data[0] | (data[1] << 7));
+  std::uint64_t bits = 0;
+  for (std::size_t k = 10; k-- > 0;) bits = (bits << 7) | data[2 + k];
+  value = static_cast<std::int64_t>(bits);
+}
+
+template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
+class decoder {
+  static_assert(MaxCharacters >= 1, "a character transfer holds at least one character");
+
+ public:
+  static constexpr std::size_t max_characters = MaxCharacters;
+
+  /// Feeds one byte.
+  [[nodiscard]] decode_result push(std::uint8_t byte) noexcept {
+    if (is_data(byte)) {
+      switch (state_) {
+        case state::in_message: store(byte); return {};
+        case state::idle: state_ = state::stray; return error(frame_error::stray_data);
+        case state::stray:
+        case state::skipping: return {};
+      }
+      return {};
+    }
+    if (type_of(byte) == 0) {  // end of message
+      const state was = state_;
+      state_ = state::idle;
+      if (was == state::in_message) return finish(hops_of(byte));
+      if (was == state::skipping) return {};
+      return error(frame_error::stray_eom);
+    }
+    const bool was_open = state_ == state::in_message;
+    const std::uint8_t hops = hops_of(byte);
+    if (hops == 0) {
+      state_ = state::skipping;
+      return error(was_open ? frame_error::interrupted : frame_error::zero_hops);
+    }
+    state_ = state::in_message;
+    hops_ = hops;
+    type_ = type_of(byte);
+    length_ = 0;
+    return was_open ? error(frame_error::interrupted) : decode_result{};
+  }
+
+  /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
+  /// order: exactly the results that pushing the bytes one at a time would give.
+  template <class Sink>
+  void push(byte_view bytes, Sink&& sink) noexcept(noexcept(sink(decode_result{}))) {
+    const std::uint8_t* p = bytes.begin();
+    const std::uint8_t* const end = bytes.end();
+    while (p != end) {
+      if (state_ == state::in_message) {  // the common case: a run of message data
+        while (p != end && is_data(*p)) store(*p++);
+        if (p == end) break;
+      }
+      const decode_result result = push(*p++);
+      if (result.status != decode_status::incomplete) sink(result);
+    }
+  }
+
+  /// Forgets any open message (e.g. after a link reset).
+  void reset() noexcept { state_ = state::idle; }
+
+  /// True while a message has begun and not ended.
+  bool in_message() const noexcept { return state_ == state::in_message; }
+
+ private:
+  enum class state : std::uint8_t { idle, stray, in_message, skipping };
+  static constexpr std::size_t capacity = MaxCharacters > variable_data_length ? MaxCharacters : variable_data_length;
+
+  // Stores up to `capacity` bytes; beyond that only notes that the message is too long (length_ stops at
+  // capacity + 1, so it never wraps however long the message is).
+  void store(std::uint8_t byte) noexcept {
+    if (length_ < capacity) {
+      buffer_[length_++] = byte;
+    } else {
+      length_ = capacity + 1;
+    }
+  }
+
+  static decode_result error(frame_error reason) noexcept {
+    decode_result result;
+    result.status = decode_status::frame_error;
+    result.error = reason;
+    return result;
+  }
+
+  decode_result finish(std::uint8_t end_hops) noexcept {
+    if (end_hops != hops_) return error(frame_error::eom_mismatch);
+    if (type_ > 4) return error(frame_error::unknown_type);
+    decode_result result;
+    result.status = decode_status::message;
+    result.msg.type = static_cast<message_type>(type_);
+    result.msg.hops = hops_;
+    switch (result.msg.type) {
+      case message_type::character:
+        if (length_ == 0 || length_ > MaxCharacters) return error(frame_error::bad_length);
+        result.msg.text = byte_view(buffer_, length_);
+        return result;
+      case message_type::variable: {
+        if (length_ != variable_data_length) return error(frame_error::bad_length);
+        read_variable_data(buffer_, result.msg.vr, result.msg.value);
+        std::uint16_t crc = Crc::initial;
+        for (std::size_t i = 0; i < variable_crc_length; ++i) crc = Crc::update(crc, buffer_[i]);
+        crc = Crc::finish(crc);
+        const auto received = static_cast<std::uint16_t>(buffer_[12] | (buffer_[13] << 8));
+        if (crc_wire_bits(crc) != received) {
+          result.status = decode_status::crc_error;
+          return result;
+        }
+        if ((buffer_[11] & 0x7E) != 0) return error(frame_error::bad_field);
+        return result;
+      }
+      case message_type::keypad_offset:
+        if (length_ != 1) return error(frame_error::bad_length);
+        if (!valid_hops(buffer_[0])) return error(frame_error::bad_field);
+        result.msg.offset = buffer_[0];
+        return result;
+      case message_type::keypad_mode:
+        if (length_ != 1) return error(frame_error::bad_length);
+        if (buffer_[0] != keypad_mode_key_on && buffer_[0] != keypad_mode_key_on_off) {
+          return error(frame_error::bad_field);
+        }
+        result.msg.mode = buffer_[0];
+        return result;
+    }
+    return error(frame_error::unknown_type);
+  }
+
+  state state_ = state::idle;
+  std::uint8_t hops_ = 0;
+  std::uint8_t type_ = 0;
+  std::size_t length_ = 0;
+  std::uint8_t buffer_[capacity] = {};
+};
+
+}  // namespace trionet::ring

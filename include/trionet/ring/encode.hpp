@@ -1,0 +1,138 @@
+// Ring encoders: a message into a caller-provided buffer (PROTOCOL.md 1.2-1.3).
+// Every encoder checks all fields and the room first and writes nothing unless the whole frame fits:
+// on error the buffer is untouched. Cost: O(frame length), no allocation; safe from an ISR.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "trionet/ring/bytes.hpp"
+#include "trionet/ring/crc.hpp"
+#include "trionet/ring/message.hpp"
+#include "trionet/span.hpp"
+
+namespace trionet::ring {
+
+enum class encode_error : std::uint8_t {
+  none,
+  buffer_too_small,        ///< the frame does not fit in the buffer
+  hops_out_of_range,       ///< hops not 1..15
+  empty_text,              ///< a character transfer needs at least one character
+  character_out_of_range,  ///< a character above 127
+  vr_out_of_range,         ///< vr above 16383
+  offset_out_of_range,     ///< keypad offset not 1..15
+  mode_out_of_range,       ///< keypad mode not 0 or 127
+  unknown_type,            ///< message type not 1..4
+};
+
+/// Text for an encode_error, for logs and the CLI.
+constexpr const char* to_string(encode_error error) noexcept {
+  switch (error) {
+    case encode_error::none: return "none";
+    case encode_error::buffer_too_small: return "buffer too small";
+    case encode_error::hops_out_of_range: return "hops out of range 1..15";
+    case encode_error::empty_text: return "empty text";
+    case encode_error::character_out_of_range: return "character above 127";
+    case encode_error::vr_out_of_range: return "vr out of range 0..16383";
+    case encode_error::offset_out_of_range: return "keypad offset out of range 1..15";
+    case encode_error::mode_out_of_range: return "keypad mode not 0 or 127";
+    case encode_error::unknown_type: return "unknown message type";
+  }
+  return "unknown";
+}
+
+struct [[nodiscard]] encode_result {
+  std::size_t length;  ///< bytes written (0 on error)
+  encode_error error;
+  constexpr explicit operator bool() const noexcept { return error == encode_error::none; }
+};
+
+/// Checks a message's fields (not the buffer). The first problem found, or none.
+constexpr encode_error check(const message& m) noexcept {
+  if (!valid_hops(m.hops)) return encode_error::hops_out_of_range;
+  switch (m.type) {
+    case message_type::character:
+      if (m.text.empty()) return encode_error::empty_text;
+      for (std::uint8_t c : m.text) {
+        if (!is_data(c)) return encode_error::character_out_of_range;
+      }
+      return encode_error::none;
+    case message_type::variable:
+      return m.vr <= max_vr ? encode_error::none : encode_error::vr_out_of_range;
+    case message_type::keypad_offset:
+      return valid_hops(m.offset) ? encode_error::none : encode_error::offset_out_of_range;
+    case message_type::keypad_mode:
+      return m.mode == keypad_mode_key_on || m.mode == keypad_mode_key_on_off ? encode_error::none
+                                                                              : encode_error::mode_out_of_range;
+  }
+  return encode_error::unknown_type;
+}
+
+/// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1). Precondition: vr <= 16383.
+template <class Crc = crc16_ccitt_false>
+constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int64_t value) noexcept {
+  out[0] = static_cast<std::uint8_t>(vr & 0x7F);
+  out[1] = static_cast<std::uint8_t>((vr >> 7) & 0x7F);
+  std::uint64_t bits = static_cast<std::uint64_t>(value);
+  for (std::size_t k = 0; k < 10; ++k) {
+    out[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
+    bits >>= 7;
+  }
+  std::uint16_t crc = Crc::initial;
+  for (std::size_t i = 0; i < variable_crc_length; ++i) crc = Crc::update(crc, out[i]);
+  crc = Crc::finish(crc);
+  out[12] = static_cast<std::uint8_t>(crc & 0x7F);
+  out[13] = static_cast<std::uint8_t>((crc >> 8) & 0x7F);
+}
+
+/// Encodes any message. On success returns its frame length; on error writes nothing.
+template <class Crc = crc16_ccitt_false>
+constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
+  const encode_error error = check(m);
+  if (error != encode_error::none) return {0, error};
+  const std::size_t length = frame_length(m);
+  if (out.size() < length) return {0, encode_error::buffer_too_small};
+  std::uint8_t* p = out.data();
+  *p++ = make_header(m.hops, static_cast<std::uint8_t>(m.type));
+  switch (m.type) {
+    case message_type::character:
+      for (std::uint8_t c : m.text) *p++ = c;
+      break;
+    case message_type::variable:
+      write_variable_data<Crc>(p, m.vr, m.value);
+      p += variable_data_length;
+      break;
+    case message_type::keypad_offset: *p++ = m.offset; break;
+    case message_type::keypad_mode: *p++ = m.mode; break;
+  }
+  *p = make_end_of_message(m.hops);
+  return {length, encode_error::none};
+}
+
+/// PRINT#: a character transfer of `text` (each character 0..127, at least one).
+constexpr encode_result encode_characters(byte_buffer out, std::uint8_t hops, byte_view text) noexcept {
+  return encode(out, message::characters(hops, text));
+}
+inline encode_result encode_characters(byte_buffer out, std::uint8_t hops, const char* text,
+                                       std::size_t length) noexcept {
+  return encode_characters(out, hops, byte_view(reinterpret_cast<const std::uint8_t*>(text), length));
+}
+
+/// SEND(n,1,vr,value): a direct variable transfer of a Q32.32 value (see q32.hpp).
+template <class Crc = crc16_ccitt_false>
+constexpr encode_result encode_variable(byte_buffer out, std::uint8_t hops, std::uint16_t vr,
+                                        std::int64_t value) noexcept {
+  return encode<Crc>(out, message::variable(hops, vr, value));
+}
+
+/// SEND(n,2,offset): a keypad offset; `offset` is a hop count 1..15 (BASIC offset - 9).
+constexpr encode_result encode_keypad_offset(byte_buffer out, std::uint8_t hops, std::uint8_t offset) noexcept {
+  return encode(out, message::keypad_offset(hops, offset));
+}
+
+/// Keypad mode: 0 = key ON only, 127 = key ON and key OFF.
+constexpr encode_result encode_keypad_mode(byte_buffer out, std::uint8_t hops, std::uint8_t mode) noexcept {
+  return encode(out, message::keypad_mode(hops, mode));
+}
+
+}  // namespace trionet::ring
