@@ -53,7 +53,8 @@ int encode_main(const std::vector<std::string>& words) {
   const std::vector<std::string> rest(words.begin() + 1, words.end());
   arguments args;
   std::string error;
-  if (!parse_arguments(rest, {"--to", "--vr", "--value", "--offset", "--mode"}, {}, args, error)) return fail(error);
+  if (!parse_arguments(rest, {"--to", "--vr", "--value", "--offset", "--mode"}, {}, args, error))
+    return fail(error);
   const std::vector<std::string> allowed_for = [&]() -> std::vector<std::string> {
     if (kind == "print") return {"--to"};
     if (kind == "var") return {"--to", "--vr", "--value"};
@@ -61,13 +62,15 @@ int encode_main(const std::vector<std::string>& words) {
     if (kind == "mode") return {"--to", "--mode"};
     return {};
   }();
-  if (allowed_for.empty()) return fail("unknown message kind '" + kind + "' (expected print, var, offset or mode)");
+  if (allowed_for.empty())
+    return fail("unknown message kind '" + kind + "' (expected print, var, offset or mode)");
   for (const auto& option : args.options) {
     bool allowed = false;
     for (const auto& name : allowed_for) allowed = allowed || option.first == name;
     if (!allowed) return fail("option " + option.first + " does not apply to 'ring encode " + kind + "'");
   }
-  if (kind != "print" && !args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
+  if (kind != "print" && !args.positionals.empty())
+    return fail("unexpected argument '" + args.positionals[0] + "'");
 
   std::uint8_t hops = 0;
   if (!basic_address(args, "--to", hops, error)) return fail(error);
@@ -80,10 +83,12 @@ int encode_main(const std::vector<std::string>& words) {
     if (text.empty()) return fail("TEXT is empty: a character transfer needs at least one character");
     for (std::size_t i = 0; i < text.size(); ++i) {
       if (static_cast<unsigned char>(text[i]) > 127) {
-        return fail("TEXT has a character above 127 at byte " + std::to_string(i) + " (the ring carries 7-bit characters)");
+        return fail("TEXT has a character above 127 at byte " + std::to_string(i) +
+                    " (the ring carries 7-bit characters)");
       }
     }
-    m = ring::message::characters(hops, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    m = ring::message::characters(hops,
+                                  byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
   } else if (kind == "var") {
     if (!args.has("--vr")) return fail("missing --vr (a VR number 0..16383)");
     if (!args.has("--value")) return fail("missing --value (a real number)");
@@ -96,7 +101,9 @@ int encode_main(const std::vector<std::string>& words) {
       return fail("--value must be a real number, got '" + args.options.at("--value") + "'");
     }
     const ring::q32_result q = ring::q32_from_double(value);
-    if (!q) return fail("--value " + args.options.at("--value") + " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]");
+    if (!q)
+      return fail("--value " + args.options.at("--value") +
+                  " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]");
     m = ring::message::variable(hops, static_cast<std::uint16_t>(vr), q.raw);
   } else if (kind == "offset") {
     std::uint8_t offset = 0;
@@ -106,7 +113,8 @@ int encode_main(const std::vector<std::string>& words) {
     if (!args.has("--mode")) return fail("missing --mode (0 or 127)");
     long long mode = 0;
     if (!parse_integer(args.options.at("--mode"), 0, 127, mode) || (mode != 0 && mode != 127)) {
-      return fail("--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + args.options.at("--mode") + "'");
+      return fail("--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + args.options.at("--mode") +
+                  "'");
     }
     m = ring::message::keypad_mode(hops, static_cast<std::uint8_t>(mode));
   }
@@ -125,7 +133,9 @@ int hex_digit(char c) {
   return -1;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
 
 }  // namespace
 
@@ -185,9 +195,11 @@ std::string ring_result_json(const ring::decode_result& result) {
              ",\"raw\":\"" + raw + "\",\"value\":" + format_real(ring::q32_to_double(m.value)) + "}";
     }
     case ring::message_type::keypad_offset:
-      return "{\"event\":\"message\",\"type\":\"offset\",\"hops\":" + hops + ",\"offset\":" + std::to_string(m.offset) + "}";
+      return "{\"event\":\"message\",\"type\":\"offset\",\"hops\":" + hops +
+             ",\"offset\":" + std::to_string(m.offset) + "}";
     case ring::message_type::keypad_mode:
-      return "{\"event\":\"message\",\"type\":\"mode\",\"hops\":" + hops + ",\"mode\":" + std::to_string(m.mode) + "}";
+      return "{\"event\":\"message\",\"type\":\"mode\",\"hops\":" + hops +
+             ",\"mode\":" + std::to_string(m.mode) + "}";
   }
   return "{}";
 }

@@ -3,12 +3,12 @@
 
 #include <sys/wait.h>
 
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 namespace trionet::test {
 
@@ -33,8 +33,8 @@ inline cli_result run_cli(const std::string& args, const std::string& input = ""
     std::ofstream in(in_path, std::ios::binary);
     in << input;
   }
-  const std::string command = std::string(TRIONET_CLI_PATH) + " " + args + " <" + in_path + " >" + out_path +
-                              " 2>" + err_path;
+  const std::string command =
+      std::string(TRIONET_CLI_PATH) + " " + args + " <" + in_path + " >" + out_path + " 2>" + err_path;
   const int status = std::system(command.c_str());
   cli_result result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -28,8 +28,12 @@ constexpr byte_class classify(std::uint8_t byte) noexcept {
   return (byte & 0x07) != 0 ? byte_class::header : byte_class::end_of_message;
 }
 
-constexpr bool is_data(std::uint8_t byte) noexcept { return (byte & control_flag) == 0; }
-constexpr bool valid_hops(unsigned hops) noexcept { return hops >= min_hops && hops <= max_hops; }
+constexpr bool is_data(std::uint8_t byte) noexcept {
+  return (byte & control_flag) == 0;
+}
+constexpr bool valid_hops(unsigned hops) noexcept {
+  return hops >= min_hops && hops <= max_hops;
+}
 
 /// A: the hop count of a header or end of message (0 is possible on the wire and invalid).
 constexpr std::uint8_t hops_of(std::uint8_t control_byte) noexcept {

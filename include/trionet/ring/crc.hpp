@@ -75,6 +75,8 @@ using crc16_ccitt_false = crc16<0x1021, 0xFFFF>;
 using crc16_ccitt_false_bitwise = crc16<0x1021, 0xFFFF, 0, crc_table::none>;
 
 /// The 14 bits of a CRC that travel on the ring: bits 14..8 and 6..0.
-constexpr std::uint16_t crc_wire_bits(std::uint16_t crc) noexcept { return static_cast<std::uint16_t>(crc & 0x7F7F); }
+constexpr std::uint16_t crc_wire_bits(std::uint16_t crc) noexcept {
+  return static_cast<std::uint16_t>(crc & 0x7F7F);
+}
 
 }  // namespace trionet::ring

@@ -38,27 +38,36 @@ enum class decode_status : std::uint8_t {
 
 enum class frame_error : std::uint8_t {
   none,
-  stray_data,     ///< data bytes outside any message (one report per run)
-  stray_eom,      ///< end of message with no open message
-  interrupted,    ///< a header arrived before the open message's end of message
-  eom_mismatch,   ///< end of message A differs from the header's
-  bad_length,     ///< data length wrong for the type (or longer than the capacity)
-  bad_field,      ///< a field out of range: offset, mode, or X9 bits 6..1
-  unknown_type,   ///< message type 5..7
-  zero_hops,      ///< header with A = 0
+  stray_data,    ///< data bytes outside any message (one report per run)
+  stray_eom,     ///< end of message with no open message
+  interrupted,   ///< a header arrived before the open message's end of message
+  eom_mismatch,  ///< end of message A differs from the header's
+  bad_length,    ///< data length wrong for the type (or longer than the capacity)
+  bad_field,     ///< a field out of range: offset, mode, or X9 bits 6..1
+  unknown_type,  ///< message type 5..7
+  zero_hops,     ///< header with A = 0
 };
 
 constexpr const char* to_string(frame_error error) noexcept {
   switch (error) {
-    case frame_error::none: return "none";
-    case frame_error::stray_data: return "stray_data";
-    case frame_error::stray_eom: return "stray_eom";
-    case frame_error::interrupted: return "interrupted";
-    case frame_error::eom_mismatch: return "eom_mismatch";
-    case frame_error::bad_length: return "bad_length";
-    case frame_error::bad_field: return "bad_field";
-    case frame_error::unknown_type: return "unknown_type";
-    case frame_error::zero_hops: return "zero_hops";
+    case frame_error::none:
+      return "none";
+    case frame_error::stray_data:
+      return "stray_data";
+    case frame_error::stray_eom:
+      return "stray_eom";
+    case frame_error::interrupted:
+      return "interrupted";
+    case frame_error::eom_mismatch:
+      return "eom_mismatch";
+    case frame_error::bad_length:
+      return "bad_length";
+    case frame_error::bad_field:
+      return "bad_field";
+    case frame_error::unknown_type:
+      return "unknown_type";
+    case frame_error::zero_hops:
+      return "zero_hops";
   }
   return "unknown";
 }
@@ -88,10 +97,15 @@ class decoder {
   [[nodiscard]] decode_result push(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
       switch (state_) {
-        case state::in_message: store(byte); return {};
-        case state::idle: state_ = state::stray; return error(frame_error::stray_data);
+        case state::in_message:
+          store(byte);
+          return {};
+        case state::idle:
+          state_ = state::stray;
+          return error(frame_error::stray_data);
         case state::stray:
-        case state::skipping: return {};
+        case state::skipping:
+          return {};
       }
       return {};
     }
@@ -139,7 +153,8 @@ class decoder {
 
  private:
   enum class state : std::uint8_t { idle, stray, in_message, skipping };
-  static constexpr std::size_t capacity = MaxCharacters > variable_data_length ? MaxCharacters : variable_data_length;
+  static constexpr std::size_t capacity =
+      MaxCharacters > variable_data_length ? MaxCharacters : variable_data_length;
 
   // Stores up to `capacity` bytes; beyond that only notes that the message is too long (length_ stops at
   // capacity + 1, so it never wraps however long the message is).

@@ -28,15 +28,24 @@ enum class encode_error : std::uint8_t {
 /// Text for an encode_error, for logs and the CLI.
 constexpr const char* to_string(encode_error error) noexcept {
   switch (error) {
-    case encode_error::none: return "none";
-    case encode_error::buffer_too_small: return "buffer too small";
-    case encode_error::hops_out_of_range: return "hops out of range 1..15";
-    case encode_error::empty_text: return "empty text";
-    case encode_error::character_out_of_range: return "character above 127";
-    case encode_error::vr_out_of_range: return "vr out of range 0..16383";
-    case encode_error::offset_out_of_range: return "keypad offset out of range 1..15";
-    case encode_error::mode_out_of_range: return "keypad mode not 0 or 127";
-    case encode_error::unknown_type: return "unknown message type";
+    case encode_error::none:
+      return "none";
+    case encode_error::buffer_too_small:
+      return "buffer too small";
+    case encode_error::hops_out_of_range:
+      return "hops out of range 1..15";
+    case encode_error::empty_text:
+      return "empty text";
+    case encode_error::character_out_of_range:
+      return "character above 127";
+    case encode_error::vr_out_of_range:
+      return "vr out of range 0..16383";
+    case encode_error::offset_out_of_range:
+      return "keypad offset out of range 1..15";
+    case encode_error::mode_out_of_range:
+      return "keypad mode not 0 or 127";
+    case encode_error::unknown_type:
+      return "unknown message type";
   }
   return "unknown";
 }
@@ -62,8 +71,9 @@ constexpr encode_error check(const message& m) noexcept {
     case message_type::keypad_offset:
       return valid_hops(m.offset) ? encode_error::none : encode_error::offset_out_of_range;
     case message_type::keypad_mode:
-      return m.mode == keypad_mode_key_on || m.mode == keypad_mode_key_on_off ? encode_error::none
-                                                                              : encode_error::mode_out_of_range;
+      return m.mode == keypad_mode_key_on || m.mode == keypad_mode_key_on_off
+                 ? encode_error::none
+                 : encode_error::mode_out_of_range;
   }
   return encode_error::unknown_type;
 }
@@ -102,8 +112,12 @@ constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
       write_variable_data<Crc>(p, m.vr, m.value);
       p += variable_data_length;
       break;
-    case message_type::keypad_offset: *p++ = m.offset; break;
-    case message_type::keypad_mode: *p++ = m.mode; break;
+    case message_type::keypad_offset:
+      *p++ = m.offset;
+      break;
+    case message_type::keypad_mode:
+      *p++ = m.mode;
+      break;
   }
   *p = make_end_of_message(m.hops);
   return {length, encode_error::none};
@@ -126,7 +140,8 @@ constexpr encode_result encode_variable(byte_buffer out, std::uint8_t hops, std:
 }
 
 /// SEND(n,2,offset): a keypad offset; `offset` is a hop count 1..15 (BASIC offset - 9).
-constexpr encode_result encode_keypad_offset(byte_buffer out, std::uint8_t hops, std::uint8_t offset) noexcept {
+constexpr encode_result encode_keypad_offset(byte_buffer out, std::uint8_t hops,
+                                             std::uint8_t offset) noexcept {
   return encode(out, message::keypad_offset(hops, offset));
 }
 

@@ -38,12 +38,12 @@ constexpr std::uint8_t keypad_mode_key_on_off = 127;
 /// `text` is a view: in a decoded message it points into the decoder and is valid until its next push.
 struct message {
   message_type type = message_type::character;
-  std::uint8_t hops = 0;   ///< A: hops from the sender to the receiver, 1..15
-  byte_view text;          ///< character: the characters, each 0..127
-  std::uint16_t vr = 0;    ///< variable: VR number 0..16383
-  std::int64_t value = 0;  ///< variable: Q32.32 value (value / 2^32)
-  std::uint8_t offset = 0; ///< keypad offset: hops from the keypad to where it sends its keys, 1..15
-  std::uint8_t mode = 0;   ///< keypad mode: 0 or 127
+  std::uint8_t hops = 0;    ///< A: hops from the sender to the receiver, 1..15
+  byte_view text;           ///< character: the characters, each 0..127
+  std::uint16_t vr = 0;     ///< variable: VR number 0..16383
+  std::int64_t value = 0;   ///< variable: Q32.32 value (value / 2^32)
+  std::uint8_t offset = 0;  ///< keypad offset: hops from the keypad to where it sends its keys, 1..15
+  std::uint8_t mode = 0;    ///< keypad mode: 0 or 127
 
   static constexpr message characters(std::uint8_t hops, byte_view text) noexcept {
     message m;
@@ -79,10 +79,13 @@ struct message {
 /// The whole frame length of a message, header and end of message included (0 for an unknown type).
 constexpr std::size_t frame_length(const message& m) noexcept {
   switch (m.type) {
-    case message_type::character: return framing_length + m.text.size();
-    case message_type::variable: return framing_length + variable_data_length;
+    case message_type::character:
+      return framing_length + m.text.size();
+    case message_type::variable:
+      return framing_length + variable_data_length;
     case message_type::keypad_offset:
-    case message_type::keypad_mode: return framing_length + 1;
+    case message_type::keypad_mode:
+      return framing_length + 1;
   }
   return 0;
 }

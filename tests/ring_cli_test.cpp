@@ -1,0 +1,121 @@
+// `trionet ring encode|decode` run as a user would, output compared byte for byte.
+#include <gtest/gtest.h>
+
+#include "support/run_cli.hpp"
+
+using trionet::test::run_cli;
+
+namespace {
+
+void expect_usage_error(const std::string& args, const std::string& stdin_text = "") {
+  const auto r = run_cli(args, stdin_text);
+  EXPECT_EQ(r.exit_code, 2) << args;
+  EXPECT_EQ(r.out, "") << args;
+  EXPECT_NE(r.err, "") << args;
+}
+
+}  // namespace
+
+TEST(RingCli, EncodeVarGoldenExample) {
+  const auto r = run_cli("ring encode var --to 10 --vr 200 --value 99");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, "8a 48 01 00 00 00 00 30 0c 00 00 00 00 7f 3e 88\n");
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(RingCli, EncodePrintOffsetMode) {
+  EXPECT_EQ(run_cli("ring encode print --to 11 HELLO").out, "91 48 45 4c 4c 4f 90\n");
+  EXPECT_EQ(run_cli("ring encode print --to 10 'A B'").out, "89 41 20 42 88\n");
+  EXPECT_EQ(run_cli("ring encode offset --to 10 --offset 12").out, "8b 03 88\n");
+  EXPECT_EQ(run_cli("ring encode mode --to 12 --mode 127").out, "9c 7f 98\n");
+  EXPECT_EQ(run_cli("ring encode mode --to 24 --mode 0").out, "fc 00 f8\n");
+}
+
+TEST(RingCli, DecodeGoldenExampleFromArgumentsAndStdin) {
+  const std::string expected =
+      "{\"event\":\"message\",\"type\":\"var\",\"hops\":1,\"vr\":200,\"raw\":\"0x0000006300000000\","
+      "\"value\":99}\n";
+  auto r = run_cli("ring decode 8a 48 01 00 00 00 00 30 0c 00 00 00 00 7f 3e 88");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, expected);
+  r = run_cli("ring decode", "8a4801000000\n0030 0c00000000 7f3e88\n");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, expected);
+}
+
+TEST(RingCli, DecodeEveryEventKind) {
+  const auto r = run_cli("ring decode",
+                         "91 48 49 90 "                                      // char "HI" hops 2
+                         "8b 03 88 "                                         // offset 3
+                         "9c 7f 98 "                                         // mode 127
+                         "8a 48 01 00 00 00 00 30 0c 00 00 00 00 7f 3f 88 "  // CRC error
+                         "01 02 "                                            // stray data
+                         "88 "                                               // stray eom
+                         "89 41 91 42 90 "                                   // interrupted, then "B"
+                         "89 41 90 "                                         // eom mismatch
+                         "89 88 "                                            // bad length
+                         "8c 05 88 "                                         // bad field
+                         "8d 01 88 "                                         // unknown type
+                         "81 01 80"                                          // zero hops
+  );
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "{\"event\":\"message\",\"type\":\"char\",\"hops\":2,\"text\":\"HI\"}\n"
+            "{\"event\":\"message\",\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"message\",\"type\":\"mode\",\"hops\":3,\"mode\":127}\n"
+            "{\"event\":\"crc_error\",\"hops\":1,\"vr\":200}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"stray_data\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"stray_eom\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"interrupted\"}\n"
+            "{\"event\":\"message\",\"type\":\"char\",\"hops\":2,\"text\":\"B\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"eom_mismatch\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"bad_length\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"bad_field\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"unknown_type\"}\n"
+            "{\"event\":\"frame_error\",\"reason\":\"zero_hops\"}\n");
+}
+
+TEST(RingCli, DecodeEscapesControlCharactersInJson) {
+  const auto r = run_cli("ring decode 89 0c 22 5c 41 88");
+  EXPECT_EQ(r.out, "{\"event\":\"message\",\"type\":\"char\",\"hops\":1,\"text\":\"\\u000c\\\"\\\\A\"}\n");
+}
+
+TEST(RingCli, DecodeNegativeAndFractionalValues) {
+  const auto r = run_cli("ring decode $(" TRIONET_CLI_PATH " ring encode var --to 10 --vr 1 --value -2.5)");
+  EXPECT_EQ(r.out,
+            "{\"event\":\"message\",\"type\":\"var\",\"hops\":1,\"vr\":1,\"raw\":\"0xfffffffd80000000\","
+            "\"value\":-2.5}\n");
+}
+
+TEST(RingCli, DecodeEmptyInputPrintsNothing) {
+  const auto r = run_cli("ring decode", "");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(RingCli, BadInputIsAUsageError) {
+  expect_usage_error("ring decode", "8a zz");
+  expect_usage_error("ring decode 8a4");
+  expect_usage_error("ring decode 0x8a");
+  expect_usage_error("ring encode print --to 9 HI");
+  expect_usage_error("ring encode print --to 25 HI");
+  expect_usage_error("ring encode print --to 10");
+  expect_usage_error("ring encode print --to 10 ''");
+  expect_usage_error("ring encode print --to 10 \"$(printf '\\303\\251')\"");  // UTF-8 e-acute
+  expect_usage_error("ring encode var --to 10 --vr 16384 --value 1");
+  expect_usage_error("ring encode var --to 10 --vr 1 --value 2147483648");
+  expect_usage_error("ring encode var --to 10 --vr 1 --value abc");
+  expect_usage_error("ring encode var --to 10 --vr 1");
+  expect_usage_error("ring encode offset --to 10 --offset 9");
+  expect_usage_error("ring encode mode --to 10 --mode 1");
+  expect_usage_error("ring encode mode --to 10 --mode 0 --vr 3");
+  expect_usage_error("ring encode bogus --to 10");
+  expect_usage_error("ring bogus");
+  expect_usage_error("ring encode var --to 10 --to 11 --vr 1 --value 1");
+}
+
+TEST(RingCli, ErrorMessagesNameTheProblem) {
+  EXPECT_NE(run_cli("ring encode print --to 9 HI").err.find("--to"), std::string::npos);
+  EXPECT_NE(run_cli("ring decode", "8a zz").err.find("'z'"), std::string::npos);
+  EXPECT_NE(run_cli("ring encode var --to 10 --vr 1 --value 3e9").err.find("range"), std::string::npos);
+}

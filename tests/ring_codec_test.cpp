@@ -1,0 +1,575 @@
+// The ring codec against PROTOCOL.md 1.2-1.4 and the manual's message format.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "trionet/ring.hpp"
+
+namespace ring = trionet::ring;
+using trionet::byte_view;
+
+namespace {
+
+std::vector<std::uint8_t> bytes_of(std::initializer_list<int> list) {
+  std::vector<std::uint8_t> out;
+  for (int b : list) out.push_back(static_cast<std::uint8_t>(b));
+  return out;
+}
+
+// A decode result with its text copied out of the decoder, comparable with ==.
+struct event {
+  ring::decode_status status;
+  ring::frame_error error;
+  ring::message_type type;
+  int hops;
+  std::string text;
+  int vr;
+  std::int64_t value;
+  int offset;
+  int mode;
+  bool operator==(const event& o) const {
+    return status == o.status && error == o.error && type == o.type && hops == o.hops && text == o.text &&
+           vr == o.vr && value == o.value && offset == o.offset && mode == o.mode;
+  }
+};
+
+event to_event(const ring::decode_result& r) {
+  return {r.status,
+          r.error,
+          r.msg.type,
+          r.msg.hops,
+          std::string(reinterpret_cast<const char*>(r.msg.text.data()), r.msg.text.size()),
+          r.msg.vr,
+          r.msg.value,
+          r.msg.offset,
+          r.msg.mode};
+}
+
+template <class Decoder>
+std::vector<event> decode_bytewise(Decoder& d, const std::vector<std::uint8_t>& bytes) {
+  std::vector<event> out;
+  for (std::uint8_t b : bytes) {
+    const ring::decode_result r = d.push(b);
+    if (r.status != ring::decode_status::incomplete) out.push_back(to_event(r));
+  }
+  return out;
+}
+
+template <class Decoder>
+std::vector<event> decode_bulk(Decoder& d, const std::vector<std::uint8_t>& bytes) {
+  std::vector<event> out;
+  d.push(byte_view(bytes.data(), bytes.size()),
+         [&](const ring::decode_result& r) { out.push_back(to_event(r)); });
+  return out;
+}
+
+std::vector<event> decode_all(const std::vector<std::uint8_t>& bytes) {
+  ring::decoder<> d;
+  return decode_bytewise(d, bytes);
+}
+
+ring::frame_error only_error(const std::vector<std::uint8_t>& bytes) {
+  const auto events = decode_all(bytes);
+  EXPECT_EQ(events.size(), 1u);
+  if (events.size() != 1) return ring::frame_error::none;
+  EXPECT_EQ(events[0].status, ring::decode_status::frame_error);
+  return events[0].error;
+}
+
+const std::vector<std::uint8_t> golden = bytes_of(
+    {0x8a, 0x48, 0x01, 0x00, 0x00, 0x00, 0x00, 0x30, 0x0c, 0x00, 0x00, 0x00, 0x00, 0x7f, 0x3e, 0x88});
+
+}  // namespace
+
+// ---- PROTOCOL.md 1.3 example: hop 1, vr 200, value 99 ----
+
+TEST(RingGoldenExample, EncodesByteForByte) {
+  std::uint8_t frame[16];
+  const auto result = ring::encode_variable(frame, 1, 200, ring::q32_from_integer(99));
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result.length, 16u);
+  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
+  EXPECT_EQ(ring::crc16_ccitt_false::compute(frame + 1, 12), 0x3EFF);
+}
+
+TEST(RingGoldenExample, Decodes) {
+  const auto events = decode_all(golden);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(events[0].type, ring::message_type::variable);
+  EXPECT_EQ(events[0].hops, 1);
+  EXPECT_EQ(events[0].vr, 200);
+  EXPECT_EQ(events[0].value, ring::q32_from_integer(99));
+  EXPECT_EQ(ring::q32_to_double(events[0].value), 99.0);
+}
+
+TEST(RingGoldenExample, TableFreeCrcGivesTheSameFrame) {
+  std::uint8_t frame[16];
+  ASSERT_TRUE(
+      ring::encode_variable<ring::crc16_ccitt_false_bitwise>(frame, 1, 200, ring::q32_from_integer(99)));
+  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
+  ring::decoder<256, ring::crc16_ccitt_false_bitwise> d;
+  const auto events = decode_bytewise(d, golden);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::message);
+}
+
+// ---- CRC ----
+
+TEST(RingCrc, CheckValueWithTable) {
+  const char* check = "123456789";
+  EXPECT_EQ(ring::crc16_ccitt_false::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
+}
+
+TEST(RingCrc, CheckValueWithoutTable) {
+  const char* check = "123456789";
+  EXPECT_EQ(ring::crc16_ccitt_false_bitwise::compute(reinterpret_cast<const std::uint8_t*>(check), 9),
+            0x29B1);
+}
+
+TEST(RingCrc, CheckValueAtCompileTime) {
+  constexpr std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  static_assert(ring::crc16_ccitt_false::compute(check, 9) == 0x29B1, "table CRC check value");
+  static_assert(ring::crc16_ccitt_false_bitwise::compute(check, 9) == 0x29B1, "bitwise CRC check value");
+  SUCCEED();
+}
+
+TEST(RingCrc, AnotherPolynomialAndInitCanBePluggedIn) {
+  // CRC-16/XMODEM (poly 0x1021, init 0) and CRC-16/GENIBUS (init 0xFFFF, xorout 0xFFFF): catalogue check
+  // values.
+  using xmodem = ring::crc16<0x1021, 0x0000>;
+  using genibus = ring::crc16<0x1021, 0xFFFF, 0xFFFF, ring::crc_table::none>;
+  const char* check = "123456789";
+  const auto* data = reinterpret_cast<const std::uint8_t*>(check);
+  EXPECT_EQ(xmodem::compute(data, 9), 0x31C3);
+  EXPECT_EQ(genibus::compute(data, 9), 0xD64E);
+
+  // A decoder with another CRC accepts frames encoded with it and rejects default-CRC frames.
+  std::uint8_t frame[16];
+  ASSERT_TRUE(ring::encode_variable<xmodem>(frame, 1, 200, ring::q32_from_integer(99)));
+  ring::decoder<256, xmodem> d;
+  auto events = decode_bytewise(d, std::vector<std::uint8_t>(frame, frame + 16));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  events = decode_bytewise(d, golden);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
+}
+
+TEST(RingCrc, OnlyFourteenBitsTravel) {
+  EXPECT_EQ(ring::crc_wire_bits(0xFFFF), 0x7F7F);
+  EXPECT_EQ(ring::crc_wire_bits(0x3EFF), 0x3E7F);
+}
+
+// ---- bytes, hops and BASIC addresses ----
+
+TEST(RingBytes, ClassifiedByBitSevenAndType) {
+  EXPECT_EQ(ring::classify(0x00), ring::byte_class::data);
+  EXPECT_EQ(ring::classify(0x7F), ring::byte_class::data);
+  EXPECT_EQ(ring::classify(0x8A), ring::byte_class::header);
+  EXPECT_EQ(ring::classify(0x88), ring::byte_class::end_of_message);
+  EXPECT_EQ(ring::classify(0x80), ring::byte_class::end_of_message);
+  EXPECT_EQ(ring::classify(0xFF), ring::byte_class::header);
+}
+
+TEST(RingBytes, HeaderAndEndOfMessageCarryHops) {
+  for (std::uint8_t hops = 1; hops <= 15; ++hops) {
+    for (std::uint8_t type = 1; type <= 7; ++type) {
+      const std::uint8_t header = ring::make_header(hops, type);
+      EXPECT_EQ(ring::classify(header), ring::byte_class::header);
+      EXPECT_EQ(ring::hops_of(header), hops);
+      EXPECT_EQ(ring::type_of(header), type);
+      EXPECT_EQ(ring::hops_of(ring::with_hops(header, 3)), 3);
+      EXPECT_EQ(ring::type_of(ring::with_hops(header, 3)), type);
+    }
+    const std::uint8_t end = ring::make_end_of_message(hops);
+    EXPECT_EQ(ring::classify(end), ring::byte_class::end_of_message);
+    EXPECT_EQ(ring::hops_of(end), hops);
+  }
+}
+
+TEST(RingAddressing, BasicAddressIsHopsPlusNine) {
+  EXPECT_FALSE(ring::hops_from_basic_address(9).has_value());
+  EXPECT_FALSE(ring::hops_from_basic_address(25).has_value());
+  EXPECT_FALSE(ring::hops_from_basic_address(-1).has_value());
+  for (int n = 10; n <= 24; ++n) {
+    ASSERT_TRUE(ring::hops_from_basic_address(n).has_value());
+    EXPECT_EQ(*ring::hops_from_basic_address(n), n - 9);
+    EXPECT_EQ(*ring::basic_address_from_hops(static_cast<unsigned>(n - 9)), n);
+  }
+  EXPECT_FALSE(ring::basic_address_from_hops(0).has_value());
+  EXPECT_FALSE(ring::basic_address_from_hops(16).has_value());
+}
+
+// ---- Q32.32 ----
+
+TEST(RingQ32, RoundsToNearestTiesAwayFromZero) {
+  const double step = 1.0 / ring::q32_one;
+  EXPECT_EQ(ring::q32_from_double(0.5 * step).raw, 1);
+  EXPECT_EQ(ring::q32_from_double(-0.5 * step).raw, -1);
+  EXPECT_EQ(ring::q32_from_double(0.49 * step).raw, 0);
+  EXPECT_EQ(ring::q32_from_double(1.5 * step).raw, 2);
+  EXPECT_EQ(ring::q32_from_double(-1.5 * step).raw, -2);
+  EXPECT_EQ(ring::q32_from_double(2.5 * step).raw, 3);
+  EXPECT_EQ(ring::q32_from_double(99.0).raw, ring::q32_from_integer(99));
+  EXPECT_EQ(ring::q32_from_double(-2.5).raw, -(std::int64_t{5} << 31));
+}
+
+TEST(RingQ32, OutOfRangeIsAnErrorNeverWrapped) {
+  EXPECT_TRUE(ring::q32_from_double(-2147483648.0));
+  EXPECT_EQ(ring::q32_from_double(-2147483648.0).raw, INT64_MIN);
+  EXPECT_EQ(ring::q32_from_double(2147483648.0).error, ring::q32_error::out_of_range);
+  EXPECT_EQ(ring::q32_from_double(-2147483649.0).error, ring::q32_error::out_of_range);
+  EXPECT_EQ(ring::q32_from_double(1e300).error, ring::q32_error::out_of_range);
+  EXPECT_EQ(ring::q32_from_double(-1e300).error, ring::q32_error::out_of_range);
+  EXPECT_EQ(ring::q32_from_double(std::numeric_limits<double>::infinity()).error,
+            ring::q32_error::out_of_range);
+  EXPECT_EQ(ring::q32_from_double(std::nan("")).error, ring::q32_error::not_a_number);
+  // The largest double below 2^31 is in range.
+  const double below = std::nextafter(2147483648.0, 0.0);
+  ASSERT_TRUE(ring::q32_from_double(below));
+  EXPECT_GT(ring::q32_from_double(below).raw, 0);
+}
+
+TEST(RingQ32, RawBitsAreTwosComplement) {
+  EXPECT_EQ(ring::q32_from_raw(0xFFFFFFFFFFFFFFFFull), -1);
+  EXPECT_EQ(ring::q32_from_raw(0x8000000000000000ull), INT64_MIN);
+  EXPECT_EQ(ring::q32_from_raw(0x0000006300000000ull), ring::q32_from_integer(99));
+  EXPECT_EQ(ring::q32_to_raw(-1), 0xFFFFFFFFFFFFFFFFull);
+  EXPECT_EQ(ring::q32_to_double(ring::q32_from_raw(0xFFFFFFFF80000000ull)), -0.5);
+}
+
+// ---- encoders ----
+
+TEST(RingEncode, CharacterTransfer) {
+  std::uint8_t frame[8];
+  const auto result = ring::encode_characters(frame, 2, "HI", 2);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + result.length), bytes_of({0x91, 'H', 'I', 0x90}));
+}
+
+TEST(RingEncode, KeypadOffsetAndMode) {
+  std::uint8_t frame[3];
+  ASSERT_TRUE(ring::encode_keypad_offset(frame, 1, 3));
+  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 3), bytes_of({0x8b, 0x03, 0x88}));
+  ASSERT_TRUE(ring::encode_keypad_mode(frame, 3, 127));
+  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 3), bytes_of({0x9c, 0x7f, 0x98}));
+}
+
+TEST(RingEncode, NegativeValueCarriesBit63InX9) {
+  std::uint8_t frame[16];
+  ASSERT_TRUE(ring::encode_variable(frame, 1, 0, -1));
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(frame[3 + k], 0x7F) << k;
+  EXPECT_EQ(frame[12], 0x01);
+}
+
+TEST(RingEncode, ErrorsWriteNothing) {
+  struct bad_case {
+    ring::message m;
+    ring::encode_error expected;
+  };
+  const std::uint8_t high[] = {'A', 200};
+  const std::uint8_t ok[] = {'A'};
+  const bad_case cases[] = {
+      {ring::message::characters(0, byte_view(ok, 1)), ring::encode_error::hops_out_of_range},
+      {ring::message::characters(16, byte_view(ok, 1)), ring::encode_error::hops_out_of_range},
+      {ring::message::characters(1, byte_view()), ring::encode_error::empty_text},
+      {ring::message::characters(1, byte_view(high, 2)), ring::encode_error::character_out_of_range},
+      {ring::message::variable(1, 16384, 0), ring::encode_error::vr_out_of_range},
+      {ring::message::keypad_offset(1, 0), ring::encode_error::offset_out_of_range},
+      {ring::message::keypad_offset(1, 16), ring::encode_error::offset_out_of_range},
+      {ring::message::keypad_mode(1, 1), ring::encode_error::mode_out_of_range},
+      {ring::message::keypad_mode(1, 128), ring::encode_error::mode_out_of_range},
+  };
+  for (const auto& c : cases) {
+    std::uint8_t frame[32];
+    std::memset(frame, 0xA5, sizeof frame);
+    const auto result = ring::encode(frame, c.m);
+    EXPECT_EQ(result.error, c.expected) << ring::to_string(c.expected);
+    EXPECT_EQ(result.length, 0u);
+    for (std::uint8_t b : frame) ASSERT_EQ(b, 0xA5) << "partial write for " << ring::to_string(c.expected);
+  }
+  ring::message unknown = ring::message::keypad_mode(1, 0);
+  unknown.type = static_cast<ring::message_type>(5);
+  std::uint8_t frame[8];
+  EXPECT_EQ(ring::encode(frame, unknown).error, ring::encode_error::unknown_type);
+}
+
+TEST(RingEncode, BufferTooSmallWritesNothing) {
+  std::uint8_t frame[16];
+  std::memset(frame, 0xA5, sizeof frame);
+  const auto result = ring::encode_variable(trionet::byte_buffer(frame, 15), 1, 200, 0);
+  EXPECT_EQ(result.error, ring::encode_error::buffer_too_small);
+  for (std::uint8_t b : frame) EXPECT_EQ(b, 0xA5);
+  EXPECT_EQ(ring::encode_characters(trionet::byte_buffer(frame, 4), 1, "ABC", 3).error,
+            ring::encode_error::buffer_too_small);
+  EXPECT_TRUE(ring::encode_characters(trionet::byte_buffer(frame, 5), 1, "ABC", 3));
+}
+
+// ---- decoder: every frame-error reason ----
+
+TEST(RingDecodeErrors, StrayDataOncePerRun) {
+  const auto events = decode_all(bytes_of({0x01, 0x02, 0x03, 0x91, 'A', 0x90, 0x04, 0x05}));
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].error, ring::frame_error::stray_data);
+  EXPECT_EQ(events[1].status, ring::decode_status::message);
+  EXPECT_EQ(events[1].text, "A");
+  EXPECT_EQ(events[2].error, ring::frame_error::stray_data);
+}
+
+TEST(RingDecodeErrors, StrayEndOfMessage) {
+  EXPECT_EQ(only_error(bytes_of({0x88})), ring::frame_error::stray_eom);
+  EXPECT_EQ(only_error(bytes_of({0x80})), ring::frame_error::stray_eom);
+}
+
+TEST(RingDecodeErrors, InterruptedByHeaderThenTheNewMessageDecodes) {
+  const auto events = decode_all(bytes_of({0x89, 'A', 'B', 0x91, 'C', 0x90}));
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].error, ring::frame_error::interrupted);
+  EXPECT_EQ(events[1].status, ring::decode_status::message);
+  EXPECT_EQ(events[1].hops, 2);
+  EXPECT_EQ(events[1].text, "C");
+}
+
+TEST(RingDecodeErrors, EndOfMessageMismatch) {
+  EXPECT_EQ(only_error(bytes_of({0x89, 'A', 0x90})), ring::frame_error::eom_mismatch);
+}
+
+TEST(RingDecodeErrors, BadLength) {
+  EXPECT_EQ(only_error(bytes_of({0x89, 0x88})), ring::frame_error::bad_length);        // empty characters
+  EXPECT_EQ(only_error(bytes_of({0x8b, 0x88})), ring::frame_error::bad_length);        // offset, no data
+  EXPECT_EQ(only_error(bytes_of({0x8b, 3, 3, 0x88})), ring::frame_error::bad_length);  // offset, two
+  EXPECT_EQ(only_error(bytes_of({0x8c, 0, 0, 0x88})), ring::frame_error::bad_length);  // mode, two
+  std::vector<std::uint8_t> short_var(golden);
+  short_var.erase(short_var.begin() + 5);
+  EXPECT_EQ(only_error(short_var), ring::frame_error::bad_length);
+  std::vector<std::uint8_t> long_var(golden);
+  long_var.insert(long_var.begin() + 5, 0x00);
+  EXPECT_EQ(only_error(long_var), ring::frame_error::bad_length);
+}
+
+TEST(RingDecodeErrors, BadField) {
+  EXPECT_EQ(only_error(bytes_of({0x8b, 0, 0x88})), ring::frame_error::bad_field);   // offset 0
+  EXPECT_EQ(only_error(bytes_of({0x8b, 16, 0x88})), ring::frame_error::bad_field);  // offset 16
+  EXPECT_EQ(only_error(bytes_of({0x8c, 1, 0x88})), ring::frame_error::bad_field);   // mode 1
+  // X9 bits 6..1 set, with a CRC that matches (so the field check is reached).
+  std::vector<std::uint8_t> frame(golden);
+  frame[12] = 0x02;
+  const std::uint16_t crc = ring::crc16_ccitt_false::compute(frame.data() + 1, 12);
+  frame[13] = static_cast<std::uint8_t>(crc & 0x7F);
+  frame[14] = static_cast<std::uint8_t>((crc >> 8) & 0x7F);
+  EXPECT_EQ(only_error(frame), ring::frame_error::bad_field);
+}
+
+TEST(RingDecodeErrors, UnknownType) {
+  for (int type = 5; type <= 7; ++type) {
+    EXPECT_EQ(only_error(bytes_of({0x88 | type, 1, 2, 3, 0x88})), ring::frame_error::unknown_type) << type;
+  }
+}
+
+TEST(RingDecodeErrors, ZeroHopsSkipsToThatMessagesEnd) {
+  // A = 0 header, its data and its end of message: one report, then the next message decodes.
+  const auto events = decode_all(bytes_of({0x81, 'X', 'Y', 0x80, 0x89, 'A', 0x88}));
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].error, ring::frame_error::zero_hops);
+  EXPECT_EQ(events[1].status, ring::decode_status::message);
+  EXPECT_EQ(events[1].text, "A");
+  // ... or to the next header.
+  const auto again = decode_all(bytes_of({0x81, 'X', 0x89, 'A', 0x88}));
+  ASSERT_EQ(again.size(), 2u);
+  EXPECT_EQ(again[0].error, ring::frame_error::zero_hops);
+  EXPECT_EQ(again[1].text, "A");
+}
+
+TEST(RingDecodeErrors, CrcErrorReportsHopsAndVrAndChecksLengthFirst) {
+  std::vector<std::uint8_t> frame(golden);
+  frame[7] ^= 0x01;  // corrupt X4
+  auto events = decode_all(frame);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
+  EXPECT_EQ(events[0].hops, 1);
+  EXPECT_EQ(events[0].vr, 200);
+  // A corrupted CRC byte is a CRC error too.
+  frame = golden;
+  frame[14] ^= 0x40;
+  events = decode_all(frame);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
+  // CRC before fields: X9 bits set and CRC wrong is a CRC error.
+  frame = golden;
+  frame[12] = 0x7E;
+  events = decode_all(frame);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
+}
+
+TEST(RingDecodeErrors, LongCharacterMessageIsConsumedNotOverflowed) {
+  ring::decoder<8> d;
+  std::vector<std::uint8_t> stream = {0x89};
+  for (int i = 0; i < 100000; ++i) stream.push_back(static_cast<std::uint8_t>('a' + i % 26));
+  stream.push_back(0x88);
+  stream.insert(stream.end(), {0x89, 'o', 'k', 0x88});
+  auto events = decode_bytewise(d, stream);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].error, ring::frame_error::bad_length);
+  EXPECT_EQ(events[1].text, "ok");
+  ring::decoder<8> bulk;
+  EXPECT_EQ(decode_bulk(bulk, stream), events);
+}
+
+TEST(RingDecode, MaximumLengthIsATemplateParameter) {
+  std::vector<std::uint8_t> eight = {0x89, '1', '2', '3', '4', '5', '6', '7', '8', 0x88};
+  std::vector<std::uint8_t> nine = {0x89, '1', '2', '3', '4', '5', '6', '7', '8', '9', 0x88};
+  ring::decoder<8> d;
+  auto events = decode_bytewise(d, eight);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].text, "12345678");
+  events = decode_bytewise(d, nine);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].error, ring::frame_error::bad_length);
+
+  // The default is 256 characters.
+  std::vector<std::uint8_t> max = {0x89};
+  max.insert(max.end(), 256, 'x');
+  max.push_back(0x88);
+  EXPECT_EQ(decode_all(max).at(0).text.size(), 256u);
+  max.insert(max.begin() + 1, 'x');
+  EXPECT_EQ(decode_all(max).at(0).error, ring::frame_error::bad_length);
+}
+
+TEST(RingDecode, RecoversAtNextHeaderAfterEveryError) {
+  const std::vector<std::vector<std::uint8_t>> garbage = {
+      bytes_of({0x01}),          bytes_of({0x88}),
+      bytes_of({0x89, 'A'}),     bytes_of({0x89, 'A', 0x90}),
+      bytes_of({0x89, 0x88}),    bytes_of({0x8c, 5, 0x88}),
+      bytes_of({0x8d, 1, 0x88}), bytes_of({0x81, 1})};
+  for (const auto& g : garbage) {
+    std::vector<std::uint8_t> stream(g);
+    stream.insert(stream.end(), golden.begin(), golden.end());
+    const auto events = decode_all(stream);
+    ASSERT_FALSE(events.empty());
+    EXPECT_EQ(events.back().status, ring::decode_status::message);
+    EXPECT_EQ(events.back().vr, 200);
+  }
+}
+
+// ---- properties ----
+
+namespace {
+
+ring::message random_message(std::mt19937_64& rng, std::vector<std::uint8_t>& text_storage) {
+  const auto hops = static_cast<std::uint8_t>(1 + rng() % 15);
+  switch (rng() % 4) {
+    case 0: {
+      const std::size_t length = 1 + rng() % 256;
+      text_storage.resize(length);
+      for (auto& c : text_storage) c = static_cast<std::uint8_t>(rng() % 128);
+      return ring::message::characters(hops, byte_view(text_storage.data(), length));
+    }
+    case 1:
+      return ring::message::variable(hops, static_cast<std::uint16_t>(rng() % 16384),
+                                     static_cast<std::int64_t>(rng()));
+    case 2:
+      return ring::message::keypad_offset(hops, static_cast<std::uint8_t>(1 + rng() % 15));
+    default:
+      return ring::message::keypad_mode(hops, rng() % 2 == 0 ? 0 : 127);
+  }
+}
+
+}  // namespace
+
+TEST(RingProperty, HundredThousandRandomMessagesRoundTrip) {
+  std::mt19937_64 rng(20261122);
+  ring::decoder<> d;
+  std::vector<std::uint8_t> text;
+  std::uint8_t frame[300];
+  int count = 0;
+  for (; count < 100000; ++count) {
+    const ring::message m = random_message(rng, text);
+    const auto encoded = ring::encode(frame, m);
+    ASSERT_TRUE(encoded);
+    ASSERT_EQ(encoded.length, ring::frame_length(m));
+    ring::decode_result last;
+    int results = 0;
+    for (std::size_t i = 0; i < encoded.length; ++i) {
+      const auto r = d.push(frame[i]);
+      if (r.status != ring::decode_status::incomplete) {
+        last = r;
+        ++results;
+      }
+    }
+    ASSERT_EQ(results, 1);
+    ASSERT_EQ(last.status, ring::decode_status::message);
+    ASSERT_EQ(last.msg.type, m.type);
+    ASSERT_EQ(last.msg.hops, m.hops);
+    switch (m.type) {
+      case ring::message_type::character:
+        ASSERT_EQ(last.msg.text.size(), m.text.size());
+        ASSERT_EQ(std::memcmp(last.msg.text.data(), m.text.data(), m.text.size()), 0);
+        break;
+      case ring::message_type::variable:
+        ASSERT_EQ(last.msg.vr, m.vr);
+        ASSERT_EQ(last.msg.value, m.value);
+        break;
+      case ring::message_type::keypad_offset:
+        ASSERT_EQ(last.msg.offset, m.offset);
+        break;
+      case ring::message_type::keypad_mode:
+        ASSERT_EQ(last.msg.mode, m.mode);
+        break;
+    }
+    // Re-encoding the decoded message gives the same frame.
+    std::uint8_t again[300];
+    const auto re = ring::encode(again, last.msg);
+    ASSERT_TRUE(re);
+    ASSERT_EQ(std::memcmp(again, frame, re.length), 0);
+  }
+  EXPECT_EQ(count, 100000);
+}
+
+TEST(RingProperty, BytewiseAndBulkGiveTheSameResultsOnCorruptedStreams) {
+  std::mt19937_64 rng(7);
+  std::vector<std::uint8_t> text;
+  std::uint8_t frame[300];
+  std::size_t total_events = 0;
+  for (int round = 0; round < 200; ++round) {
+    std::vector<std::uint8_t> stream;
+    for (int i = 0; i < 50; ++i) {
+      const auto encoded = ring::encode(frame, random_message(rng, text));
+      ASSERT_TRUE(encoded);
+      stream.insert(stream.end(), frame, frame + encoded.length);
+    }
+    // Corruption: flipped bits, dropped bytes, inserted random bytes.
+    for (int i = 0; i < 40; ++i) {
+      const std::size_t at = rng() % stream.size();
+      switch (rng() % 3) {
+        case 0:
+          stream[at] = static_cast<std::uint8_t>(stream[at] ^ (1u << (rng() % 8)));
+          break;
+        case 1:
+          stream.erase(stream.begin() + static_cast<std::ptrdiff_t>(at));
+          break;
+        default:
+          stream.insert(stream.begin() + static_cast<std::ptrdiff_t>(at), static_cast<std::uint8_t>(rng()));
+          break;
+      }
+    }
+    ring::decoder<64> one, bulk, chunked;
+    const auto expected = decode_bytewise(one, stream);
+    EXPECT_EQ(decode_bulk(bulk, stream), expected);
+    // In random chunks too: the decoder's state carries across calls.
+    std::vector<event> pieces;
+    for (std::size_t at = 0; at < stream.size();) {
+      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 40);
+      chunked.push(byte_view(stream.data() + at, n),
+                   [&](const ring::decode_result& r) { pieces.push_back(to_event(r)); });
+      at += n;
+    }
+    EXPECT_EQ(pieces, expected);
+    total_events += expected.size();
+  }
+  EXPECT_GT(total_events, 10000u);  // the streams really exercised the decoder
+}
