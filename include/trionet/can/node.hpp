@@ -1,0 +1,251 @@
+// A TN20-17 VR-exchange node: one Motion Coordinator's side of the exchange (PROTOCOL.md 2.1, 2.2).
+//
+// Sending: `send_to_node` (by destination node) or `send_on_channel` (by transmit channel 5..N+3, as the
+// note's `send_vr` routine does) encodes VR(vr) = value and hands one frame to the `port`. Receiving: the
+// owner of the CAN controller passes every received frame to `receive`. A frame on one of this node's receive
+// identifiers is decoded and written to VR(vr) through the `vr_store` hook, the same write policy the ring
+// node uses. Anything else is not an error to the caller: foreign frames (not ours) and malformed frames (by
+// reason) are dropped and counted, as are writes the policy refused or that fall outside the VR table.
+#pragma once
+
+#include <cstdint>
+
+#include "../vr.hpp"
+#include "frame.hpp"
+#include "identifiers.hpp"
+#include "port.hpp"
+#include "vr_codec.hpp"
+
+namespace trionet::can {
+
+/// Which node of how many: a checked pair, made by `make_node_address`. Default: node 1 of 5.
+/// Cost: 2 bytes.
+class node_address {
+ public:
+  constexpr node_address() noexcept = default;
+  [[nodiscard]] constexpr std::uint8_t node_count() const noexcept { return node_count_; }
+  [[nodiscard]] constexpr std::uint8_t node() const noexcept { return node_; }
+
+ private:
+  constexpr node_address(std::uint8_t node_count, std::uint8_t node) noexcept
+      : node_count_(node_count), node_(node) {}
+  friend constexpr struct address_result make_node_address(std::uint8_t, std::uint8_t) noexcept;
+
+  std::uint8_t node_count_ = default_node_count;
+  std::uint8_t node_ = 1;
+};
+
+/// A node address, or why the pair is invalid (`bad_node_count`, `bad_node`).
+struct address_result {
+  scheme_error error = scheme_error::none;
+  node_address address{};
+};
+
+/// Checks that `node` is 1..node_count and node_count is 2..11.
+[[nodiscard]] constexpr address_result make_node_address(std::uint8_t node_count,
+                                                         std::uint8_t node) noexcept {
+  const scheme_error error = detail::check_node(node_count, node);
+  if (error != scheme_error::none) return {error, {}};
+  return {scheme_error::none, node_address(node_count, node)};
+}
+
+/// What became of a send request. Everything but `sent` means no frame was queued.
+enum class send_status : std::uint8_t {
+  sent,                   ///< the port queued the frame
+  no_such_node,           ///< destination outside 1..N
+  own_node,               ///< destination is this node
+  no_such_channel,        ///< transmit channel outside 5..N+3
+  vr_out_of_range,        ///< vr > 255
+  not_a_number,           ///< value is NaN
+  too_large,              ///< |value| rounds to 2^32 or more
+  fraction_out_of_range,  ///< parts-based fraction > 9999
+  port_busy,              ///< the port had no room (counted in `send_busy`)
+  port_failed,            ///< the port failed (counted in `send_failed`)
+};
+
+/// What became of a received frame. Only `written` changed a VR.
+enum class receive_status : std::uint8_t {
+  written,       ///< VR(vr) now holds the value
+  refused,       ///< the write policy refused the vr
+  out_of_range,  ///< vr is past the end of the VR table
+  foreign,       ///< not one of this node's receive identifiers (or an extended or remote frame)
+  bad_dlc,       ///< ours, but not exactly 8 data bytes
+  bad_sign,      ///< ours, but the sign byte is not 0 or 1
+  bad_fraction,  ///< ours, but the fraction exceeds 9999
+};
+
+/// A received frame's fate, and for frames on our identifiers, who sent it on which receive channel and what
+/// it said (`message` and `value` are meaningful for written, refused and out_of_range).
+struct receive_result {
+  receive_status status = receive_status::foreign;
+  std::uint8_t sender = 0;
+  std::uint8_t receive_channel = 0;
+  vr_message message{};
+  double value = 0.0;
+};
+
+/// Counts since construction or `clear_counters`. Each wraps at 2^32.
+struct node_counters {
+  std::uint32_t sent = 0;          ///< frames the port queued
+  std::uint32_t send_busy = 0;     ///< frames the port had no room for
+  std::uint32_t send_failed = 0;   ///< frames the port failed to take
+  std::uint32_t written = 0;       ///< VR writes applied
+  std::uint32_t refused = 0;       ///< VR writes the policy refused
+  std::uint32_t out_of_range = 0;  ///< VR writes past the end of the VR table
+  std::uint32_t foreign = 0;       ///< frames not for this node
+  std::uint32_t bad_dlc = 0;       ///< frames for this node with DLC != 8
+  std::uint32_t bad_sign = 0;      ///< frames for this node with a sign byte other than 0 or 1
+  std::uint32_t bad_fraction = 0;  ///< frames for this node with a fraction > 9999
+
+  /// All malformed frames for this node, whatever the reason.
+  [[nodiscard]] constexpr std::uint32_t malformed() const noexcept {
+    return bad_dlc + bad_sign + bad_fraction;
+  }
+};
+
+/// One controller on the exchange. Holds its address, a reference to its port and VR store, and counters.
+/// Cost: about 48 bytes; `send_*` and `receive` are O(1) with one virtual call each (port or store).
+/// Context: `receive` may run in the CAN receive ISR if the `vr_store` may be written there; `send_*` may run
+/// in an ISR if the port allows it. `receive` and `send_*` touch disjoint counters, so one receiving context
+/// and one sending context may run concurrently; two contexts must not both send (or both receive) at once.
+class vr_exchange_node {
+ public:
+  vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
+      : address_(address), port_(&port), store_(&store) {}
+
+  [[nodiscard]] node_address address() const noexcept { return address_; }
+  [[nodiscard]] const node_counters& counters() const noexcept { return counters_; }
+  void clear_counters() noexcept { counters_ = node_counters{}; }
+
+  /// Sends VR(vr) = value (rounded to 4 decimals) to node `destination`.
+  [[nodiscard]] send_status send_to_node(std::uint8_t destination, std::uint16_t vr, double value) noexcept {
+    const identifier_result id = identifier_to(destination);
+    if (id.error != scheme_error::none) return scheme_to_send(id.error);
+    frame out;
+    const encode_error error = encode_vr(vr, value, out.data);
+    if (error != encode_error::none) return encode_to_send(error);
+    return transmit(id.identifier, out);
+  }
+
+  /// Sends `message` (parts, no double arithmetic) to node `destination`.
+  [[nodiscard]] send_status send_to_node(std::uint8_t destination, const vr_message& message) noexcept {
+    const identifier_result id = identifier_to(destination);
+    if (id.error != scheme_error::none) return scheme_to_send(id.error);
+    frame out;
+    const encode_error error = encode_vr_message(message, out.data);
+    if (error != encode_error::none) return encode_to_send(error);
+    return transmit(id.identifier, out);
+  }
+
+  /// Sends VR(vr) = value through transmit channel 5..N+3 (channel 5 is the next node round the ring).
+  [[nodiscard]] send_status send_on_channel(std::uint8_t transmit_channel, std::uint16_t vr,
+                                            double value) noexcept {
+    const node_result destination = destination_of(address_.node_count(), address_.node(), transmit_channel);
+    if (destination.error != scheme_error::none) return send_status::no_such_channel;
+    return send_to_node(destination.node, vr, value);
+  }
+
+  /// Sends `message` through transmit channel 5..N+3.
+  [[nodiscard]] send_status send_on_channel(std::uint8_t transmit_channel,
+                                            const vr_message& message) noexcept {
+    const node_result destination = destination_of(address_.node_count(), address_.node(), transmit_channel);
+    if (destination.error != scheme_error::none) return send_status::no_such_channel;
+    return send_to_node(destination.node, message);
+  }
+
+  /// Accepts one frame from the bus: if it is on one of this node's receive identifiers, decodes it and
+  /// writes VR(vr) through the store; otherwise classifies and counts it. Never fails.
+  receive_result receive(const frame& received) noexcept {
+    receive_result result;
+    const route_result found = route_of(address_.node_count(), received.id);
+    if (found.error != scheme_error::none || found.value.receiver != address_.node()) {
+      ++counters_.foreign;
+      result.status = receive_status::foreign;
+      return result;
+    }
+    result.sender = found.value.sender;
+    result.receive_channel = found.value.receive_channel;
+    const decode_result decoded = decode_vr_frame(received);
+    switch (decoded.error) {
+      case decode_error::none:
+        break;
+      case decode_error::dlc:
+        ++counters_.bad_dlc;
+        result.status = receive_status::bad_dlc;
+        return result;
+      case decode_error::sign:
+        ++counters_.bad_sign;
+        result.status = receive_status::bad_sign;
+        return result;
+      case decode_error::fraction:
+        ++counters_.bad_fraction;
+        result.status = receive_status::bad_fraction;
+        return result;
+    }
+    result.message = decoded.message;
+    result.value = to_double(decoded.message.value);
+    switch (store_->write(decoded.message.vr, result.value)) {
+      case vr_write::written:
+        ++counters_.written;
+        result.status = receive_status::written;
+        break;
+      case vr_write::refused:
+        ++counters_.refused;
+        result.status = receive_status::refused;
+        break;
+      case vr_write::out_of_range:
+        ++counters_.out_of_range;
+        result.status = receive_status::out_of_range;
+        break;
+    }
+    return result;
+  }
+
+ private:
+  [[nodiscard]] identifier_result identifier_to(std::uint8_t destination) const noexcept {
+    return exchange_identifier(address_.node_count(), address_.node(), destination);
+  }
+
+  [[nodiscard]] static constexpr send_status scheme_to_send(scheme_error error) noexcept {
+    return error == scheme_error::same_node ? send_status::own_node : send_status::no_such_node;
+  }
+
+  [[nodiscard]] static constexpr send_status encode_to_send(encode_error error) noexcept {
+    switch (error) {
+      case encode_error::vr_out_of_range:
+        return send_status::vr_out_of_range;
+      case encode_error::not_a_number:
+        return send_status::not_a_number;
+      case encode_error::too_large:
+        return send_status::too_large;
+      case encode_error::fraction_out_of_range:
+      case encode_error::none:
+        break;
+    }
+    return send_status::fraction_out_of_range;
+  }
+
+  [[nodiscard]] send_status transmit(std::uint16_t identifier, frame& out) noexcept {
+    out.id = identifier;
+    out.dlc = vr_message_size;
+    switch (port_->send(out)) {
+      case transmit_status::queued:
+        ++counters_.sent;
+        return send_status::sent;
+      case transmit_status::busy:
+        ++counters_.send_busy;
+        return send_status::port_busy;
+      case transmit_status::failed:
+        break;
+    }
+    ++counters_.send_failed;
+    return send_status::port_failed;
+  }
+
+  node_address address_;
+  port* port_;
+  vr_store* store_;
+  node_counters counters_;
+};
+
+}  // namespace trionet::can

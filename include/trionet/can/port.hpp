@@ -1,0 +1,34 @@
+// The CAN port: what firmware (a CAN controller driver) or host code (SocketCAN, the bus model) implements so
+// that a VR-exchange node can put frames on the bus. Receiving is the other way round: whoever owns the
+// controller hands each received frame to `vr_exchange_node::receive`.
+#pragma once
+
+#include <cstdint>
+
+#include "frame.hpp"
+
+namespace trionet::can {
+
+/// What became of a frame handed to a port.
+enum class transmit_status : std::uint8_t {
+  queued,  ///< accepted for transmission (in a mailbox, a queue or already on the bus)
+  busy,    ///< no free transmit mailbox or queue slot now; nothing was queued, the caller may retry
+  failed,  ///< the controller or driver failed (bus off, I/O error); nothing was queued
+};
+
+/// A CAN transmitter. One virtual call per frame; implementations must not block for long, must not throw,
+/// and decide themselves whether they may be called from an ISR (document it on the implementation).
+/// Cost: one vtable pointer.
+class port {
+ public:
+  /// Queues `outgoing` for transmission.
+  [[nodiscard]] virtual transmit_status send(const frame& outgoing) noexcept = 0;
+
+ protected:
+  port() = default;
+  port(const port&) = default;
+  port& operator=(const port&) = default;
+  ~port() = default;
+};
+
+}  // namespace trionet::can

@@ -1,0 +1,166 @@
+// TN20-17 VR message codec: one VR() value in the 8 data bytes of a CAN frame (PROTOCOL.md 2.2).
+//
+//   byte    0        1        2        3        4        5        6        7
+//       +--------+--------+--------+--------+--------+--------+--------+--------+
+//       |   VR   |  sign  |  integer part of |value|, uint32   | fraction, uint16|
+//       | 0..255 | 0 or 1 |  big-endian: MSB first ... LSB    | BE, 0..9999     |
+//       +--------+--------+--------+--------+--------+--------+--------+--------+
+//   sign: 0 = zero or positive, 1 = negative; any other value is an error.
+//   fraction: ten-thousandths of the magnitude (the note's "4 decimal places"); 10000..65535 is an error.
+//   Example, VR(1) = 2.345:   01 | 00 | 00 00 00 02 | 0D 7A      (2 and 3450/10000)
+//
+// Two ways in: from a double (`encode_vr`, rounding to 4 decimals) or from the parts directly
+// (`encode_vr_message` with a `vr_message`), for firmware that keeps fixed-point values and wants no double
+// arithmetic. Decoding gives the parts (`decode_vr_message`) and, if wanted, a double (`to_double`).
+//
+// Rounding from a double. The magnitude is rounded to 4 decimals, ties away from zero, with carry into the
+// integer part (0.99995 -> 1.0000). A decimal tie such as 2.34565 is not representable in binary: the double
+// nearest to it is 2.34564999999999987..., and rounding that exact binary value would give 2.3456. The spec
+// (2.34565 -> 2.3457) means the decimal number the user wrote, so this codec rounds the decimal that the
+// double stands for: it builds the 5-decimal tie point t = (100000 i + 10 q + 5) / 100000 between the two
+// candidates q and q + 1 ten-thousandths (numerator exact in a double, division correctly rounded, so t is
+// the double nearest to the decimal tie) and rounds up when |value| >= t. Below 2^32 two different 5-decimal
+// numbers are always more than one unit in the last place apart, so a double equal to t is exactly the double
+// that the decimal tie reads as: the result equals rounding the value's shortest decimal representation, ties
+// away from zero. (This relies on IEEE 754 double arithmetic without excess precision; x87 builds need
+// -ffloat-store or SSE2.) A magnitude of 2^32 or more, or one that rounds up to 2^32, is an error, as are NaN
+// and infinities.
+//
+// Cost: constexpr, O(1), no state, no allocation. Any context may call these functions (an ISR too, if it may
+// use the FPU for the double-based calls; the parts-based calls use integers only).
+#pragma once
+
+#include <cstdint>
+
+#include "../span.hpp"
+
+namespace trionet::can {
+
+/// Bytes in a VR message: the frame's DLC must be exactly this.
+constexpr std::uint8_t vr_message_size = 8;
+/// Largest VR number a message carries (one byte).
+constexpr std::uint16_t max_message_vr = 255;
+/// Largest fraction in ten-thousandths.
+constexpr std::uint16_t max_fraction = 9999;
+/// Ten-thousandths per unit.
+constexpr std::uint32_t fraction_scale = 10000;
+
+/// A value as the message carries it: sign, integer part of the magnitude, fraction in ten-thousandths.
+struct vr_value {
+  bool negative = false;
+  std::uint32_t integer_part = 0;
+  std::uint16_t fraction = 0;  ///< ten-thousandths, 0..9999
+};
+
+/// One decoded or to-be-encoded message: VR(vr) = value.
+struct vr_message {
+  std::uint8_t vr = 0;
+  vr_value value{};
+};
+
+/// Why a value or message cannot be encoded (API misuse, reported to the caller; nothing is written).
+enum class encode_error : std::uint8_t {
+  none,
+  vr_out_of_range,        ///< vr > 255
+  not_a_number,           ///< the value is NaN
+  too_large,              ///< |value| is 2^32 or more (infinities included), or rounds up to 2^32
+  fraction_out_of_range,  ///< a parts-based fraction > 9999
+};
+
+/// Why 8 bytes from the wire are not a VR message (bad wire data: classify, count, drop).
+enum class decode_error : std::uint8_t {
+  none,
+  dlc,       ///< the frame does not carry exactly 8 data bytes
+  sign,      ///< byte 1 is neither 0 nor 1
+  fraction,  ///< bytes 6..7 exceed 9999
+};
+
+/// A rounded value, or why there is none.
+struct value_result {
+  encode_error error = encode_error::none;
+  vr_value value{};
+};
+
+/// A decoded message, or why there is none.
+struct decode_result {
+  decode_error error = decode_error::none;
+  vr_message message{};
+};
+
+/// `value` rounded to 4 decimals, ties away from zero, as sign, integer part and fraction (see the header
+/// comment for how decimal ties are honoured). Zero, and anything that rounds to zero, has sign 0.
+[[nodiscard]] constexpr value_result to_vr_value(double value) noexcept {
+  if (value != value) return {encode_error::not_a_number, {}};
+  const bool negative = value < 0.0;
+  const double magnitude = negative ? -value : value;
+  constexpr double two_to_32 = 4294967296.0;
+  if (!(magnitude < two_to_32)) return {encode_error::too_large, {}};
+  const auto whole = static_cast<std::uint32_t>(magnitude);         // floor: magnitude >= 0
+  const double remainder = magnitude - static_cast<double>(whole);  // exact (Sterbenz)
+  auto ten_thousandths = static_cast<std::uint32_t>(remainder * 10000.0);
+  if (ten_thousandths > max_fraction) ten_thousandths = max_fraction;  // product rounded up to 10000
+  // The decimal tie between ten_thousandths and ten_thousandths + 1, correctly rounded to a double.
+  const std::uint64_t tie_numerator = std::uint64_t{whole} * 100000U + ten_thousandths * 10U + 5U;
+  const double tie = static_cast<double>(tie_numerator) / 100000.0;
+  std::uint64_t scaled = std::uint64_t{whole} * fraction_scale + ten_thousandths;
+  if (magnitude >= tie) ++scaled;
+  if (scaled / fraction_scale > UINT32_MAX) return {encode_error::too_large, {}};  // carried into 2^32
+  vr_value out;
+  out.negative = negative && scaled != 0;
+  out.integer_part = static_cast<std::uint32_t>(scaled / fraction_scale);
+  out.fraction = static_cast<std::uint16_t>(scaled % fraction_scale);
+  return {encode_error::none, out};
+}
+
+/// The value a message carries, as the double nearest to it (exact decimal numerator, one rounding).
+/// Sign 1 with a zero magnitude gives -0.0.
+[[nodiscard]] constexpr double to_double(const vr_value& value) noexcept {
+  const std::uint64_t scaled = std::uint64_t{value.integer_part} * fraction_scale + value.fraction;
+  const double magnitude = static_cast<double>(scaled) / static_cast<double>(fraction_scale);
+  return value.negative ? -magnitude : magnitude;
+}
+
+/// Writes `message` into the 8 data bytes `out`. A negative zero is sent with sign 0. Nothing is written on
+/// error (fraction > 9999).
+[[nodiscard]] constexpr encode_error encode_vr_message(const vr_message& message,
+                                                       std::uint8_t (&out)[vr_message_size]) noexcept {
+  const vr_value& value = message.value;
+  if (value.fraction > max_fraction) return encode_error::fraction_out_of_range;
+  const bool negative = value.negative && (value.integer_part != 0 || value.fraction != 0);
+  out[0] = message.vr;
+  out[1] = negative ? 1 : 0;
+  out[2] = static_cast<std::uint8_t>(value.integer_part >> 24U);
+  out[3] = static_cast<std::uint8_t>(value.integer_part >> 16U);
+  out[4] = static_cast<std::uint8_t>(value.integer_part >> 8U);
+  out[5] = static_cast<std::uint8_t>(value.integer_part);
+  out[6] = static_cast<std::uint8_t>(value.fraction >> 8U);
+  out[7] = static_cast<std::uint8_t>(value.fraction);
+  return encode_error::none;
+}
+
+/// Encodes VR(vr) = value, rounded to 4 decimals, into the 8 data bytes `out`. Nothing is written on error.
+[[nodiscard]] constexpr encode_error encode_vr(std::uint16_t vr, double value,
+                                               std::uint8_t (&out)[vr_message_size]) noexcept {
+  if (vr > max_message_vr) return encode_error::vr_out_of_range;
+  const value_result rounded = to_vr_value(value);
+  if (rounded.error != encode_error::none) return rounded.error;
+  return encode_vr_message(vr_message{static_cast<std::uint8_t>(vr), rounded.value}, out);
+}
+
+/// Decodes the data bytes of a frame; `payload.size()` is the frame's data length (DLC), which must be 8.
+/// Checks in wire order: length, sign, fraction.
+[[nodiscard]] constexpr decode_result decode_vr_message(byte_view payload) noexcept {
+  if (payload.size() != vr_message_size) return {decode_error::dlc, {}};
+  if (payload[1] > 1) return {decode_error::sign, {}};
+  const auto fraction = static_cast<std::uint16_t>(payload[6] << 8U | payload[7]);
+  if (fraction > max_fraction) return {decode_error::fraction, {}};
+  vr_message message;
+  message.vr = payload[0];
+  message.value.negative = payload[1] == 1;
+  message.value.integer_part = std::uint32_t{payload[2]} << 24U | std::uint32_t{payload[3]} << 16U |
+                               std::uint32_t{payload[4]} << 8U | std::uint32_t{payload[5]};
+  message.value.fraction = fraction;
+  return {decode_error::none, message};
+}
+
+}  // namespace trionet::can

@@ -1,0 +1,107 @@
+// Linux SocketCAN port: see can_socketcan.hpp.
+#include "can_socketcan.hpp"
+
+#include <fcntl.h>
+#include <net/if.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace trionet::host {
+
+::can_frame to_socketcan(const can::frame& frame) noexcept {
+  ::can_frame out;
+  std::memset(&out, 0, sizeof out);
+  out.can_id = frame.id;
+  out.len = frame.dlc > CAN_MAX_DLEN ? static_cast<std::uint8_t>(CAN_MAX_DLEN) : frame.dlc;
+  std::memcpy(out.data, frame.data, sizeof out.data);
+  return out;
+}
+
+can::frame from_socketcan(const ::can_frame& frame) noexcept {
+  can::frame out;
+  out.id = frame.can_id & ~static_cast<std::uint32_t>(CAN_ERR_FLAG);
+  out.dlc = frame.len > CAN_MAX_DLEN ? static_cast<std::uint8_t>(CAN_MAX_DLEN) : frame.len;
+  std::memcpy(out.data, frame.data, sizeof out.data);
+  return out;
+}
+
+socketcan_port::~socketcan_port() {
+  close();
+}
+
+socketcan_open_result socketcan_port::open(const std::string& interface_name) {
+  close();
+  if (interface_name.empty() || interface_name.size() >= IFNAMSIZ) return {socketcan_error::name_too_long, 0};
+  const int handle = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
+  if (handle < 0) return {socketcan_error::socket, errno};
+  const unsigned index = ::if_nametoindex(interface_name.c_str());
+  if (index == 0) {
+    const int error = errno;
+    ::close(handle);
+    return {socketcan_error::no_such_interface, error};
+  }
+  ::sockaddr_can address;
+  std::memset(&address, 0, sizeof address);
+  address.can_family = AF_CAN;
+  address.can_ifindex = static_cast<int>(index);
+  // sockaddr_can is the address type bind() expects for PF_CAN; the cast is the socket API's contract.
+  if (::bind(handle, reinterpret_cast<const ::sockaddr*>(&address), sizeof address) != 0) {
+    const int error = errno;
+    ::close(handle);
+    return {socketcan_error::bind, error};
+  }
+  socket_ = handle;
+  return {};
+}
+
+void socketcan_port::close() noexcept {
+  if (socket_ >= 0) ::close(socket_);
+  socket_ = -1;
+}
+
+can::transmit_status socketcan_port::send(const can::frame& outgoing) noexcept {
+  if (socket_ < 0) return can::transmit_status::failed;
+  const ::can_frame raw = to_socketcan(outgoing);
+  const ssize_t written = ::write(socket_, &raw, sizeof raw);
+  if (written == static_cast<ssize_t>(sizeof raw)) return can::transmit_status::queued;
+  if (written < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == ENOBUFS)) {
+    return can::transmit_status::busy;
+  }
+  return can::transmit_status::failed;
+}
+
+socketcan_receive socketcan_port::receive(can::frame& out, int timeout_ms) noexcept {
+  if (socket_ < 0) return socketcan_receive::failed;
+  ::pollfd waiting{socket_, POLLIN, 0};
+  const int ready = ::poll(&waiting, 1, timeout_ms);
+  if (ready == 0) return socketcan_receive::timeout;
+  if (ready < 0) return socketcan_receive::failed;
+  ::can_frame raw;
+  const ssize_t got = ::read(socket_, &raw, sizeof raw);
+  if (got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return socketcan_receive::timeout;
+  if (got != static_cast<ssize_t>(sizeof raw)) return socketcan_receive::failed;
+  out = from_socketcan(raw);
+  return (raw.can_id & CAN_ERR_FLAG) != 0 ? socketcan_receive::error_frame : socketcan_receive::frame;
+}
+
+const char* to_string(socketcan_error error) {
+  switch (error) {
+    case socketcan_error::none:
+      return "no error";
+    case socketcan_error::name_too_long:
+      return "interface name empty or too long";
+    case socketcan_error::socket:
+      return "cannot create a CAN socket";
+    case socketcan_error::no_such_interface:
+      return "no such interface";
+    case socketcan_error::bind:
+      return "cannot bind the CAN socket";
+  }
+  return "unknown error";
+}
+
+}  // namespace trionet::host
