@@ -1,0 +1,129 @@
+// The registers the firmware images touch, as plain volatile addresses (no vendor SDK).
+//
+// A generic Cortex-M board:
+//   UART0 is an Arm PL011 at 0x4000C000 on IRQ 5 (as on the TI LM3S6965, which qemu emulates);
+//   CAN0 is an ST bxCAN at 0x40006400, receive FIFO 0 on IRQ 20 (as on the STM32F103).
+// Only what the programs use is here. Everything is inline and ISR-safe.
+#pragma once
+
+#include <cstdint>
+
+namespace board {
+
+inline volatile std::uint32_t& reg(std::uintptr_t address) noexcept {
+  return *reinterpret_cast<volatile std::uint32_t*>(address);
+}
+
+inline void wait_for_interrupt() noexcept { __asm__ volatile("wfi"); }
+inline void disable_interrupts() noexcept { __asm__ volatile("cpsid i" ::: "memory"); }
+inline void enable_interrupts() noexcept { __asm__ volatile("cpsie i" ::: "memory"); }
+
+namespace nvic {
+inline void enable(unsigned irq) noexcept { reg(0xE000E100u + 4u * (irq / 32u)) = 1u << (irq % 32u); }
+}  // namespace nvic
+
+namespace scb {
+/// CP10 and CP11 full access (Cortex-M4F): required before the first floating-point instruction.
+inline void enable_fpu() noexcept {
+  reg(0xE000ED88u) |= 0xFu << 20;
+  __asm__ volatile("dsb\n\tisb" ::: "memory");
+}
+}  // namespace scb
+
+namespace systick {
+inline void start(std::uint32_t reload) noexcept {
+  reg(0xE000E014u) = reload;  // LOAD
+  reg(0xE000E018u) = 0;       // VAL
+  reg(0xE000E010u) = 7;       // CTRL: processor clock, interrupt, enable
+}
+}  // namespace systick
+
+/// PL011 UART.
+namespace uart0 {
+constexpr std::uintptr_t base = 0x4000C000u;
+constexpr unsigned irq = 5;
+constexpr std::uint32_t flag_rx_empty = 1u << 4;  // FR.RXFE
+constexpr std::uint32_t flag_tx_full = 1u << 5;   // FR.TXFF
+
+inline volatile std::uint32_t& data() noexcept { return reg(base + 0x00u); }   // DR
+inline volatile std::uint32_t& flags() noexcept { return reg(base + 0x18u); }  // FR
+
+inline bool rx_ready() noexcept { return (flags() & flag_rx_empty) == 0; }
+inline std::uint8_t read() noexcept { return static_cast<std::uint8_t>(data() & 0xFFu); }
+inline bool tx_ready() noexcept { return (flags() & flag_tx_full) == 0; }
+inline void write(std::uint8_t byte) noexcept { data() = byte; }
+
+/// 8N1, receive and receive-timeout interrupts on.
+inline void start() noexcept {
+  reg(base + 0x2Cu) = 0x60u;                 // LCRH: 8 data bits, FIFOs off
+  reg(base + 0x38u) = (1u << 4) | (1u << 6);  // IMSC: RXIM, RTIM
+  reg(base + 0x30u) = 0x301u;                // CR: UARTEN, TXE, RXE
+  nvic::enable(irq);
+}
+}  // namespace uart0
+
+/// bxCAN: receive FIFO 0 and transmit mailbox 0.
+namespace can0 {
+constexpr std::uintptr_t base = 0x40006400u;
+constexpr unsigned rx0_irq = 20;
+
+inline volatile std::uint32_t& tsr() noexcept { return reg(base + 0x008u); }   // transmit status
+inline volatile std::uint32_t& rf0r() noexcept { return reg(base + 0x00Cu); }  // receive FIFO 0 status
+inline volatile std::uint32_t& ier() noexcept { return reg(base + 0x014u); }   // interrupt enable
+inline volatile std::uint32_t& ti0r() noexcept { return reg(base + 0x180u); }  // TX mailbox 0 identifier
+inline volatile std::uint32_t& tdt0r() noexcept { return reg(base + 0x184u); }
+inline volatile std::uint32_t& tdl0r() noexcept { return reg(base + 0x188u); }
+inline volatile std::uint32_t& tdh0r() noexcept { return reg(base + 0x18Cu); }
+inline volatile std::uint32_t& ri0r() noexcept { return reg(base + 0x1B0u); }  // RX FIFO 0 identifier
+inline volatile std::uint32_t& rdt0r() noexcept { return reg(base + 0x1B4u); }
+inline volatile std::uint32_t& rdl0r() noexcept { return reg(base + 0x1B8u); }
+inline volatile std::uint32_t& rdh0r() noexcept { return reg(base + 0x1BCu); }
+
+/// A classic CAN frame as the registers hold it.
+struct raw_frame {
+  std::uint32_t identifier;  ///< 11-bit standard identifier (extended frames are not used by TN20-17)
+  std::uint8_t length;       ///< DLC
+  std::uint8_t data[8];
+};
+
+inline bool rx_pending() noexcept { return (rf0r() & 0x3u) != 0; }  // FMP0
+
+/// Reads the oldest frame of FIFO 0 and releases it. Extended and remote frames are reported as
+/// identifier 0xFFFFFFFF so that no protocol layer mistakes them for its own.
+inline raw_frame read() noexcept {
+  raw_frame frame{};
+  const std::uint32_t rir = ri0r();
+  frame.identifier = (rir & 0x6u) != 0 ? 0xFFFFFFFFu : rir >> 21;  // IDE or RTR
+  frame.length = static_cast<std::uint8_t>(rdt0r() & 0xFu);
+  const std::uint32_t low = rdl0r();
+  const std::uint32_t high = rdh0r();
+  for (unsigned i = 0; i < 4; ++i) {
+    frame.data[i] = static_cast<std::uint8_t>(low >> (8u * i));
+    frame.data[4 + i] = static_cast<std::uint8_t>(high >> (8u * i));
+  }
+  rf0r() = 1u << 5;  // RFOM0: release the FIFO output mailbox
+  return frame;
+}
+
+inline bool tx_free() noexcept { return (tsr() & (1u << 26)) != 0; }  // TME0
+
+inline void write(const raw_frame& frame) noexcept {
+  std::uint32_t low = 0;
+  std::uint32_t high = 0;
+  for (unsigned i = 0; i < 4; ++i) {
+    low |= static_cast<std::uint32_t>(frame.data[i]) << (8u * i);
+    high |= static_cast<std::uint32_t>(frame.data[4 + i]) << (8u * i);
+  }
+  tdt0r() = frame.length;
+  tdl0r() = low;
+  tdh0r() = high;
+  ti0r() = (frame.identifier << 21) | 1u;  // STID, TXRQ
+}
+
+inline void start() noexcept {
+  ier() = 1u << 1;  // FMPIE0: FIFO 0 message pending
+  nvic::enable(rx0_irq);
+}
+}  // namespace can0
+
+}  // namespace board
