@@ -79,21 +79,25 @@ inline volatile std::uint32_t& rdt0r() noexcept { return reg(base + 0x1B4u); }
 inline volatile std::uint32_t& rdl0r() noexcept { return reg(base + 0x1B8u); }
 inline volatile std::uint32_t& rdh0r() noexcept { return reg(base + 0x1BCu); }
 
-/// A classic CAN frame as the registers hold it.
+/// A classic CAN frame as the registers hold it. `identifier` follows the SocketCAN convention: the 11- or
+/// 29-bit identifier, bit 31 set for an extended frame, bit 30 for a remote frame.
 struct raw_frame {
-  std::uint32_t identifier;  ///< 11-bit standard identifier (extended frames are not used by TN20-17)
-  std::uint8_t length;       ///< DLC
+  std::uint32_t identifier;
+  std::uint8_t length;  ///< DLC
   std::uint8_t data[8];
 };
 
+constexpr std::uint32_t extended_flag = 1u << 31;
+constexpr std::uint32_t remote_flag = 1u << 30;
+
 inline bool rx_pending() noexcept { return (rf0r() & 0x3u) != 0; }  // FMP0
 
-/// Reads the oldest frame of FIFO 0 and releases it. Extended and remote frames are reported as
-/// identifier 0xFFFFFFFF so that no protocol layer mistakes them for its own.
+/// Reads the oldest frame of FIFO 0 and releases it.
 inline raw_frame read() noexcept {
   raw_frame frame{};
   const std::uint32_t rir = ri0r();
-  frame.identifier = (rir & 0x6u) != 0 ? 0xFFFFFFFFu : rir >> 21;  // IDE or RTR
+  frame.identifier = (rir & 0x4u) != 0 ? extended_flag | (rir >> 3) : rir >> 21;  // IDE: EXID or STID
+  if ((rir & 0x2u) != 0) frame.identifier |= remote_flag;                          // RTR
   frame.length = static_cast<std::uint8_t>(rdt0r() & 0xFu);
   const std::uint32_t low = rdl0r();
   const std::uint32_t high = rdh0r();
@@ -117,7 +121,7 @@ inline void write(const raw_frame& frame) noexcept {
   tdt0r() = frame.length;
   tdl0r() = low;
   tdh0r() = high;
-  ti0r() = (frame.identifier << 21) | 1u;  // STID, TXRQ
+  ti0r() = ((frame.identifier & 0x7FFu) << 21) | 1u;  // STID (standard frames only), TXRQ
 }
 
 inline void start() noexcept {

@@ -1,8 +1,8 @@
 // Firmware image (a): the ring codec alone, encoder + decoder with the table-free CRC.
 //
-// A ring end point that talks only to its neighbour: the UART receive interrupt pushes every byte into a
-// trionet::ring::decoder; a message for this node (a variable or a character transfer) is handed to the main
-// loop, which encodes it back to the next node. Frame and CRC errors are counted.
+// A ring end point that talks only to its neighbour and echoes what it is sent: the UART receive interrupt
+// pushes every byte into a trionet::ring::decoder and, for each valid message, encodes the same message back
+// to the next node into the transmit frame; the main loop sends that frame. Frame and CRC errors are counted.
 //
 // Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR and
 // main loop move bytes without the library. The difference between the two images is the codec's cost.
@@ -21,45 +21,32 @@ namespace {
 constexpr std::uint8_t reply_hops = 1;  // the next node along the ring
 
 volatile std::uint32_t bytes_received = 0;
-volatile bool reply_ready = false;  // set by the ISR, cleared by the main loop
+volatile bool reply_ready = false;  // set by the ISR with the frame to send, cleared by the main loop
+std::size_t reply_length = 0;
 
 #if TRIONET_FIRMWARE_BASELINE
 volatile std::uint8_t last_byte = 0;
-constexpr std::uint8_t fixed_frame[16] = {0x8a, 0x48, 0x01, 0, 0, 0, 0, 0x30, 0x0c, 0, 0, 0, 0, 0x7f, 0x3e, 0x88};
+constexpr std::uint8_t frame[16] = {0x8a, 0x48, 0x01, 0, 0, 0, 0, 0x30, 0x0c, 0, 0, 0, 0, 0x7f, 0x3e, 0x88};
 #else
 namespace ring = trionet::ring;
 using crc = ring::crc16_ccitt_false_bitwise;
 
 ring::decoder<ring::default_max_characters, crc> receiver;
-
-// The reply the ISR hands to the main loop (owned by the ISR while reply_ready is false).
-ring::message_type reply_type = ring::message_type::character;
-std::uint16_t reply_vr = 0;
-std::int64_t reply_value = 0;
-std::uint8_t reply_text[ring::default_max_characters];
-std::size_t reply_length = 0;
+std::uint8_t frame[ring::framing_length + ring::default_max_characters];
 
 volatile std::uint32_t frame_errors = 0;
 volatile std::uint32_t crc_errors = 0;
 volatile std::uint32_t replies_dropped = 0;
 
-std::uint8_t frame[ring::framing_length + ring::default_max_characters];
-
-void accept(const ring::message& msg) {
+void reply(ring::message msg) {
   if (reply_ready) {
     replies_dropped = replies_dropped + 1;
     return;
   }
-  reply_type = msg.type;
-  if (msg.type == ring::message_type::variable) {
-    reply_vr = msg.vr;
-    reply_value = msg.value;
-  } else if (msg.type == ring::message_type::character) {
-    reply_length = msg.text.size();
-    for (std::size_t i = 0; i < reply_length; ++i) reply_text[i] = msg.text[i];
-  } else {
-    return;  // keypad messages mean nothing to this end point
-  }
+  msg.hops = reply_hops;
+  const ring::encode_result encoded = ring::encode<crc>(frame, msg);
+  if (!encoded) return;
+  reply_length = encoded.length;
   reply_ready = true;
 }
 #endif
@@ -80,14 +67,18 @@ extern "C" void UART0_IRQHandler() {
     bytes_received = bytes_received + 1;
 #if TRIONET_FIRMWARE_BASELINE
     last_byte = byte;
-    if ((byte & 0x87u) == 0x80u) reply_ready = true;  // an end of message
+    if ((byte & 0x87u) == 0x80u && !reply_ready) {  // an end of message
+      reply_length = sizeof frame;
+      reply_ready = true;
+    }
 #else
     const ring::decode_result result = receiver.push(byte);
-    switch (result.status) {
-      case ring::decode_status::incomplete: break;
-      case ring::decode_status::message: accept(result.msg); break;
-      case ring::decode_status::frame_error: frame_errors = frame_errors + 1; break;
-      case ring::decode_status::crc_error: crc_errors = crc_errors + 1; break;
+    if (result.status == ring::decode_status::message) {
+      reply(result.msg);
+    } else if (result.status == ring::decode_status::crc_error) {
+      crc_errors = crc_errors + 1;
+    } else if (result.status != ring::decode_status::incomplete) {
+      frame_errors = frame_errors + 1;  // a frame error, or anything else the decoder discarded
     }
 #endif
   }
@@ -100,15 +91,7 @@ int main() {
       board::wait_for_interrupt();
       continue;
     }
-#if TRIONET_FIRMWARE_BASELINE
-    send(fixed_frame, sizeof fixed_frame);
-#else
-    const ring::encode_result encoded =
-        reply_type == ring::message_type::variable
-            ? ring::encode_variable<crc>(frame, reply_hops, reply_vr, reply_value)
-            : ring::encode_characters(frame, reply_hops, trionet::byte_view(reply_text, reply_length));
-    if (encoded) send(frame, encoded.length);
-#endif
+    send(frame, reply_length);
     reply_ready = false;
   }
 }

@@ -1,0 +1,100 @@
+// Firmware image (d): a TN20-17 CAN VR-exchange node (node 1 of 5).
+//
+// The CAN receive-FIFO interrupt hands every frame to trionet::can::vr_exchange_node, which writes VR() for
+// the frames addressed to this node (through a vr_table with the default write policy) and counts the rest.
+// Every SysTick (10 ms) the main loop sends VR(0), the axis position it keeps up to date, to the next node round
+// the ring (transmit channel 5) through a one-mailbox bxCAN port.
+//
+// Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISRs and
+// main loop move frames without the library (and do the same double arithmetic on the position, so that the
+// application's own floating point is not charged to the library). The difference between the two images is
+// the CAN codec + node, including the software floating-point routines the node's double interface needs.
+#include <cstdint>
+
+#include "board.hpp"
+
+#if !TRIONET_FIRMWARE_BASELINE
+#include "trionet/can/node.hpp"
+#include "trionet/vr.hpp"
+#endif
+
+namespace {
+
+constexpr std::uint32_t core_clock_hz = 48000000;
+constexpr std::uint32_t ticks_per_second = 100;
+
+volatile bool tick = false;
+volatile std::uint32_t frames_received = 0;
+
+#if TRIONET_FIRMWARE_BASELINE
+volatile std::uint32_t last_identifier = 0;
+volatile double position = 0.0;
+
+#else
+namespace can = trionet::can;
+
+constexpr std::uint8_t node_count = 5;
+constexpr std::uint8_t this_node = 1;
+constexpr std::uint8_t next_node_channel = can::first_transmit_channel;
+constexpr std::uint16_t position_vr = 0;
+
+/// The bxCAN transmit mailbox 0 as a trionet port. Called from the main loop only.
+class bxcan_port final : public can::port {
+ public:
+  can::transmit_status send(const can::frame& outgoing) noexcept override {
+    if (!board::can0::tx_free()) return can::transmit_status::busy;
+    board::can0::raw_frame raw{};
+    raw.identifier = outgoing.id;
+    raw.length = outgoing.dlc;
+    for (unsigned i = 0; i < 8; ++i) raw.data[i] = outgoing.data[i];
+    board::can0::write(raw);
+    return can::transmit_status::queued;
+  }
+};
+
+trionet::vr_table<64> vr;
+bxcan_port can_port;
+can::vr_exchange_node node(can::make_node_address(node_count, this_node).address, can_port, vr);
+#endif
+
+}  // namespace
+
+extern "C" void SysTick_Handler() { tick = true; }
+
+extern "C" void CAN0_RX0_IRQHandler() {
+  while (board::can0::rx_pending()) {
+    const board::can0::raw_frame raw = board::can0::read();
+    frames_received = frames_received + 1;
+#if TRIONET_FIRMWARE_BASELINE
+    last_identifier = raw.identifier;
+#else
+    can::frame received;
+    received.id = raw.identifier;
+    received.dlc = raw.length;
+    for (unsigned i = 0; i < 8; ++i) received.data[i] = raw.data[i];
+    static_cast<void>(node.receive(received));  // counted by the node
+#endif
+  }
+}
+
+int main() {
+  board::can0::start();
+  board::systick::start(core_clock_hz / ticks_per_second - 1);
+  for (;;) {
+    if (!tick) {
+      board::wait_for_interrupt();
+      continue;
+    }
+    tick = false;
+#if TRIONET_FIRMWARE_BASELINE
+    position = position + 0.001;  // the same application arithmetic as below
+    if (board::can0::tx_free()) {
+      const board::can0::raw_frame fixed{20, 8, {0, 0, 0, 0, 0, 0, 0, 0}};
+      board::can0::write(fixed);
+    }
+#else
+    vr[position_vr] += 0.001;  // the axis moves
+    static_cast<void>(node.send_on_channel(next_node_channel, position_vr, vr[position_vr]));
+#endif
+  }
+}
