@@ -1,0 +1,171 @@
+// `trionet can encode | decode | table`: exact output bytes, exit codes, and errors on stderr.
+#include <gtest/gtest.h>
+
+#include "support/run_cli.hpp"
+
+namespace {
+
+using trionet::test::run_cli;
+
+TEST(CanCli, EncodeProtocolExample) {
+  const auto r = run_cli("can encode --nodes 5 --from 1 --to 4 --vr 1 --value 2.345");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, "028#0100000000020D7A\n");
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(CanCli, EncodeRoundsCarriesAndDefaultsToFiveNodes) {
+  EXPECT_EQ(run_cli("can encode --from 1 --to 4 --vr 1 --value 2.34565").out, "028#0100000000020D81\n");
+  EXPECT_EQ(run_cli("can encode --from 5 --to 2 --vr 255 --value -0.99995").out, "017#FF01000000010000\n");
+  EXPECT_EQ(run_cli("can encode --from 2 --to 1 --vr 0 --value -0").out, "00A#0000000000000000\n");
+  EXPECT_EQ(run_cli("can encode --nodes 11 --from 11 --to 10 --vr 3 --value 4294967295.9999").out,
+            "06D#0300FFFFFFFF270F\n");
+}
+
+TEST(CanCli, EncodeBadArgumentsExitTwoWithAMessageAndNoOutput) {
+  const char* bad[] = {
+      "can encode --from 1 --to 4 --vr 1",                           // no value
+      "can encode --from 1 --to 1 --vr 1 --value 1",                 // same node
+      "can encode --from 0 --to 4 --vr 1 --value 1",                 // node 0
+      "can encode --from 1 --to 6 --vr 1 --value 1",                 // no node 6 of 5
+      "can encode --nodes 12 --from 1 --to 4 --vr 1 --value 1",      // too many nodes
+      "can encode --nodes 1 --from 1 --to 4 --vr 1 --value 1",       // too few nodes
+      "can encode --from 1 --to 4 --vr 256 --value 1",               // vr
+      "can encode --from 1 --to 4 --vr 1 --value 4294967295.99995",  // rounds to 2^32
+      "can encode --from 1 --to 4 --vr 1 --value 4294967296",        // 2^32
+      "can encode --from 1 --to 4 --vr 1 --value nan",               // not a number
+      "can encode --from 1 --to 4 --vr 1 --value 2,5",               // not a number
+      "can encode --from 1 --to 4 --vr 1 --value 1 --colour red",    // unknown option
+      "can encode --from 1 --to 4 --vr 1 --value 1 extra",           // stray word
+      "can frobnicate",                                              // unknown command
+      "can",                                                         // no command
+  };
+  for (const char* args : bad) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(r.out, "") << args;
+    EXPECT_NE(r.err, "") << args;
+  }
+  EXPECT_NE(run_cli("can encode --from 1 --to 4 --vr 256 --value 1").err.find("--vr"), std::string::npos);
+  EXPECT_NE(run_cli("can encode --from 1 --to 4 --vr 1").err.find("--value"), std::string::npos);
+}
+
+TEST(CanCli, DecodeBothFormsAndEveryErrorReason) {
+  const std::string input =
+      "(1700000000.123456) can0 028#0100000000020D7A\n"
+      "017#FF01000000010000\n"
+      "\n"
+      "not candump\n"
+      "028#01000000000200\n"
+      "028#0102000000000000\n"
+      "028#0100000000002710\n"
+      "03C#0100000000000000\n"
+      "   \n"
+      "00A#0000000000000000";  // no final newline
+  const auto r = run_cli("can decode", input);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(
+      r.out,
+      "{\"event\":\"vr\",\"id\":40,\"from\":1,\"to\":4,\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,"
+      "\"value\":2.345}\n"
+      "{\"event\":\"vr\",\"id\":23,\"from\":5,\"to\":2,\"vr\":255,\"negative\":true,\"int\":1,\"frac\":0,"
+      "\"value\":-1}\n"
+      "{\"event\":\"error\",\"line\":4,\"reason\":\"syntax\"}\n"
+      "{\"event\":\"error\",\"line\":5,\"reason\":\"dlc\"}\n"
+      "{\"event\":\"error\",\"line\":6,\"reason\":\"sign\"}\n"
+      "{\"event\":\"error\",\"line\":7,\"reason\":\"fraction\"}\n"
+      "{\"event\":\"error\",\"line\":8,\"reason\":\"unknown_id\"}\n"
+      "{\"event\":\"vr\",\"id\":10,\"from\":2,\"to\":1,\"vr\":0,\"negative\":false,\"int\":0,\"frac\":0,"
+      "\"value\":0}\n");
+}
+
+TEST(CanCli, DecodeNodeCountChangesWhichIdentifiersAreKnown) {
+  const std::string input = "03C#0100000000000000\n(1.000001) can1 06D#0300FFFFFFFF270F\n";
+  const auto five = run_cli("can decode --nodes 5", input);
+  EXPECT_EQ(five.out,
+            "{\"event\":\"error\",\"line\":1,\"reason\":\"unknown_id\"}\n"
+            "{\"event\":\"error\",\"line\":2,\"reason\":\"unknown_id\"}\n");
+  const auto eleven = run_cli("can decode --nodes 11", input);
+  EXPECT_EQ(
+      eleven.out,
+      "{\"event\":\"vr\",\"id\":60,\"from\":1,\"to\":6,\"vr\":1,\"negative\":false,\"int\":0,\"frac\":0,"
+      "\"value\":0}\n"
+      "{\"event\":\"vr\",\"id\":109,\"from\":11,\"to\":10,\"vr\":3,\"negative\":false,\"int\":4294967295,"
+      "\"frac\":9999,\"value\":4294967295.9999}\n");
+  const auto bad = run_cli("can decode --nodes 0", input);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.out, "");
+  EXPECT_NE(bad.err, "");
+}
+
+TEST(CanCli, EncodeThenDecodeEveryPairOfFiveNodes) {
+  std::string lines;
+  for (int from = 1; from <= 5; ++from) {
+    for (int to = 1; to <= 5; ++to) {
+      if (from == to) continue;
+      const auto r = run_cli("can encode --from " + std::to_string(from) + " --to " + std::to_string(to) +
+                             " --vr " + std::to_string(from * 10 + to) + " --value -" + std::to_string(from) +
+                             "." + std::to_string(to));
+      ASSERT_EQ(r.exit_code, 0);
+      lines += r.out;
+    }
+  }
+  const auto decoded = run_cli("can decode", lines);
+  std::string expected;
+  for (int from = 1; from <= 5; ++from) {
+    for (int to = 1; to <= 5; ++to) {
+      if (from == to) continue;
+      const int id = 10 * to + (from < to ? from : from - 1) - 1;
+      expected += "{\"event\":\"vr\",\"id\":" + std::to_string(id) + ",\"from\":" + std::to_string(from) +
+                  ",\"to\":" + std::to_string(to) + ",\"vr\":" + std::to_string(from * 10 + to) +
+                  ",\"negative\":true,\"int\":" + std::to_string(from) +
+                  ",\"frac\":" + std::to_string(to * 1000) + ",\"value\":-" + std::to_string(from) + "." +
+                  std::to_string(to) + "}\n";
+    }
+  }
+  EXPECT_EQ(decoded.out, expected);
+}
+
+// The note's two tables, as the note prints them (tab-separated).
+TEST(CanCli, TableReproducesTheNotesTwoTablesForFiveNodes) {
+  const auto r = run_cli("can table --nodes 5");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "Node Base address\tRx #1\tRx #2\tRx #3\tRx #4\n"
+            "10\t10\t11\t12\t13\n"
+            "20\t20\t21\t22\t23\n"
+            "30\t30\t31\t32\t33\n"
+            "40\t40\t41\t42\t43\n"
+            "50\t50\t51\t52\t53\n"
+            "\n"
+            "Node Base address\tTx #5\tTx #6\tTx #7\tTx #8\n"
+            "10\t20\t30\t40\t50\n"
+            "20\t31\t41\t51\t10\n"
+            "30\t42\t52\t11\t21\n"
+            "40\t53\t12\t22\t32\n"
+            "50\t13\t23\t33\t43\n");
+  EXPECT_EQ(run_cli("can table").out, r.out) << "5 nodes is the default";
+}
+
+TEST(CanCli, TableForTwoAndElevenNodes) {
+  EXPECT_EQ(run_cli("can table --nodes 2").out,
+            "Node Base address\tRx #1\n10\t10\n20\t20\n\nNode Base address\tTx #5\n10\t20\n20\t10\n");
+  const auto eleven = run_cli("can table --nodes 11");
+  EXPECT_EQ(eleven.exit_code, 0);
+  EXPECT_NE(eleven.out.find("110\t110\t111\t112\t113\t114\t115\t116\t117\t118\t119\n"), std::string::npos);
+  EXPECT_NE(eleven.out.find("\tTx #14\n"), std::string::npos);
+  const auto bad = run_cli("can table --nodes 12");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.out, "");
+  EXPECT_NE(bad.err.find("--nodes"), std::string::npos);
+}
+
+TEST(CanCli, HelpGoesToStdout) {
+  const auto r = run_cli("can --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("encode"), std::string::npos);
+  EXPECT_EQ(r.err, "");
+}
+
+}  // namespace

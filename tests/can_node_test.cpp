@@ -1,0 +1,208 @@
+// TN20-17 VR-exchange node: sending by destination and by transmit channel, receiving into VR() through the
+// vr_store hook, and the counters for foreign, malformed, refused and out-of-range frames.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <trionet/can.hpp>
+
+namespace {
+
+using namespace trionet::can;
+using trionet::vr_table;
+using trionet::vr_write;
+
+/// A port that records frames and answers with a chosen status.
+class recording_port final : public port {
+ public:
+  transmit_status answer = transmit_status::queued;
+  std::vector<frame> frames;
+
+  transmit_status send(const frame& outgoing) noexcept override {
+    if (answer == transmit_status::queued) frames.push_back(outgoing);
+    return answer;
+  }
+};
+
+frame make_frame(std::uint32_t id, std::vector<std::uint8_t> bytes) {
+  frame f;
+  f.id = id;
+  f.dlc = static_cast<std::uint8_t>(bytes.size());
+  for (std::size_t i = 0; i < bytes.size() && i < 8; ++i) f.data[i] = bytes[i];
+  return f;
+}
+
+node_address address(std::uint8_t nodes, std::uint8_t node) {
+  const address_result made = make_node_address(nodes, node);
+  EXPECT_EQ(made.error, scheme_error::none);
+  return made.address;
+}
+
+TEST(CanNode, ProtocolExampleNodeOneSendsVrOneToNodeFour) {
+  recording_port wire;
+  vr_table<256> vrs;
+  vr_exchange_node node1(address(5, 1), wire, vrs);
+  ASSERT_EQ(node1.send_to_node(4, 1, 2.345), send_status::sent);
+  ASSERT_EQ(node1.send_on_channel(7, 1, 2.345), send_status::sent) << "buffer 7 of node 1 is node 4";
+  ASSERT_EQ(wire.frames.size(), 2U);
+  EXPECT_EQ(wire.frames[0], make_frame(40, {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A}));
+  EXPECT_EQ(wire.frames[1], wire.frames[0]);
+  EXPECT_EQ(node1.counters().sent, 2U);
+}
+
+TEST(CanNode, NoteSendVrRoutineChannelFiveIsTheNextNode) {
+  recording_port wire;
+  vr_table<256> vrs;
+  for (std::uint8_t k = 1; k <= 5; ++k) {
+    vr_exchange_node node(address(5, k), wire, vrs);
+    ASSERT_EQ(node.send_on_channel(5, 1, 2.345), send_status::sent);
+    const route_result route = route_of(5, wire.frames.back().id);
+    EXPECT_EQ(route.value.sender, k);
+    EXPECT_EQ(route.value.receiver, k % 5 + 1);
+  }
+}
+
+TEST(CanNode, PartsBasedSendNeedsNoDouble) {
+  recording_port wire;
+  vr_table<8> vrs;
+  vr_exchange_node node5(address(5, 5), wire, vrs);
+  ASSERT_EQ(node5.send_on_channel(6, vr_message{7, {true, 3, 1416}}), send_status::sent);
+  EXPECT_EQ(wire.frames.back(), make_frame(23, {7, 1, 0, 0, 0, 3, 0x05, 0x88}));
+  EXPECT_EQ(node5.send_to_node(2, vr_message{7, {false, 3, 10000}}), send_status::fraction_out_of_range);
+}
+
+TEST(CanNode, SendMisuseIsReportedAndNothingIsQueued) {
+  recording_port wire;
+  vr_table<8> vrs;
+  vr_exchange_node node2(address(5, 2), wire, vrs);
+  EXPECT_EQ(node2.send_to_node(2, 1, 1.0), send_status::own_node);
+  EXPECT_EQ(node2.send_to_node(0, 1, 1.0), send_status::no_such_node);
+  EXPECT_EQ(node2.send_to_node(6, 1, 1.0), send_status::no_such_node);
+  EXPECT_EQ(node2.send_on_channel(4, 1, 1.0), send_status::no_such_channel);
+  EXPECT_EQ(node2.send_on_channel(9, 1, 1.0), send_status::no_such_channel);
+  EXPECT_EQ(node2.send_to_node(1, 256, 1.0), send_status::vr_out_of_range);
+  EXPECT_EQ(node2.send_to_node(1, 1, std::numeric_limits<double>::quiet_NaN()), send_status::not_a_number);
+  EXPECT_EQ(node2.send_to_node(1, 1, 4294967296.0), send_status::too_large);
+  EXPECT_TRUE(wire.frames.empty());
+  EXPECT_EQ(node2.counters().sent, 0U);
+}
+
+TEST(CanNode, PortRefusalsAreCountedBySort) {
+  recording_port wire;
+  vr_table<8> vrs;
+  vr_exchange_node node3(address(5, 3), wire, vrs);
+  wire.answer = transmit_status::busy;
+  EXPECT_EQ(node3.send_to_node(1, 1, 1.0), send_status::port_busy);
+  EXPECT_EQ(node3.send_to_node(1, 1, 1.0), send_status::port_busy);
+  wire.answer = transmit_status::failed;
+  EXPECT_EQ(node3.send_on_channel(5, 1, 1.0), send_status::port_failed);
+  EXPECT_EQ(node3.counters().send_busy, 2U);
+  EXPECT_EQ(node3.counters().send_failed, 1U);
+  EXPECT_EQ(node3.counters().sent, 0U);
+}
+
+TEST(CanNode, ReceivedFrameOnOwnIdentifierWritesTheVr) {
+  recording_port wire;
+  vr_table<256> vrs;
+  vr_exchange_node node4(address(5, 4), wire, vrs);
+  const receive_result r = node4.receive(make_frame(40, {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A}));
+  EXPECT_EQ(r.status, receive_status::written);
+  EXPECT_EQ(r.sender, 1);
+  EXPECT_EQ(r.receive_channel, 1);
+  EXPECT_EQ(r.message.vr, 1);
+  EXPECT_EQ(r.value, 2.345);
+  EXPECT_EQ(vrs[1], 2.345);
+  const receive_result negative = node4.receive(make_frame(43, {200, 1, 0, 0, 0x01, 0x00, 0x00, 0x05}));
+  EXPECT_EQ(negative.status, receive_status::written);
+  EXPECT_EQ(negative.sender, 5);
+  EXPECT_EQ(vrs[200], -256.0005);
+  EXPECT_EQ(node4.counters().written, 2U);
+}
+
+TEST(CanNode, ForeignAndMalformedFramesAreDroppedAndCountedByReason) {
+  recording_port wire;
+  vr_table<256> vrs;
+  vr_exchange_node node4(address(5, 4), wire, vrs);
+  const std::vector<std::uint8_t> good = {9, 0, 0, 0, 0, 1, 0, 0};
+  EXPECT_EQ(node4.receive(make_frame(50, good)).status, receive_status::foreign);  // node 5's
+  EXPECT_EQ(node4.receive(make_frame(44, good)).status, receive_status::foreign);  // no Rx #5
+  EXPECT_EQ(node4.receive(make_frame(0x7FF, good)).status, receive_status::foreign);
+  EXPECT_EQ(node4.receive(make_frame(40 | frame::extended_flag, good)).status, receive_status::foreign);
+  EXPECT_EQ(node4.receive(make_frame(40 | frame::remote_flag, {})).status, receive_status::foreign);
+  EXPECT_EQ(node4.receive(make_frame(41, {9, 0, 0, 0, 0, 1, 0})).status, receive_status::bad_dlc);
+  frame long_dlc = make_frame(41, good);
+  long_dlc.dlc = 15;
+  EXPECT_EQ(node4.receive(long_dlc).status, receive_status::bad_dlc);
+  EXPECT_EQ(node4.receive(make_frame(42, {9, 2, 0, 0, 0, 1, 0, 0})).status, receive_status::bad_sign);
+  EXPECT_EQ(node4.receive(make_frame(42, {9, 0, 0, 0, 0, 1, 0x27, 0x10})).status,
+            receive_status::bad_fraction);
+  const node_counters& c = node4.counters();
+  EXPECT_EQ(c.foreign, 5U);
+  EXPECT_EQ(c.bad_dlc, 2U);
+  EXPECT_EQ(c.bad_sign, 1U);
+  EXPECT_EQ(c.bad_fraction, 1U);
+  EXPECT_EQ(c.malformed(), 4U);
+  EXPECT_EQ(c.written, 0U);
+  EXPECT_EQ(vrs[9], 0.0) << "nothing was written";
+  node4.clear_counters();
+  EXPECT_EQ(node4.counters().foreign, 0U);
+}
+
+bool refuse_vr_seven(void* context, std::uint16_t vr, double) noexcept {
+  ++*static_cast<int*>(context);
+  return vr != 7;
+}
+
+TEST(CanNode, WritesGoThroughTheVrStorePolicyLikeTheRing) {
+  recording_port wire;
+  int asked = 0;
+  vr_table<100> vrs(refuse_vr_seven, &asked);
+  vr_exchange_node node1(address(5, 1), wire, vrs);
+  EXPECT_EQ(node1.receive(make_frame(10, {7, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::refused);
+  EXPECT_EQ(node1.receive(make_frame(11, {8, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::written);
+  EXPECT_EQ(node1.receive(make_frame(12, {150, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::out_of_range);
+  EXPECT_EQ(vrs[7], 0.0);
+  EXPECT_EQ(vrs[8], 5.0);
+  EXPECT_EQ(asked, 2) << "the policy is asked for in-range VRs only";
+  EXPECT_EQ(node1.counters().refused, 1U);
+  EXPECT_EQ(node1.counters().written, 1U);
+  EXPECT_EQ(node1.counters().out_of_range, 1U);
+}
+
+TEST(CanNode, AddressesAreChecked) {
+  EXPECT_EQ(make_node_address(5, 0).error, scheme_error::bad_node);
+  EXPECT_EQ(make_node_address(5, 6).error, scheme_error::bad_node);
+  EXPECT_EQ(make_node_address(1, 1).error, scheme_error::bad_node_count);
+  EXPECT_EQ(make_node_address(12, 1).error, scheme_error::bad_node_count);
+  constexpr address_result eleven = make_node_address(11, 11);
+  static_assert(eleven.error == scheme_error::none && eleven.address.node() == 11, "constexpr address");
+  EXPECT_EQ(node_address{}.node_count(), default_node_count);
+}
+
+TEST(CanNode, ElevenNodeExchangeEveryPairDelivers) {
+  recording_port wire;
+  vr_table<256> vrs[11];
+  for (std::uint8_t s = 1; s <= 11; ++s) {
+    vr_exchange_node sender(address(11, s), wire, vrs[s - 1]);
+    for (std::uint8_t d = 1; d <= 11; ++d) {
+      if (d == s) continue;
+      ASSERT_EQ(sender.send_to_node(d, static_cast<std::uint16_t>(s * 11 + d), s + d / 100.0),
+                send_status::sent);
+    }
+  }
+  for (std::uint8_t r = 1; r <= 11; ++r) {
+    vr_exchange_node receiver(address(11, r), wire, vrs[r - 1]);
+    for (const frame& f : wire.frames) (void)receiver.receive(f);
+    EXPECT_EQ(receiver.counters().written, 10U);
+    EXPECT_EQ(receiver.counters().foreign, 100U);
+    for (std::uint8_t s = 1; s <= 11; ++s) {
+      if (s != r) {
+        EXPECT_EQ(vrs[r - 1][s * 11U + r], s + r / 100.0);
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -1,0 +1,220 @@
+// TN20-17 VR message codec: PROTOCOL.md 2.2's example, rounding and carry edges, and every decode error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <random>
+#include <string>
+
+#include <trionet/can/vr_codec.hpp>
+
+namespace {
+
+using namespace trionet::can;
+using trionet::byte_view;
+
+std::string hex(const std::uint8_t (&bytes)[8]) {
+  std::string out;
+  char pair[4];
+  for (std::uint8_t b : bytes) {
+    std::snprintf(pair, sizeof pair, "%02X", b);
+    out += pair;
+  }
+  return out;
+}
+
+// PROTOCOL.md 2.2: node 1 sends VR(1) = 2.345 to node 4 -> data 01 00 00 00 00 02 0d 7a.
+TEST(CanVrCodec, ProtocolExampleVrOneIsTwoPointThreeFourFive) {
+  std::uint8_t data[8] = {};
+  ASSERT_EQ(encode_vr(1, 2.345, data), encode_error::none);
+  EXPECT_EQ(hex(data), "0100000000020D7A");
+  const decode_result back = decode_vr_message(byte_view(data));
+  ASSERT_EQ(back.error, decode_error::none);
+  EXPECT_EQ(back.message.vr, 1);
+  EXPECT_FALSE(back.message.value.negative);
+  EXPECT_EQ(back.message.value.integer_part, 2U);
+  EXPECT_EQ(back.message.value.fraction, 3450);
+  EXPECT_EQ(to_double(back.message.value), 2.345);
+}
+
+struct rounding_case {
+  double input;
+  bool negative;
+  std::uint32_t integer_part;
+  std::uint16_t fraction;
+};
+
+TEST(CanVrCodec, RoundsToFourDecimalsTiesAwayFromZeroWithCarry) {
+  const rounding_case cases[] = {
+      {2.345, false, 2, 3450},
+      {2.34565, false, 2, 3457},  // PROTOCOL.md: the decimal tie rounds up although the double is below it
+      {2.34564, false, 2, 3456},
+      {2.345649, false, 2, 3456},
+      {2.345651, false, 2, 3457},
+      {-2.34565, true, 2, 3457},  // away from zero
+      {0.00005, false, 0, 1},
+      {0.00004999, false, 0, 0},
+      {0.99995, false, 1, 0},  // carry into the integer part
+      {9.99995, false, 10, 0},
+      {99999.99995, false, 100000, 0},
+      {-0.99995, true, 1, 0},
+      {-7.5, true, 7, 5000},
+      {0.0, false, 0, 0},
+      {-0.0, false, 0, 0},      // zero is sent with sign 0
+      {-0.00004, false, 0, 0},  // rounds to zero: sign 0
+      {1e-300, false, 0, 0},
+      {4294967295.9999, false, 4294967295U, 9999},   // the largest magnitude
+      {4294967295.99994, false, 4294967295U, 9999},  // just below its upper tie
+      {-4294967295.9999, true, 4294967295U, 9999},
+      {65536.0001, false, 65536, 1},
+  };
+  for (const rounding_case& c : cases) {
+    const value_result r = to_vr_value(c.input);
+    ASSERT_EQ(r.error, encode_error::none) << c.input;
+    EXPECT_EQ(r.value.negative, c.negative) << c.input;
+    EXPECT_EQ(r.value.integer_part, c.integer_part) << c.input;
+    EXPECT_EQ(r.value.fraction, c.fraction) << c.input;
+  }
+}
+
+TEST(CanVrCodec, MagnitudeOfTwoToTheThirtyTwoOrMoreIsAnError) {
+  EXPECT_EQ(to_vr_value(4294967295.99995).error, encode_error::too_large);  // one past: carries into 2^32
+  EXPECT_EQ(to_vr_value(-4294967295.99995).error, encode_error::too_large);
+  EXPECT_EQ(to_vr_value(4294967296.0).error, encode_error::too_large);
+  EXPECT_EQ(to_vr_value(-4294967296.0).error, encode_error::too_large);
+  EXPECT_EQ(to_vr_value(1e300).error, encode_error::too_large);
+  EXPECT_EQ(to_vr_value(std::numeric_limits<double>::infinity()).error, encode_error::too_large);
+  EXPECT_EQ(to_vr_value(-std::numeric_limits<double>::infinity()).error, encode_error::too_large);
+  EXPECT_EQ(to_vr_value(std::numeric_limits<double>::quiet_NaN()).error, encode_error::not_a_number);
+  std::uint8_t data[8] = {9, 9, 9, 9, 9, 9, 9, 9};
+  EXPECT_EQ(encode_vr(1, 4294967296.0, data), encode_error::too_large);
+  EXPECT_EQ(encode_vr(256, 1.0, data), encode_error::vr_out_of_range);
+  EXPECT_EQ(hex(data), "0909090909090909") << "nothing is written on error";
+  EXPECT_EQ(encode_vr(255, -4294967295.9999, data), encode_error::none);
+  EXPECT_EQ(hex(data), "FF01FFFFFFFF270F");
+}
+
+// Every 5-decimal input, read by strtod as a user's text would be, rounds as the decimal number does.
+TEST(CanVrCodec, FiveDecimalInputsRoundAsDecimalsAtEveryMagnitude) {
+  std::mt19937_64 random(20001018);
+  for (int i = 0; i < 200000; ++i) {
+    const unsigned digits = static_cast<unsigned>(random() % 11);  // integer parts of 0..10 digits
+    std::uint64_t whole = random() % 4294967296ULL;
+    std::uint64_t limit = 1;
+    for (unsigned d = 0; d < digits; ++d) limit *= 10;
+    whole %= limit;
+    std::uint64_t fifth = random() % 100000;      // five decimals
+    if (i % 3 == 0) fifth = fifth / 10 * 10 + 5;  // force many ties
+    char text[48];
+    std::snprintf(text, sizeof text, "%llu.%05llu", static_cast<unsigned long long>(whole),
+                  static_cast<unsigned long long>(fifth));
+    const double value = std::strtod(text, nullptr);
+    const std::uint64_t expected_scaled = (whole * 100000 + fifth + 5) / 10;  // ties away from zero
+    const value_result r = to_vr_value(value);
+    if (expected_scaled / 10000 > 4294967295ULL) {
+      EXPECT_EQ(r.error, encode_error::too_large) << text;
+      continue;
+    }
+    ASSERT_EQ(r.error, encode_error::none) << text;
+    EXPECT_EQ(std::uint64_t{r.value.integer_part} * 10000 + r.value.fraction, expected_scaled) << text;
+    const value_result negative = to_vr_value(-value);
+    EXPECT_EQ(negative.value.negative, expected_scaled != 0) << text;
+    EXPECT_EQ(negative.value.integer_part, r.value.integer_part) << text;
+    EXPECT_EQ(negative.value.fraction, r.value.fraction) << text;
+  }
+}
+
+// Values that are already 4-decimal numbers survive encode -> decode -> to_double unchanged.
+TEST(CanVrCodec, FourDecimalValuesRoundTripExactly) {
+  std::mt19937_64 random(17);
+  for (int i = 0; i < 100000; ++i) {
+    const std::uint64_t scaled = random() % (4294967296ULL * 10000);
+    char text[48];
+    std::snprintf(text, sizeof text, "%s%llu.%04llu", i % 2 ? "-" : "",
+                  static_cast<unsigned long long>(scaled / 10000),
+                  static_cast<unsigned long long>(scaled % 10000));
+    const double value = std::strtod(text, nullptr);
+    std::uint8_t data[8] = {};
+    ASSERT_EQ(encode_vr(42, value, data), encode_error::none) << text;
+    const decode_result back = decode_vr_message(byte_view(data));
+    ASSERT_EQ(back.error, decode_error::none);
+    EXPECT_EQ(to_double(back.message.value), value) << text;
+  }
+}
+
+TEST(CanVrCodec, PartsEncodeBigEndianWithoutDoubles) {
+  std::uint8_t data[8] = {};
+  const vr_message message{200, {true, 0x12345678U, 9999}};
+  ASSERT_EQ(encode_vr_message(message, data), encode_error::none);
+  EXPECT_EQ(hex(data),
+            "C801123456782"
+            "70F");
+  const decode_result back = decode_vr_message(byte_view(data));
+  ASSERT_EQ(back.error, decode_error::none);
+  EXPECT_EQ(back.message.vr, 200);
+  EXPECT_TRUE(back.message.value.negative);
+  EXPECT_EQ(back.message.value.integer_part, 0x12345678U);
+  EXPECT_EQ(back.message.value.fraction, 9999);
+
+  ASSERT_EQ(encode_vr_message(vr_message{3, {true, 0, 0}}, data), encode_error::none);
+  EXPECT_EQ(hex(data), "0300000000000000") << "negative zero is sent with sign 0";
+
+  std::uint8_t untouched[8] = {};
+  EXPECT_EQ(encode_vr_message(vr_message{1, {false, 1, 10000}}, untouched),
+            encode_error::fraction_out_of_range);
+  EXPECT_EQ(hex(untouched), "0000000000000000");
+}
+
+TEST(CanVrCodec, DecodeRejectsDlcSignAndFraction) {
+  const std::uint8_t good[8] = {1, 0, 0, 0, 0, 2, 0x0D, 0x7A};
+  EXPECT_EQ(decode_vr_message(byte_view(good, 7)).error, decode_error::dlc);
+  EXPECT_EQ(decode_vr_message(byte_view(good, 0)).error, decode_error::dlc);
+  const std::uint8_t nine[9] = {1, 0, 0, 0, 0, 2, 0x0D, 0x7A, 0};
+  EXPECT_EQ(decode_vr_message(byte_view(nine)).error, decode_error::dlc);
+  const std::uint8_t sign_two[8] = {1, 2, 0, 0, 0, 2, 0x0D, 0x7A};
+  EXPECT_EQ(decode_vr_message(byte_view(sign_two)).error, decode_error::sign);
+  const std::uint8_t sign_ff[8] = {1, 0xFF, 0, 0, 0, 2, 0x0D, 0x7A};
+  EXPECT_EQ(decode_vr_message(byte_view(sign_ff)).error, decode_error::sign);
+  const std::uint8_t fraction_10000[8] = {1, 0, 0, 0, 0, 2, 0x27, 0x10};
+  EXPECT_EQ(decode_vr_message(byte_view(fraction_10000)).error, decode_error::fraction);
+  const std::uint8_t fraction_ffff[8] = {1, 1, 0, 0, 0, 2, 0xFF, 0xFF};
+  EXPECT_EQ(decode_vr_message(byte_view(fraction_ffff)).error, decode_error::fraction);
+  const std::uint8_t sign_and_fraction[8] = {1, 7, 0, 0, 0, 2, 0xFF, 0xFF};
+  EXPECT_EQ(decode_vr_message(byte_view(sign_and_fraction)).error, decode_error::sign) << "wire order";
+  const std::uint8_t fraction_9999[8] = {1, 0, 0, 0, 0, 2, 0x27, 0x0F};
+  EXPECT_EQ(decode_vr_message(byte_view(fraction_9999)).error, decode_error::none);
+}
+
+TEST(CanVrCodec, EveryEightByteInputIsClassifiedWithoutUndefinedBehaviour) {
+  std::mt19937 random(5);
+  for (int i = 0; i < 100000; ++i) {
+    std::uint8_t data[8];
+    for (std::uint8_t& b : data) b = static_cast<std::uint8_t>(random());
+    const decode_result r = decode_vr_message(byte_view(data));
+    const unsigned fraction = unsigned{data[6]} << 8 | data[7];
+    const decode_error expected = data[1] > 1       ? decode_error::sign
+                                  : fraction > 9999 ? decode_error::fraction
+                                                    : decode_error::none;
+    ASSERT_EQ(r.error, expected);
+    if (expected == decode_error::none) {
+      std::uint8_t again[8] = {};
+      ASSERT_EQ(encode_vr_message(r.message, again), encode_error::none);
+      const bool negative_zero = data[1] == 1 && r.message.value.integer_part == 0 && fraction == 0;
+      if (!negative_zero) {
+        EXPECT_EQ(hex(again), hex(data));
+      }
+    }
+  }
+}
+
+TEST(CanVrCodec, UsableAtCompileTime) {
+  constexpr value_result rounded = to_vr_value(2.34565);
+  static_assert(rounded.error == encode_error::none && rounded.value.fraction == 3457, "constexpr rounding");
+  static_assert(to_double(vr_value{true, 1, 5000}) == -1.5, "constexpr conversion");
+  EXPECT_EQ(rounded.value.integer_part, 2U);
+  EXPECT_TRUE(std::signbit(to_double(vr_value{true, 0, 0}))) << "sign 1 with zero magnitude decodes as -0.0";
+}
+
+}  // namespace
