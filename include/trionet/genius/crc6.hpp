@@ -1,0 +1,109 @@
+// CRC-6 for Genius transmissions (PROTOCOL.md 3.2), as a policy type.
+//
+// The default is CRC-6/G-704: poly 0x03 (x^6 + x + 1), init 0, reflected in and out, xorout 0; its check
+// value over the ASCII bytes "123456789" is 0x06. Any other 6-bit CRC in the Rocksoft/reveng model is one
+// alias away, e.g. `crc6<0x19, 0x00, true, true, 0x00>` is CRC-6/DARC.
+//
+// A CRC policy is any type with these static members (the transmission encoder and parser use only these):
+//   register_type begin();                       the register before the first byte
+//   register_type update(register_type, byte);   the register after one more byte
+//   std::uint8_t  finish(register_type);         the 6-bit CRC (0..63) of the bytes so far
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "../span.hpp"
+
+namespace trionet::genius {
+
+namespace detail {
+
+constexpr std::uint8_t reflect6(std::uint8_t value) noexcept {
+  std::uint8_t out = 0;
+  for (unsigned i = 0; i < 6; ++i) {
+    if ((value >> i) & 1u) out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
+  }
+  return out;
+}
+
+// Eight shift steps of a register whose 8 bits were already XORed with the next byte. The whole byte
+// leaves the register in those 8 steps (the CRC itself is only 6 bits), so a 256-entry table indexed by
+// (register XOR byte) is exact.
+template <std::uint8_t Poly, bool RefIn>
+constexpr std::uint8_t crc6_shift8(std::uint8_t value) noexcept {
+  unsigned reg = value;
+  for (int step = 0; step < 8; ++step) {
+    if constexpr (RefIn) {
+      reg = (reg & 1u) ? (reg >> 1) ^ reflect6(Poly) : reg >> 1;
+    } else {
+      reg = (reg & 0x80u) ? ((reg << 1) ^ (static_cast<unsigned>(Poly) << 2)) & 0xffu : (reg << 1) & 0xffu;
+    }
+  }
+  return static_cast<std::uint8_t>(reg);
+}
+
+template <std::uint8_t Poly, bool RefIn>
+struct crc6_table {
+  struct lookup {
+    std::uint8_t entries[256];
+  };
+  static constexpr lookup make() noexcept {
+    lookup built{};
+    for (unsigned i = 0; i < 256; ++i)
+      built.entries[i] = crc6_shift8<Poly, RefIn>(static_cast<std::uint8_t>(i));
+    return built;
+  }
+};
+
+template <std::uint8_t Poly, bool RefIn>
+inline constexpr typename crc6_table<Poly, RefIn>::lookup crc6_table_v = crc6_table<Poly, RefIn>::make();
+
+}  // namespace detail
+
+/// A 6-bit CRC with the given parameters. `Poly`, `Init` and `XorOut` are 6-bit values in the usual
+/// (non-reflected) notation. `Table` selects a 256-byte table built at compile time (one lookup per byte)
+/// or the bitwise loop (8 shift steps per byte, no table).
+/// Cost: `update` is O(1) (table) or 8 steps (bitwise); no state beyond the one-byte register; no
+/// allocation. ISR-safe.
+template <std::uint8_t Poly, std::uint8_t Init, bool RefIn, bool RefOut, std::uint8_t XorOut,
+          bool Table = true>
+struct crc6 {
+  static_assert(Poly < 64 && Init < 64 && XorOut < 64, "CRC-6 parameters are 6-bit values");
+
+  /// The working register: with RefIn the 6 bits sit reflected in bits 5..0, otherwise in bits 7..2.
+  using register_type = std::uint8_t;
+
+  [[nodiscard]] static constexpr register_type begin() noexcept {
+    return RefIn ? detail::reflect6(Init) : static_cast<register_type>(Init << 2);
+  }
+
+  [[nodiscard]] static constexpr register_type update(register_type reg, std::uint8_t byte) noexcept {
+    const auto index = static_cast<std::uint8_t>(reg ^ byte);
+    if constexpr (Table) {
+      return detail::crc6_table_v<Poly, RefIn>.entries[index];
+    } else {
+      return detail::crc6_shift8<Poly, RefIn>(index);
+    }
+  }
+
+  [[nodiscard]] static constexpr std::uint8_t finish(register_type reg) noexcept {
+    const std::uint8_t normal = RefIn ? detail::reflect6(reg) : static_cast<std::uint8_t>(reg >> 2);
+    const std::uint8_t out = RefOut ? detail::reflect6(normal) : normal;
+    return static_cast<std::uint8_t>(out ^ XorOut);
+  }
+
+  /// The CRC of `bytes` in one call.
+  [[nodiscard]] static constexpr std::uint8_t compute(byte_view bytes) noexcept {
+    register_type reg = begin();
+    for (std::uint8_t byte : bytes) reg = update(reg, byte);
+    return finish(reg);
+  }
+};
+
+/// The default Genius CRC (PROTOCOL.md 3.2, configurable): CRC-6/G-704.
+using crc6_g704 = crc6<0x03, 0x00, true, true, 0x00>;
+/// The same CRC computed bitwise, without the 256-byte table (for tight flash).
+using crc6_g704_bitwise = crc6<0x03, 0x00, true, true, 0x00, false>;
+
+}  // namespace trionet::genius
