@@ -417,10 +417,8 @@ int timing_main(const std::vector<std::string>& words) {
 }  // namespace
 
 int genius_main(const std::vector<std::string>& args) {
-  if (args.empty()) {
-    std::fputs(genius_usage, stderr);
-    return exit_usage;
-  }
+  if (args.empty())
+    return fail("genius needs a command: encode, decode or timing (see trionet genius --help)");
   const std::string& command = args[0];
   if (command == "--help" || command == "-h" || command == "help") {
     std::fputs(genius_usage, stdout);

@@ -1,0 +1,166 @@
+// `trionet genius encode | decode | timing`: exact output, and exit 2 with a message on bad arguments.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "support/run_cli.hpp"
+
+namespace {
+
+using trionet::test::run_cli;
+
+const std::string seed_devices = "--after 4 --device 4@0 --device 5@2000 --device 6@0";
+
+TEST(GeniusCliSeedWorkedExample, TimingTableWithSkip26us) {
+  const auto r = run_cli("genius timing --rate 153.6s " + seed_devices + " --skip-us 26");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out,
+            "rate 153.6s (153.6 kbaud standard): bit time 6.51 us, skip time 26.00 us (explicit)\n"
+            "propagation 3 us per 2000 ft, detection time 3.26 us\n"
+            "after the Stop of SBA 4 at 0 ft:\n"
+            "  SBA  position_ft  turn_start_us\n"
+            "    5         2000          29.00\n"
+            "    6            0          52.00\n"
+            "margins (second's turn minus the arrival of first's start bit at second):\n"
+            "  first  second  margin_us\n"
+            "      5       6      20.00  ok\n");
+}
+
+TEST(GeniusCliSeedWorkedExample, TimingJsonWithSkip26us) {
+  const auto r = run_cli("genius timing --rate 153.6s " + seed_devices + " --skip-us 26 --json");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "{\"rate\":\"153.6s\",\"skip_us\":26,\"turns\":[{\"sba\":5,\"start_us\":29},{\"sba\":6,\"start_"
+            "us\":52}],"
+            "\"margins\":[{\"first\":5,\"second\":6,\"margin_us\":20}]}\n");
+}
+
+TEST(GeniusCliSeedWorkedExample, TimingWithTheRuleSkipTimeIsFlagged) {
+  const auto r = run_cli("genius timing --rate 153.6s " + seed_devices);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "rate 153.6s (153.6 kbaud standard): bit time 6.51 us, skip time 6.51 us (rule)\n"
+            "propagation 3 us per 2000 ft, detection time 3.26 us\n"
+            "after the Stop of SBA 4 at 0 ft:\n"
+            "  SBA  position_ft  turn_start_us\n"
+            "    5         2000           9.51\n"
+            "    6            0          13.02\n"
+            "margins (second's turn minus the arrival of first's start bit at second):\n"
+            "  first  second  margin_us\n"
+            "      5       6       0.51  TOO SMALL\n"
+            "1 margin below the detection time: collision risk\n");
+  const auto json = run_cli("genius timing --rate 153.6s " + seed_devices + " --json");
+  EXPECT_EQ(json.out,
+            "{\"rate\":\"153.6s\",\"skip_us\":6.51,\"turns\":[{\"sba\":5,\"start_us\":9.51},{\"sba\":6,"
+            "\"start_us\":13.021}],"
+            "\"margins\":[{\"first\":5,\"second\":6,\"margin_us\":0.51}]}\n");
+}
+
+TEST(GeniusCli, TimingOptionsChangeTheNumbers) {
+  const auto r = run_cli(
+      "genius timing --rate 153.6e --after 4 --device 6@0 --device 5@2000 --device 4@0 "
+      "--skip-us 26 --prop-us-per-2000ft 4 --detect-us 19 --json");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "{\"rate\":\"153.6e\",\"skip_us\":26,\"turns\":[{\"sba\":5,\"start_us\":30},{\"sba\":6,\"start_"
+            "us\":52}],"
+            "\"margins\":[{\"first\":5,\"second\":6,\"margin_us\":18}]}\n");
+  const auto table = run_cli(
+      "genius timing --rate 153.6e --after 4 --device 6@0 --device 5@2000 --device 4@0 "
+      "--skip-us 26 --prop-us-per-2000ft 4 --detect-us 19");
+  EXPECT_NE(table.out.find("      5       6      18.00  TOO SMALL\n"), std::string::npos) << table.out;
+}
+
+TEST(GeniusCli, TimingWarnsAboutRateLimits) {
+  const auto r = run_cli("genius timing --rate 153.6s --after 1 --device 1@0 --device 2@2500");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("warning: the bus is 2500 ft long; 153.6s allows 2000 ft\n"), std::string::npos)
+      << r.out;
+}
+
+TEST(GeniusCli, EncodeTheRunningExample) {
+  const auto r = run_cli("genius encode --from 4 --to 7 1122 block:9:aabb 33");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out, "c:04 07 11 22 c:89 aa bb c:ce 33 c:50\n");
+  const auto words = run_cli("genius encode --from 4 --to 7 1122 block:9:aabb 33 --words");
+  EXPECT_EQ(words.out, "w:412 w:41c w:444 w:488 w:626 w:6a8 w:6ec w:73a w:4cc w:542\n");
+  const auto broadcast = run_cli("genius encode --from 3 --broadcast 5a");
+  EXPECT_EQ(broadcast.out, "c:23 5a c:75\n");
+}
+
+TEST(GeniusCli, DecodeRoundTripsFromStdinAndArguments) {
+  const std::string expected =
+      "transmission from SBA 4, directed to SBA 7\n"
+      "  data 11 22\n"
+      "  block to SBA 9: aa bb\n"
+      "  data 33\n"
+      "1 transmission, 0 errors, 0 characters skipped\n";
+  const auto from_stdin = run_cli("genius decode", "c:04 07 11 22 c:89 aa bb c:ce 33 c:50\n");
+  EXPECT_EQ(from_stdin.exit_code, 0);
+  EXPECT_EQ(from_stdin.out, expected);
+  const auto from_words =
+      run_cli("genius decode w:412 w:41c w:444 w:488 w:626 w:6a8 w:6ec w:73a w:4cc w:542");
+  EXPECT_EQ(from_words.exit_code, 0);
+  EXPECT_EQ(from_words.out, expected);
+}
+
+TEST(GeniusCli, DecodeReportsWireErrorsWithExit1) {
+  const auto r =
+      run_cli("genius decode", "11 c:04 07 11 22 c:89 aa bb c:ce 33 c:51 c:23 5a c:75 w:412 w:41c w:489");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out,
+            "error at character 1 (11): data outside a transmission\n"
+            "error at character 11 (c:51): stop CRC mismatch\n"
+            "transmission from SBA 3, broadcast\n"
+            "  data 5a\n"
+            "error at character 17 (w:489): framing error (start bit not 0)\n"
+            "1 transmission, 3 errors, 0 characters skipped\n");
+  const auto unfinished = run_cli("genius decode c:04 07");
+  EXPECT_EQ(unfinished.exit_code, 1);
+  EXPECT_EQ(unfinished.out,
+            "error at end of input: transmission not finished\n"
+            "0 transmissions, 1 error, 0 characters skipped\n");
+}
+
+void expect_usage_error(const std::string& args, const std::string& mentions) {
+  const auto r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 2) << args;
+  EXPECT_EQ(r.out, "") << args;
+  EXPECT_EQ(r.err.rfind("trionet: ", 0), 0u) << args << ": " << r.err;
+  EXPECT_NE(r.err.find(mentions), std::string::npos) << args << ": " << r.err;
+}
+
+TEST(GeniusCli, BadArgumentsExit2WithAMessage) {
+  expect_usage_error("genius", "command");
+  expect_usage_error("genius frobnicate", "frobnicate");
+  expect_usage_error("genius timing --after 4 --device 4@0", "--rate");
+  expect_usage_error("genius timing --rate 153.6 --after 4 --device 4@0", "153.6");
+  expect_usage_error("genius timing --rate 76.8 --device 4@0", "--after");
+  expect_usage_error("genius timing --rate 76.8 --after 4", "--device");
+  expect_usage_error("genius timing --rate 76.8 --after 32 --device 4@0", "--after");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --device 5@x", "5@x");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --device 5@-1", "5@-1");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --device 40@1", "40@1");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --device 4@1", "SBA 4");
+  expect_usage_error("genius timing --rate 76.8 --after 5 --device 4@0", "--after 5");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --skip-us 0", "--skip-us");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --prop-us-per-2000ft -1", "--prop");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --detect-us x", "--detect-us");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --bogus 1", "--bogus");
+  expect_usage_error("genius encode --to 3 11", "--from");
+  expect_usage_error("genius encode --from 3 11", "--to");
+  expect_usage_error("genius encode --from 3 --to 4 --broadcast 11", "--broadcast");
+  expect_usage_error("genius encode --from 32 --broadcast 11", "--from");
+  expect_usage_error("genius encode --from 3 --to 32 11", "--to");
+  expect_usage_error("genius encode --from 3 --broadcast", "data");
+  expect_usage_error("genius encode --from 3 --broadcast 123", "123");
+  expect_usage_error("genius encode --from 3 --broadcast block:32:11", "block:32:11");
+  expect_usage_error("genius encode --from 3 --broadcast block:3:", "block:3:");
+  expect_usage_error("genius decode c:4", "c:4");
+  expect_usage_error("genius decode w:800", "w:800");
+  expect_usage_error("genius decode 11 zz", "zz");
+}
+
+}  // namespace
