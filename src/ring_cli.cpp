@@ -181,6 +181,9 @@ std::string ring_result_json(const ring::decode_result& result) {
   }
   const ring::message& m = result.msg;
   const std::string hops = std::to_string(m.hops);
+  if (result.status == ring::decode_status::no_room) {  // only with a store smaller than the maximum
+    return "{\"event\":\"no_room\",\"hops\":" + hops + "}";
+  }
   if (result.status == ring::decode_status::crc_error) {
     return "{\"event\":\"crc_error\",\"hops\":" + hops + ",\"vr\":" + std::to_string(m.vr) + "}";
   }

@@ -15,8 +15,8 @@
 // type 1..4 (`unknown_type`), data length for the type (`bad_length`), for type 2 the CRC (a CRC error),
 // then the fields (`bad_field`). Whatever the input, the decoder re-synchronises at the next header.
 //
-// Cost: RAM = max(MaxCharacters, 14) bytes + 2 words; per byte O(1), no allocation. `push` may be called
-// from an ISR. A decoded message's `text` points into the decoder and is valid until the next push.
+// Cost: RAM = the character store (MaxCharacters bytes by default) + 14 bytes + 3 words; per byte O(1),
+// no allocation. `push` may be called from an ISR. A decoded message's `text` points into the decoder and is valid until the next push.
 #pragma once
 
 #include <cstddef>
@@ -34,6 +34,8 @@ enum class decode_status : std::uint8_t {
   message,      ///< a valid message: see `decode_result::msg`
   frame_error,  ///< a message or byte was discarded: see `decode_result::error`
   crc_error,    ///< a direct variable transfer failed its CRC; `msg.hops` and `msg.vr` are as received
+  no_room,      ///< a valid character transfer that the character store had no room for (discarded whole;
+                ///< only with a store smaller than MaxCharacters, e.g. a node's receive buffer)
 };
 
 enum class frame_error : std::uint8_t {
@@ -86,8 +88,35 @@ constexpr void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, s
   value = static_cast<std::int64_t>(bits);
 }
 
-template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class decoder {
+/// The default character store: a plain array of N characters, so a decoded message's `text` is contiguous.
+///
+/// A character store receives the characters of a character transfer while it arrives and keeps them only
+/// if the message turns out valid:
+///   void begin();                  // a character transfer begins
+///   bool put(std::uint8_t c);      // one more character; false if there is no room
+///   byte_view commit();            // the message is valid: keep it (view of it, or empty if not contiguous)
+///   void abort();                  // the message is discarded: forget what `put` took since `begin`
+/// A node can stage characters straight into its receive buffer this way, so no message is held twice.
+template <std::size_t N>
+class character_buffer {
+ public:
+  void begin() noexcept { length_ = 0; }
+  bool put(std::uint8_t c) noexcept {
+    if (length_ == N) return false;
+    data_[length_++] = c;
+    return true;
+  }
+  byte_view commit() noexcept { return byte_view(data_, length_); }
+  void abort() noexcept { length_ = 0; }
+
+ private:
+  std::uint8_t data_[N] = {};
+  std::size_t length_ = 0;
+};
+
+/// The decoder with its character store as a template parameter (see `decoder` for the common case).
+template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
+class basic_decoder {
   static_assert(MaxCharacters >= 1, "a character transfer holds at least one character");
 
  public:
@@ -97,15 +126,10 @@ class decoder {
   [[nodiscard]] decode_result push(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
       switch (state_) {
-        case state::in_message:
-          store(byte);
-          return {};
-        case state::idle:
-          state_ = state::stray;
-          return error(frame_error::stray_data);
+        case state::in_message: store(byte); return {};
+        case state::idle: state_ = state::stray; return error(frame_error::stray_data);
         case state::stray:
-        case state::skipping:
-          return {};
+        case state::skipping: return {};
       }
       return {};
     }
@@ -116,17 +140,19 @@ class decoder {
       if (was == state::skipping) return {};
       return error(frame_error::stray_eom);
     }
-    const bool was_open = state_ == state::in_message;
+    const decode_result interrupted = interrupt();
     const std::uint8_t hops = hops_of(byte);
     if (hops == 0) {
       state_ = state::skipping;
-      return error(was_open ? frame_error::interrupted : frame_error::zero_hops);
+      return interrupted.status != decode_status::incomplete ? interrupted : error(frame_error::zero_hops);
     }
     state_ = state::in_message;
     hops_ = hops;
     type_ = type_of(byte);
     length_ = 0;
-    return was_open ? error(frame_error::interrupted) : decode_result{};
+    no_room_ = false;
+    if (type_ == 1) store_.begin();
+    return interrupted;
   }
 
   /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
@@ -145,24 +171,42 @@ class decoder {
     }
   }
 
-  /// Forgets any open message (e.g. after a link reset).
-  void reset() noexcept { state_ = state::idle; }
+  /// A header that this decoder does not see (a node forwards it) ends any open message: `interrupted` if a
+  /// message was open, else incomplete. Either way the decoder is then between messages.
+  [[nodiscard]] decode_result interrupt() noexcept {
+    const bool was_open = state_ == state::in_message;
+    state_ = state::idle;
+    if (!was_open) return {};
+    if (type_ == 1) store_.abort();
+    return error(frame_error::interrupted);
+  }
+
+  /// Forgets any open message (e.g. after a link reset), silently.
+  void reset() noexcept { (void)interrupt(); }
 
   /// True while a message has begun and not ended.
   bool in_message() const noexcept { return state_ == state::in_message; }
 
+  Store& store() noexcept { return store_; }
+  const Store& store() const noexcept { return store_; }
+
  private:
   enum class state : std::uint8_t { idle, stray, in_message, skipping };
-  static constexpr std::size_t capacity =
-      MaxCharacters > variable_data_length ? MaxCharacters : variable_data_length;
 
-  // Stores up to `capacity` bytes; beyond that only notes that the message is too long (length_ stops at
-  // capacity + 1, so it never wraps however long the message is).
+  // Characters go to the store (up to MaxCharacters), other payloads to `payload_` (up to 14 bytes); past
+  // that the decoder only notes that the message is too long, so `length_` never wraps.
   void store(std::uint8_t byte) noexcept {
-    if (length_ < capacity) {
-      buffer_[length_++] = byte;
+    if (type_ == 1) {
+      if (length_ < MaxCharacters) {
+        if (!no_room_ && !store_.put(byte)) no_room_ = true;
+        ++length_;
+      } else {
+        length_ = MaxCharacters + 1;
+      }
+    } else if (length_ < variable_data_length) {
+      payload_[length_++] = byte;
     } else {
-      length_ = capacity + 1;
+      length_ = variable_data_length + 1;
     }
   }
 
@@ -174,6 +218,19 @@ class decoder {
   }
 
   decode_result finish(std::uint8_t end_hops) noexcept {
+    const decode_result result = check(end_hops);
+    if (type_ == 1) {
+      if (result.status == decode_status::message) {
+        decode_result committed = result;
+        committed.msg.text = store_.commit();
+        return committed;
+      }
+      store_.abort();
+    }
+    return result;
+  }
+
+  decode_result check(std::uint8_t end_hops) const noexcept {
     if (end_hops != hops_) return error(frame_error::eom_mismatch);
     if (type_ > 4) return error(frame_error::unknown_type);
     decode_result result;
@@ -183,33 +240,33 @@ class decoder {
     switch (result.msg.type) {
       case message_type::character:
         if (length_ == 0 || length_ > MaxCharacters) return error(frame_error::bad_length);
-        result.msg.text = byte_view(buffer_, length_);
+        if (no_room_) result.status = decode_status::no_room;
         return result;
       case message_type::variable: {
         if (length_ != variable_data_length) return error(frame_error::bad_length);
-        read_variable_data(buffer_, result.msg.vr, result.msg.value);
+        read_variable_data(payload_, result.msg.vr, result.msg.value);
         std::uint16_t crc = Crc::initial;
-        for (std::size_t i = 0; i < variable_crc_length; ++i) crc = Crc::update(crc, buffer_[i]);
+        for (std::size_t i = 0; i < variable_crc_length; ++i) crc = Crc::update(crc, payload_[i]);
         crc = Crc::finish(crc);
-        const auto received = static_cast<std::uint16_t>(buffer_[12] | (buffer_[13] << 8));
+        const auto received = static_cast<std::uint16_t>(payload_[12] | (payload_[13] << 8));
         if (crc_wire_bits(crc) != received) {
           result.status = decode_status::crc_error;
           return result;
         }
-        if ((buffer_[11] & 0x7E) != 0) return error(frame_error::bad_field);
+        if ((payload_[11] & 0x7E) != 0) return error(frame_error::bad_field);
         return result;
       }
       case message_type::keypad_offset:
         if (length_ != 1) return error(frame_error::bad_length);
-        if (!valid_hops(buffer_[0])) return error(frame_error::bad_field);
-        result.msg.offset = buffer_[0];
+        if (!valid_hops(payload_[0])) return error(frame_error::bad_field);
+        result.msg.offset = payload_[0];
         return result;
       case message_type::keypad_mode:
         if (length_ != 1) return error(frame_error::bad_length);
-        if (buffer_[0] != keypad_mode_key_on && buffer_[0] != keypad_mode_key_on_off) {
+        if (payload_[0] != keypad_mode_key_on && payload_[0] != keypad_mode_key_on_off) {
           return error(frame_error::bad_field);
         }
-        result.msg.mode = buffer_[0];
+        result.msg.mode = payload_[0];
         return result;
     }
     return error(frame_error::unknown_type);
@@ -218,8 +275,14 @@ class decoder {
   state state_ = state::idle;
   std::uint8_t hops_ = 0;
   std::uint8_t type_ = 0;
+  bool no_room_ = false;
   std::size_t length_ = 0;
-  std::uint8_t buffer_[capacity] = {};
+  std::uint8_t payload_[variable_data_length] = {};
+  Store store_;
 };
+
+/// The streaming decoder with its own character buffer of MaxCharacters.
+template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
+using decoder = basic_decoder<character_buffer<MaxCharacters>, MaxCharacters, Crc>;
 
 }  // namespace trionet::ring

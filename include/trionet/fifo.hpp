@@ -1,0 +1,55 @@
+// A fixed-capacity byte FIFO: the buffers of the ring nodes (forward buffer, transmit queue, receive buffer).
+// Cost: Capacity bytes + 4 bytes of indices; every operation O(1) except `drop_back` (O(1) too). No heap.
+// Not synchronised: the owner decides which context (ISR or main loop) touches it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace trionet {
+
+template <std::size_t Capacity>
+class byte_fifo {
+  static_assert(Capacity >= 1 && Capacity <= 65535, "a byte FIFO holds 1..65535 bytes");
+
+ public:
+  static constexpr std::size_t capacity() noexcept { return Capacity; }
+  std::size_t size() const noexcept { return size_; }
+  std::size_t free() const noexcept { return Capacity - size_; }
+  bool empty() const noexcept { return size_ == 0; }
+  bool full() const noexcept { return size_ == Capacity; }
+
+  /// Appends a byte; false (and nothing changes) when full.
+  [[nodiscard]] bool push(std::uint8_t byte) noexcept {
+    if (size_ == Capacity) return false;
+    data_[wrap(head_ + size_)] = byte;
+    ++size_;
+    return true;
+  }
+
+  /// Takes the oldest byte; false when empty.
+  [[nodiscard]] bool pop(std::uint8_t& byte) noexcept {
+    if (size_ == 0) return false;
+    byte = data_[head_];
+    head_ = static_cast<std::uint16_t>(wrap(head_ + 1u));
+    --size_;
+    return true;
+  }
+
+  /// The i-th oldest byte. Precondition: i < size().
+  std::uint8_t peek(std::size_t i = 0) const noexcept { return data_[wrap(head_ + i)]; }
+
+  /// Removes the `n` most recently pushed bytes (at most size()).
+  void drop_back(std::size_t n) noexcept { size_ = static_cast<std::uint16_t>(n >= size_ ? 0 : size_ - n); }
+
+  void clear() noexcept { head_ = size_ = 0; }
+
+ private:
+  static std::size_t wrap(std::size_t index) noexcept { return index >= Capacity ? index - Capacity : index; }
+
+  std::uint8_t data_[Capacity] = {};
+  std::uint16_t head_ = 0;
+  std::uint16_t size_ = 0;
+};
+
+}  // namespace trionet

@@ -1,0 +1,64 @@
+// Membrane keypad keys, the raw characters they send and the DEFKEY table (PROTOCOL.md 1.8).
+//
+//   key        raw (GET#4)   DEFKEY (GET#3)
+//   0..9       '0'..'9'      0..9
+//   up / +     'U'           10
+//   down / -   'D'           11
+//   CLR        'C'           12
+//   Y / enter  'Y'           13
+//   N          'N'           14
+//   .          '.'           15
+//   start      'S'           20
+//   stop       'T'           21
+//
+// Both tables are constexpr data (flash on a microcontroller); nodes hold a pointer to the one they use.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace trionet::ring {
+
+enum class key : std::uint8_t {
+  digit_0, digit_1, digit_2, digit_3, digit_4, digit_5, digit_6, digit_7, digit_8, digit_9,
+  up, down, clear, yes, no, point, start, stop,
+};
+constexpr std::size_t key_count = 18;
+
+constexpr key digit_key(unsigned digit) noexcept { return static_cast<key>(digit % 10); }
+
+/// The raw character each key sends (key ON), indexed by `key`.
+struct keypad_codes {
+  std::uint8_t raw[key_count];
+  constexpr std::uint8_t operator[](key k) const noexcept { return raw[static_cast<std::size_t>(k)]; }
+};
+
+inline constexpr keypad_codes default_keypad_codes = {
+    {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9', 'U', 'D', 'C', 'Y', 'N', '.', 'S', 'T'}};
+
+/// The values the manual's programs expect from GET#3, indexed by `key`.
+inline constexpr std::uint8_t defkey_values[key_count] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21};
+
+/// DEFKEY: GET#3 translates each received character (0..127) through this table.
+struct defkey_table {
+  std::uint8_t value[128];
+  constexpr std::uint8_t operator[](std::uint8_t c) const noexcept { return value[c & 0x7F]; }
+};
+
+/// The identity, except that the default keypad's raw characters map to the manual's key values.
+constexpr defkey_table make_default_defkey(const keypad_codes& codes = default_keypad_codes) noexcept {
+  defkey_table table{};
+  for (unsigned c = 0; c < 128; ++c) table.value[c] = static_cast<std::uint8_t>(c);
+  for (std::size_t k = 0; k < key_count; ++k) table.value[codes.raw[k] & 0x7F] = defkey_values[k];
+  return table;
+}
+
+inline constexpr defkey_table default_defkey = make_default_defkey();
+
+/// The key OFF character for a key ON character (PROTOCOL.md 1.7, the default): on + 64 where that stays
+/// below 128, else the same character.
+constexpr std::uint8_t default_key_off_code(std::uint8_t on) noexcept {
+  return on + 64 < 128 ? static_cast<std::uint8_t>(on + 64) : on;
+}
+
+}  // namespace trionet::ring

@@ -1,0 +1,84 @@
+// The 2 x 20 character display of a membrane keypad (PROTOCOL.md 1.9), as a model readable as text.
+//
+//   position  0 .. 19   first line        (row-major; CURSOR(p) = CHR(27);"H";CHR(p))
+//   position 20 .. 39   second line
+//
+//   12        clear and home the cursor        13   start of the other line
+//   14        hide the cursor                  15   show the cursor
+//   20        accepted and ignored             27 'H' p   cursor to p (0..39; others are ignored)
+//   other < 32 and 127: ignored                32..126: written at the cursor, which advances and wraps
+//
+// An escape followed by anything but 'H' is abandoned and that character is handled as usual.
+// Cost: 42 bytes of text + 3 bytes of state; O(1) per character; ISR-safe.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "trionet/span.hpp"
+
+namespace trionet::ring {
+
+class keypad_display {
+ public:
+  static constexpr std::size_t columns = 20;
+  static constexpr std::size_t rows = 2;
+  static constexpr std::size_t positions = columns * rows;
+
+  keypad_display() noexcept { clear(); }
+
+  void write(std::uint8_t c) noexcept {
+    if (escape_ == escape::position) {
+      escape_ = escape::none;
+      if (c < positions) cursor_ = c;
+      return;
+    }
+    if (escape_ == escape::start) {
+      escape_ = escape::none;
+      if (c == 'H') {
+        escape_ = escape::position;
+        return;
+      }
+    }
+    switch (c) {
+      case 12: clear(); return;
+      case 13: cursor_ = static_cast<std::uint8_t>(cursor_ < columns ? columns : 0); return;
+      case 14: cursor_visible_ = false; return;
+      case 15: cursor_visible_ = true; return;
+      case 27: escape_ = escape::start; return;
+      default: break;
+    }
+    if (c < 32 || c > 126) return;
+    text_[row_of(cursor_)][cursor_ % columns] = static_cast<char>(c);
+    cursor_ = static_cast<std::uint8_t>(cursor_ + 1u < positions ? cursor_ + 1u : 0u);
+  }
+
+  void write(byte_view characters) noexcept {
+    for (std::uint8_t c : characters) write(c);
+  }
+
+  /// Clears the display and homes the cursor (character 12).
+  void clear() noexcept {
+    for (auto& row : text_) {
+      for (std::size_t i = 0; i < columns; ++i) row[i] = ' ';
+      row[columns] = '\0';
+    }
+    cursor_ = 0;
+  }
+
+  /// A line of the display (0 or 1) as a 20-character string.
+  const char* line(std::size_t row) const noexcept { return text_[row < rows ? row : rows - 1]; }
+  std::size_t cursor() const noexcept { return cursor_; }
+  bool cursor_visible() const noexcept { return cursor_visible_; }
+
+ private:
+  enum class escape : std::uint8_t { none, start, position };
+  static constexpr std::size_t row_of(std::size_t position) noexcept { return position / columns; }
+
+  char text_[rows][columns + 1];
+  std::uint8_t cursor_ = 0;
+  bool cursor_visible_ = true;
+  escape escape_ = escape::none;
+};
+
+}  // namespace trionet::ring

@@ -1,0 +1,179 @@
+// What every ring node does with its link (PROTOCOL.md 1.5): decrement and forward, one message at a time,
+// forwarded traffic before the node's own.
+//
+//   receive side                          transmit side
+//   header A>1 -> header A-1 ---\         between messages: forward buffer first, then the transmit queue;
+//   data      -> data ----------+--> forward buffer --+--> link
+//   EOM A     -> EOM A-1 ------/                      |
+//   header A=1 or A=0, and what follows: local         |
+//   own frames (PRINT#, SEND) ---------> transmit queue
+//
+// Forwarding is cut-through: a forwarded header goes out as soon as the transmitter is between messages,
+// each data byte as soon as it arrives. Forwarders do not validate; the destination does.
+// If the forward buffer overflows, the forwarded message is lost: removed whole if none of it has gone out,
+// otherwise cut short (the destination then sees it interrupted); the rest of it is dropped.
+//
+// Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Every call O(1); ISR-safe.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "trionet/fifo.hpp"
+#include "trionet/ring/bytes.hpp"
+#include "trionet/ring/encode.hpp"
+#include "trionet/ring/message.hpp"
+
+namespace trionet::ring {
+
+/// Where `link::receive` sent a byte.
+enum class route : std::uint8_t {
+  local,      ///< for this node's own decoder (A = 1 or A = 0 messages, and bytes outside any message)
+  forwarded,  ///< into the forward buffer
+  dropped,    ///< discarded: forwarding is off, or the rest of a lost message
+  lost,       ///< the forward buffer overflowed on this byte: the forwarded message is lost
+};
+
+/// Counters of a link; they only ever grow (and wrap at 2^32).
+struct link_counters {
+  std::uint32_t messages_forwarded = 0;  ///< headers of messages passed on (A decremented)
+  std::uint32_t forwards_lost = 0;       ///< forwarded messages lost to a full forward buffer
+  std::uint32_t messages_dropped = 0;    ///< messages through this node dropped while forwarding was off
+  std::uint32_t messages_sent = 0;       ///< own messages whose end of message has gone out
+};
+
+template <std::size_t ForwardCapacity, std::size_t TransmitCapacity>
+class link {
+ public:
+  /// Takes one received byte and says where it went.
+  [[nodiscard]] route receive(std::uint8_t byte) noexcept {
+    if (is_data(byte)) {
+      switch (receiving_) {
+        case receiving::forward: return forward(byte);
+        case receiving::discard: return route::dropped;
+        case receiving::local: return route::local;
+      }
+      return route::local;
+    }
+    const receiving was = receiving_;
+    receiving_ = receiving::local;
+    forward_open_ = false;  // any header or end of message ends the message being forwarded
+    if (type_of(byte) == 0) {  // end of message
+      if (was == receiving::forward) {
+        const std::uint8_t hops = hops_of(byte);
+        return forward(with_hops(byte, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1)));
+      }
+      return was == receiving::discard ? route::dropped : route::local;
+    }
+    const std::uint8_t hops = hops_of(byte);
+    if (hops <= 1) return route::local;
+    if (!forwarding_) {
+      receiving_ = receiving::discard;
+      ++counters_.messages_dropped;
+      return route::dropped;
+    }
+    receiving_ = receiving::forward;
+    forward_open_ = true;
+    incoming_ = 0;
+    ++counters_.messages_forwarded;
+    return forward(with_hops(byte, static_cast<std::uint8_t>(hops - 1)));
+  }
+
+  /// The next byte for the link, if any.
+  [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept {
+    if (sending_ == sending::forward) {
+      if (forward_.pop(byte)) {
+        if (classify(byte) == byte_class::end_of_message) sending_ = sending::idle;
+        return true;
+      }
+      if (forward_open_) return false;  // cut-through: the next byte has not arrived yet
+      sending_ = sending::idle;         // the message was cut short upstream or here
+    } else if (sending_ == sending::own) {
+      if (!queue_.pop(byte)) {  // cannot happen: own frames are queued whole
+        sending_ = sending::idle;
+        return false;
+      }
+      if (classify(byte) == byte_class::end_of_message) {
+        sending_ = sending::idle;
+        ++counters_.messages_sent;
+      }
+      return true;
+    }
+    if (forward_.pop(byte)) {
+      sending_ = classify(byte) == byte_class::end_of_message ? sending::idle : sending::forward;
+      return true;
+    }
+    if (queue_.pop(byte)) {
+      sending_ = sending::own;
+      return true;
+    }
+    return false;
+  }
+
+  /// True when `transmit` would give a byte now.
+  bool transmit_pending() const noexcept {
+    if (!forward_.empty()) return true;
+    if (queue_.empty()) return false;
+    return !(sending_ == sending::forward && forward_open_);
+  }
+
+  /// Queues one of the node's own messages whole. `encode_error::buffer_too_small` if the transmit queue has
+  /// no room for all of it (nothing is queued), or the message's own field error.
+  [[nodiscard]] encode_result queue(const message& m) noexcept {
+    const encode_error error = check(m);
+    if (error != encode_error::none) return {0, error};
+    const std::size_t length = frame_length(m);
+    if (length > queue_.free()) return {0, encode_error::buffer_too_small};
+    if (m.type == message_type::character) {  // straight into the queue: no staging copy of the text
+      (void)queue_.push(make_header(m.hops, static_cast<std::uint8_t>(m.type)));
+      for (std::uint8_t c : m.text) (void)queue_.push(c);
+      (void)queue_.push(make_end_of_message(m.hops));
+    } else {
+      std::uint8_t frame[framing_length + variable_data_length];
+      const encode_result encoded = encode(frame, m);
+      for (std::size_t i = 0; i < encoded.length; ++i) (void)queue_.push(frame[i]);
+    }
+    return {length, encode_error::none};
+  }
+
+  /// Free bytes in the transmit queue (a frame is its message plus header and end of message).
+  std::size_t transmit_free() const noexcept { return queue_.free(); }
+  /// Bytes waiting in the forward buffer.
+  std::size_t forward_backlog() const noexcept { return forward_.size(); }
+
+  /// Forwarding on (a Motion Coordinator, a keypad in network mode) or off (a keypad in local mode: messages
+  /// through the node are dropped and counted).
+  void set_forwarding(bool on) noexcept { forwarding_ = on; }
+
+  const link_counters& counters() const noexcept { return counters_; }
+
+  static constexpr std::size_t forward_capacity = ForwardCapacity;
+  static constexpr std::size_t transmit_capacity = TransmitCapacity;
+
+ private:
+  enum class receiving : std::uint8_t { local, forward, discard };
+  enum class sending : std::uint8_t { idle, forward, own };
+
+  route forward(std::uint8_t byte) noexcept {
+    if (forward_.push(byte)) {
+      if (incoming_ <= ForwardCapacity) ++incoming_;
+      return route::forwarded;
+    }
+    ++counters_.forwards_lost;
+    if (incoming_ <= forward_.size()) forward_.drop_back(incoming_);  // none of it has gone out yet
+    forward_open_ = false;
+    receiving_ = receiving::discard;
+    return route::lost;
+  }
+
+  byte_fifo<ForwardCapacity> forward_;
+  byte_fifo<TransmitCapacity> queue_;
+  link_counters counters_;
+  std::size_t incoming_ = 0;  // bytes of the message being forwarded now in the buffer (saturates)
+  receiving receiving_ = receiving::local;
+  sending sending_ = sending::idle;
+  bool forward_open_ = false;  // a forwarded message has begun and not ended on the receive side
+  bool forwarding_ = true;
+};
+
+}  // namespace trionet::ring

@@ -1,0 +1,275 @@
+// A Motion Coordinator on the fibre ring (PROTOCOL.md 1.5-1.6): forwards what is not for it, keeps the
+// characters sent to it in its receive buffer for KEY# and GET#, writes direct variable transfers into VR()
+// through the write policy, and sends PRINT# and SEND messages.
+//
+// Wire it to a UART (see transport.hpp) and call the program-level API from the main loop:
+//
+//   trionet::vr_table<256> vr;
+//   trionet::ring::motion_coordinator<> mc(vr);
+//   mc.print(11, "HELLO");              // PRINT #11,"HELLO"
+//   mc.send_variable(10, 200, 99.0);    // SEND(10,1,200,99)
+//   if (mc.key(3)) { auto k = mc.get(3); ... }   // IF KEY#3 THEN GET #3,k
+//
+// Cost (defaults): RAM = receive buffer 256 + forward buffer 48 + transmit queue 48 + about 90 bytes of
+// state and counters; the VR table and DEFKEY table are the caller's. Per received byte O(1).
+// `receive`/`transmit` may run in an ISR; see transport.hpp for sharing with the main loop.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+#include "trionet/fifo.hpp"
+#include "trionet/ring/bytes.hpp"
+#include "trionet/ring/crc.hpp"
+#include "trionet/ring/decoder.hpp"
+#include "trionet/ring/keypad_codes.hpp"
+#include "trionet/ring/link.hpp"
+#include "trionet/ring/message.hpp"
+#include "trionet/ring/q32.hpp"
+#include "trionet/span.hpp"
+#include "trionet/transport.hpp"
+#include "trionet/vr.hpp"
+
+namespace trionet::ring {
+
+/// NETSTAT bits (PROTOCOL.md 1.6).
+enum netstat_bit : std::uint8_t {
+  netstat_tx_timeout = 1,       ///< an own message could not be put into the transmit queue
+  netstat_tx_buffer_error = 2,  ///< a forwarded message was lost (forward buffer overflow)
+  netstat_rx_crc_error = 4,     ///< a direct variable transfer failed its CRC
+  netstat_rx_frame_error = 8,   ///< an incomplete or corrupt message was received
+  netstat_rx_overflow = 16,     ///< a character transfer did not fit in the receive buffer (extension)
+};
+
+/// What became of a PRINT# or SEND call. Anything but `queued` means nothing was queued.
+enum class send_result : std::uint8_t {
+  queued,
+  bad_address,             ///< BASIC address not 10..24
+  empty_text,              ///< PRINT# of nothing
+  character_out_of_range,  ///< a character above 127
+  vr_out_of_range,         ///< vr above 16383
+  value_out_of_range,      ///< value outside Q32.32 (or NaN)
+  offset_out_of_range,     ///< keypad offset not a BASIC address 10..24
+  mode_out_of_range,       ///< keypad mode not 0 or 127
+  queue_full,              ///< no room in the transmit queue (NETSTAT bit 0 is set)
+};
+
+constexpr const char* to_string(send_result result) noexcept {
+  switch (result) {
+    case send_result::queued: return "queued";
+    case send_result::bad_address: return "bad_address";
+    case send_result::empty_text: return "empty_text";
+    case send_result::character_out_of_range: return "character_out_of_range";
+    case send_result::vr_out_of_range: return "vr_out_of_range";
+    case send_result::value_out_of_range: return "value_out_of_range";
+    case send_result::offset_out_of_range: return "offset_out_of_range";
+    case send_result::mode_out_of_range: return "mode_out_of_range";
+    case send_result::queue_full: return "queue_full";
+  }
+  return "unknown";
+}
+
+/// GET#: a character, or nothing yet (the non-blocking form; a blocking wrapper may wait on `key`).
+struct get_result {
+  enum class status : std::uint8_t { ok, nothing_yet, bad_channel } status;
+  std::uint8_t value;
+  constexpr explicit operator bool() const noexcept { return status == status::ok; }
+};
+
+/// Counters of a Motion Coordinator; they only ever grow (and wrap at 2^32).
+/// (The forwarding counters are the link's: `forwarding_counters()`.)
+struct motion_coordinator_counters {
+  std::uint32_t character_messages = 0;   ///< character transfers taken into the receive buffer
+  std::uint32_t receive_overflows = 0;    ///< character transfers dropped whole: no room (NETSTAT bit 4)
+  std::uint32_t variables_written = 0;    ///< direct variable transfers applied to VR()
+  std::uint32_t variables_refused = 0;    ///< ... refused by the write policy
+  std::uint32_t variables_out_of_range = 0;  ///< ... to a vr past the VR table
+  std::uint32_t crc_errors = 0;           ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
+  std::uint32_t frame_errors = 0;         ///< frame errors of PROTOCOL.md 1.4 (NETSTAT bit 3)
+  std::uint32_t keypad_messages_ignored = 0;  ///< keypad offset / mode messages sent to this MC
+  std::uint32_t sends_refused = 0;        ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
+};
+
+/// The receive buffer as the decoder's character store: a message's characters are staged at its end and
+/// kept only if the whole message is valid and fits (all or nothing).
+template <std::size_t Capacity>
+class receive_buffer {
+ public:
+  void begin() noexcept { staged_ = 0; }
+  bool put(std::uint8_t c) noexcept {
+    if (!fifo_.push(c)) return false;
+    ++staged_;
+    return true;
+  }
+  byte_view commit() noexcept {  // the characters may wrap round the buffer: no contiguous view
+    staged_ = 0;
+    return {};
+  }
+  void abort() noexcept {
+    fifo_.drop_back(staged_);
+    staged_ = 0;
+  }
+
+  /// Characters of whole messages waiting to be read.
+  std::size_t waiting() const noexcept { return fifo_.size() - staged_; }
+  bool take(std::uint8_t& c) noexcept { return waiting() != 0 && fifo_.pop(c); }
+
+ private:
+  byte_fifo<Capacity> fifo_;
+  std::size_t staged_ = 0;
+};
+
+template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 48, std::size_t TransmitCapacity = 48,
+          class Crc = crc16_ccitt_false>
+class motion_coordinator final : public byte_port {
+ public:
+  /// `vr` receives direct variable transfers (through its write policy); `defkey` translates GET#3.
+  explicit motion_coordinator(vr_store& vr, const defkey_table& defkey = default_defkey) noexcept
+      : vr_(&vr), defkey_(&defkey) {}
+
+  // ---- the link (byte_port) ----
+
+  void receive(std::uint8_t byte) noexcept override {
+    const route r = link_.receive(byte);
+    if (r == route::local) {
+      handle(decoder_.push(byte));
+      return;
+    }
+    if (r == route::lost) netstat_ |= netstat_tx_buffer_error;
+    if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
+  }
+  [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept override { return link_.transmit(byte); }
+  [[nodiscard]] bool transmit_pending() const noexcept override { return link_.transmit_pending(); }
+
+  // ---- PRINT# and SEND (BASIC addresses 10..24) ----
+
+  /// PRINT #n,text: a character transfer of `text` (each character 0..127).
+  [[nodiscard]] send_result print(int n, byte_view text) noexcept {
+    const auto hops = hops_from_basic_address(n);
+    if (!hops) return send_result::bad_address;
+    return queue(message::characters(*hops, text));
+  }
+  [[nodiscard]] send_result print(int n, const char* text) noexcept {
+    return print(n, byte_view(reinterpret_cast<const std::uint8_t*>(text), std::strlen(text)));
+  }
+
+  /// SEND(n,1,vr,value): a direct variable transfer; `value` is rounded to Q32.32.
+  [[nodiscard]] send_result send_variable(int n, std::uint16_t vr, double value) noexcept {
+    const auto hops = hops_from_basic_address(n);
+    if (!hops) return send_result::bad_address;
+    if (vr > max_vr) return send_result::vr_out_of_range;
+    const q32_result q = q32_from_double(value);
+    if (!q) return send_result::value_out_of_range;
+    return queue(message::variable(*hops, vr, q.raw));
+  }
+
+  /// SEND(n,2,offset): tells the keypad n where to send its key presses (offset: BASIC address 10..24,
+  /// counted from the keypad).
+  [[nodiscard]] send_result send_keypad_offset(int n, int offset) noexcept {
+    const auto hops = hops_from_basic_address(n);
+    if (!hops) return send_result::bad_address;
+    const auto offset_hops = hops_from_basic_address(offset);
+    if (!offset_hops) return send_result::offset_out_of_range;
+    return queue(message::keypad_offset(*hops, *offset_hops));
+  }
+
+  /// Keypad mode: 0 = key ON only, 127 = key ON and key OFF.
+  [[nodiscard]] send_result send_keypad_mode(int n, int mode) noexcept {
+    const auto hops = hops_from_basic_address(n);
+    if (!hops) return send_result::bad_address;
+    if (mode != keypad_mode_key_on && mode != keypad_mode_key_on_off) return send_result::mode_out_of_range;
+    return queue(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
+  }
+
+  /// Room left in the transmit queue, in bytes (a message takes its data + 2).
+  std::size_t transmit_free() const noexcept { return link_.transmit_free(); }
+
+  // ---- KEY# and GET# ----
+
+  /// KEY#3 / KEY#4: true if at least one character is waiting; nothing is consumed.
+  bool key(int channel) const noexcept {
+    return (channel == 3 || channel == 4) && decoder_.store().waiting() != 0;
+  }
+
+  /// GET#4: the next character raw; GET#3: translated through DEFKEY.
+  [[nodiscard]] get_result get(int channel) noexcept {
+    if (channel != 3 && channel != 4) return {get_result::status::bad_channel, 0};
+    std::uint8_t c = 0;
+    if (!decoder_.store().take(c)) return {get_result::status::nothing_yet, 0};
+    return {get_result::status::ok, channel == 3 ? (*defkey_)[c] : c};
+  }
+
+  /// Characters waiting in the receive buffer.
+  std::size_t characters_waiting() const noexcept { return decoder_.store().waiting(); }
+
+  // ---- NETSTAT and counters ----
+
+  std::uint8_t netstat() const noexcept { return netstat_; }
+  void clear_netstat() noexcept { netstat_ = 0; }
+
+  const motion_coordinator_counters& counters() const noexcept { return counters_; }
+  const link_counters& forwarding_counters() const noexcept { return link_.counters(); }
+
+  std::size_t forward_backlog() const noexcept { return link_.forward_backlog(); }
+
+ private:
+  send_result queue(const message& m) noexcept {
+    const encode_result queued = link_.queue(m);
+    switch (queued.error) {
+      case encode_error::none: return send_result::queued;
+      case encode_error::buffer_too_small:
+        netstat_ |= netstat_tx_timeout;
+        ++counters_.sends_refused;
+        return send_result::queue_full;
+      case encode_error::empty_text: return send_result::empty_text;
+      case encode_error::character_out_of_range: return send_result::character_out_of_range;
+      case encode_error::vr_out_of_range: return send_result::vr_out_of_range;
+      case encode_error::offset_out_of_range: return send_result::offset_out_of_range;
+      case encode_error::mode_out_of_range: return send_result::mode_out_of_range;
+      case encode_error::hops_out_of_range:
+      case encode_error::unknown_type: break;
+    }
+    return send_result::bad_address;
+  }
+
+  void handle(const decode_result& r) noexcept {
+    switch (r.status) {
+      case decode_status::incomplete: return;
+      case decode_status::frame_error:
+        ++counters_.frame_errors;
+        netstat_ |= netstat_rx_frame_error;
+        return;
+      case decode_status::crc_error:
+        ++counters_.crc_errors;
+        netstat_ |= netstat_rx_crc_error;
+        return;
+      case decode_status::no_room:
+        ++counters_.receive_overflows;
+        netstat_ |= netstat_rx_overflow;
+        return;
+      case decode_status::message: break;
+    }
+    switch (r.msg.type) {
+      case message_type::character: ++counters_.character_messages; return;
+      case message_type::variable:
+        switch (vr_->write(r.msg.vr, q32_to_double(r.msg.value))) {
+          case vr_write::written: ++counters_.variables_written; return;
+          case vr_write::refused: ++counters_.variables_refused; return;
+          case vr_write::out_of_range: ++counters_.variables_out_of_range; return;
+        }
+        return;
+      case message_type::keypad_offset:
+      case message_type::keypad_mode: ++counters_.keypad_messages_ignored; return;
+    }
+  }
+
+  link<ForwardCapacity, TransmitCapacity> link_;
+  basic_decoder<receive_buffer<ReceiveCapacity>, ReceiveCapacity, Crc> decoder_;
+  vr_store* vr_;
+  const defkey_table* defkey_;
+  motion_coordinator_counters counters_;
+  std::uint8_t netstat_ = 0;
+};
+
+}  // namespace trionet::ring

@@ -1,0 +1,130 @@
+// A deterministic fibre-ring simulator for tests, examples and tools.
+//
+//   node 0 --link 0--> node 1 --link 1--> ... node n-1 --link n-1--> node 0
+//
+// Time advances in byte-times. In each step every node, in order, is asked for one byte to transmit; then
+// every byte that went onto a link is delivered to the next node. So a byte takes one byte-time per link,
+// a forwarded byte one byte-time per node, and the same inputs always give the same run.
+// Faults can be injected per link: drop the next byte, flip bits of the next byte, or cut the link.
+//
+// The caller owns the nodes (any `byte_port`: Motion Coordinators, keypads, or its own). No heap: the
+// trace goes to a callback the caller supplies. Cost: MaxNodes pointers and faults; O(nodes) per step.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "trionet/transport.hpp"
+
+namespace trionet::ring {
+
+/// One byte on one link, as the trace callback sees it.
+struct link_byte {
+  std::uint64_t time;  ///< the byte-time it was sent in
+  std::size_t link;    ///< link i runs from node i to node (i + 1) mod n
+  std::uint8_t sent;   ///< the byte the transmitter sent
+  std::uint8_t received;  ///< the byte the receiver got (differs when bits were flipped)
+  bool delivered;      ///< false when the byte was dropped or the link is cut
+};
+
+/// Seconds taken by `byte_times` bytes at `bits_per_second`, with `bits_per_byte` line bits per byte
+/// (10 for a UART frame of start bit, 8 data bits and stop bit).
+constexpr double byte_times_to_seconds(std::uint64_t byte_times, double bits_per_second,
+                                       unsigned bits_per_byte = 10) noexcept {
+  return static_cast<double>(byte_times) * static_cast<double>(bits_per_byte) / bits_per_second;
+}
+
+template <std::size_t MaxNodes = 15>
+class simulator {
+  static_assert(MaxNodes >= 2 && MaxNodes <= 15, "a ring has 2 to 15 nodes");
+
+ public:
+  static constexpr std::size_t max_nodes = MaxNodes;
+
+  /// Adds the next node round the ring; false when the ring is full.
+  [[nodiscard]] bool add(byte_port& node) noexcept {
+    if (count_ == MaxNodes) return false;
+    nodes_[count_++] = &node;
+    return true;
+  }
+
+  std::size_t size() const noexcept { return count_; }
+  /// True when the ring has 2..MaxNodes nodes and can run.
+  bool ready() const noexcept { return count_ >= 2; }
+  std::uint64_t now() const noexcept { return now_; }
+  /// Bytes delivered since the start (a measure of simulation work: node-byte steps).
+  std::uint64_t bytes_delivered() const noexcept { return delivered_; }
+
+  // ---- faults ----
+  void drop_next(std::size_t link) noexcept {
+    if (link < count_) faults_[link].drop_next = true;
+  }
+  void flip_next(std::size_t link, std::uint8_t mask) noexcept {
+    if (link < count_) faults_[link].flip_mask = mask;
+  }
+  void cut(std::size_t link, bool cut = true) noexcept {
+    if (link < count_) faults_[link].cut = cut;
+  }
+
+  /// One byte-time. `trace(const link_byte&)` is called for every byte sent on any link.
+  template <class Trace>
+  void step(Trace&& trace) {
+    if (!ready()) return;
+    bool sent[MaxNodes] = {};
+    link_byte bytes[MaxNodes] = {};
+    for (std::size_t i = 0; i < count_; ++i) {
+      std::uint8_t byte = 0;
+      if (!nodes_[i]->transmit(byte)) continue;
+      fault& f = faults_[i];
+      link_byte& b = bytes[i];
+      b = {now_, i, byte, static_cast<std::uint8_t>(byte ^ f.flip_mask), !(f.cut || f.drop_next)};
+      f.flip_mask = 0;
+      f.drop_next = false;
+      sent[i] = true;
+    }
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (!sent[i]) continue;
+      if (bytes[i].delivered) {
+        nodes_[i + 1 == count_ ? 0 : i + 1]->receive(bytes[i].received);
+        ++delivered_;
+      }
+      trace(bytes[i]);
+    }
+    ++now_;
+  }
+  void step() {
+    step([](const link_byte&) {});
+  }
+
+  /// Runs `byte_times` steps.
+  template <class Trace>
+  void run(std::uint64_t byte_times, Trace&& trace) {
+    for (std::uint64_t t = 0; t < byte_times; ++t) step(trace);
+  }
+  void run(std::uint64_t byte_times) {
+    for (std::uint64_t t = 0; t < byte_times; ++t) step();
+  }
+
+  /// True when no node has anything to send.
+  bool quiet() const noexcept {
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (nodes_[i]->transmit_pending()) return false;
+    }
+    return true;
+  }
+
+ private:
+  struct fault {
+    bool cut = false;
+    bool drop_next = false;
+    std::uint8_t flip_mask = 0;
+  };
+
+  byte_port* nodes_[MaxNodes] = {};
+  fault faults_[MaxNodes] = {};
+  std::size_t count_ = 0;
+  std::uint64_t now_ = 0;
+  std::uint64_t delivered_ = 0;
+};
+
+}  // namespace trionet::ring
