@@ -47,7 +47,8 @@ constexpr std::uint16_t word_mask = 0x7ff;         ///< the 11 bits a word may u
 
 /// The 11-bit word of `c` (numbering above). Cost: a few instructions; ISR-safe.
 [[nodiscard]] constexpr std::uint16_t encode_character(character c) noexcept {
-  return static_cast<std::uint16_t>(stop_bit_mask | (c.byte << 2) | (c.control ? control_bit_mask : 0u));
+  return static_cast<std::uint16_t>(stop_bit_mask | (static_cast<unsigned>(c.byte) << 2u) |
+                                    (c.control ? control_bit_mask : 0u));
 }
 
 /// What a received 11-bit word or bit sequence turned out to be.
