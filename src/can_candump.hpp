@@ -50,7 +50,8 @@ struct candump_result {
 /// The compact form of `frame`: "028#0100000000020D7A" (upper-case hex).
 [[nodiscard]] std::string format_candump_frame(const can::frame& frame);
 
-/// The record as a line: the log form "(1700000000.123456) can0 028#..." if it has a timestamp, else compact.
+/// The record as a line: the log form "(1700000000.123456) can0 028#..." if it has a timestamp (interface
+/// "can0" when the record names none), else the compact form.
 [[nodiscard]] std::string format_candump_line(const candump_record& record);
 
 /// A short English name for `error`, for messages.

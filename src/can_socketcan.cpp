@@ -13,8 +13,7 @@
 namespace trionet::host {
 
 ::can_frame to_socketcan(const can::frame& frame) noexcept {
-  ::can_frame out;
-  std::memset(&out, 0, sizeof out);
+  ::can_frame out{};
   out.can_id = frame.id;
   out.len = frame.dlc > CAN_MAX_DLEN ? static_cast<std::uint8_t>(CAN_MAX_DLEN) : frame.dlc;
   std::memcpy(out.data, frame.data, sizeof out.data);
@@ -44,8 +43,7 @@ socketcan_open_result socketcan_port::open(const std::string& interface_name) {
     ::close(handle);
     return {socketcan_error::no_such_interface, error};
   }
-  ::sockaddr_can address;
-  std::memset(&address, 0, sizeof address);
+  ::sockaddr_can address{};
   address.can_family = AF_CAN;
   address.can_ifindex = static_cast<int>(index);
   // sockaddr_can is the address type bind() expects for PF_CAN; the cast is the socket API's contract.
@@ -80,7 +78,7 @@ socketcan_receive socketcan_port::receive(can::frame& out, int timeout_ms) noexc
   const int ready = ::poll(&waiting, 1, timeout_ms);
   if (ready == 0) return socketcan_receive::timeout;
   if (ready < 0) return socketcan_receive::failed;
-  ::can_frame raw;
+  ::can_frame raw{};
   const ssize_t got = ::read(socket_, &raw, sizeof raw);
   if (got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return socketcan_receive::timeout;
   if (got != static_cast<ssize_t>(sizeof raw)) return socketcan_receive::failed;

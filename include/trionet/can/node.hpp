@@ -104,7 +104,8 @@ struct node_counters {
 };
 
 /// One controller on the exchange. Holds its address, a reference to its port and VR store, and counters.
-/// Cost: about 48 bytes; `send_*` and `receive` are O(1) with one virtual call each (port or store).
+/// Cost: 10 counters (40 bytes), two pointers and a 2-byte address (52 bytes on a 32-bit MCU); `send_*` and
+/// `receive` are O(1) with one virtual call each (port or store).
 /// Context: `receive` may run in the CAN receive ISR if the `vr_store` may be written there; `send_*` may run
 /// in an ISR if the port allows it. `receive` and `send_*` touch disjoint counters, so one receiving context
 /// and one sending context may run concurrently; two contexts must not both send (or both receive) at once.

@@ -100,7 +100,8 @@ struct decode_result {
   auto ten_thousandths = static_cast<std::uint32_t>(remainder * 10000.0);
   if (ten_thousandths > max_fraction) ten_thousandths = max_fraction;  // product rounded up to 10000
   // The decimal tie between ten_thousandths and ten_thousandths + 1, correctly rounded to a double.
-  const std::uint64_t tie_numerator = std::uint64_t{whole} * 100000U + ten_thousandths * 10U + 5U;
+  const std::uint64_t tie_numerator =
+      std::uint64_t{whole} * 100000U + std::uint64_t{ten_thousandths} * 10U + 5U;
   const double tie = static_cast<double>(tie_numerator) / 100000.0;
   std::uint64_t scaled = std::uint64_t{whole} * fraction_scale + ten_thousandths;
   if (magnitude >= tie) ++scaled;
