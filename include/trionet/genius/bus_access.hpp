@@ -145,7 +145,7 @@ struct turn_margin {
 };
 
 /// Turns and margins after one Stop. Turns are in SBA order after the sender (the order the protocol
-/// intends), the sender excluded. Cost: about 1.3 KB; fill it with `analyse_turns`.
+/// intends), the sender excluded. Cost: about 1.5 KB; fill it with `analyse_turns`.
 struct turn_analysis {
   layout_status status = layout_status::ok;
   std::uint8_t after = 0;
@@ -195,7 +195,7 @@ inline const device* find_device(span<const device> devices, std::uint8_t sba) n
 
 /// Computes every other device's turn start after the Stop of SBA `after` ended at its position (time 0),
 /// the margin between each consecutive pair of turns, and flags margins below `timing.detection_us`.
-/// Cost: O(32 * devices); no allocation. Not meant for an ISR (floating point, ~1.3 KB result).
+/// Cost: O(32 * devices); no allocation. Not meant for an ISR (floating point, ~1.5 KB result).
 [[nodiscard]] inline turn_analysis analyse_turns(span<const device> devices, const bus_timing& timing,
                                                  std::uint8_t after) noexcept {
   turn_analysis result;
@@ -240,7 +240,7 @@ struct scan_transmission {
 /// The most transmissions a scan records (a full rotation needs at most 32).
 constexpr std::size_t max_scan_transmissions = 64;
 
-/// The result of `simulate_scan`. Cost: about 1.6 KB.
+/// The result of `simulate_scan`. Cost: about 2 KB.
 struct bus_scan {
   layout_status status = layout_status::ok;
   scan_transmission transmissions[max_scan_transmissions] = {};

@@ -103,7 +103,7 @@ enum class bit_status : std::uint8_t {
 /// `expect_next_character()` after a character: the very next bit must then be 0, and a 1 is reported as
 /// `start_bit_not_0`. The line is then at 1, so the next 0 is again a start bit.
 ///
-/// Cost: 8 bytes of state plus three counters; O(1) per bit; no allocation. ISR-safe (one object per
+/// Cost: 20 bytes (state and three counters); O(1) per bit; no allocation. ISR-safe (one object per
 /// line, not shared between contexts without the caller's locking).
 class bit_receiver {
  public:
