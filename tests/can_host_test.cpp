@@ -120,6 +120,31 @@ TEST(CanCandump, EveryFrameFormatsAndParsesBack) {
   }
 }
 
+// Hostile input: random lines made of candump's own characters either parse (and then format back to a line
+// that parses to the same frame) or are classified; nothing else happens.
+TEST(CanCandump, RandomLinesAreParsedOrClassified) {
+  const char alphabet[] = "0123456789abcdefABCDEF#R.() \tcan";
+  std::uint32_t state = 12345;
+  int parsed = 0;
+  for (int i = 0; i < 200000; ++i) {
+    std::string line;
+    state = state * 1103515245U + 12345U;
+    const std::size_t length = state >> 16U & 31U;
+    for (std::size_t j = 0; j < length; ++j) {
+      state = state * 1103515245U + 12345U;
+      line += alphabet[(state >> 16U) % (sizeof alphabet - 1)];
+    }
+    if (i % 2 == 0) line = "028#" + line.substr(0, length / 2);
+    const candump_result r = parse_candump_line(line);
+    if (r.error != candump_error::none) continue;
+    ++parsed;
+    const candump_result again = parse_candump_line(format_candump_line(r.record));
+    ASSERT_EQ(again.error, candump_error::none) << line;
+    EXPECT_EQ(again.record.frame, r.record.frame) << line;
+  }
+  EXPECT_GT(parsed, 1000) << "the generator reaches valid lines too";
+}
+
 TEST(CanSocketCan, FrameConversionBothWays) {
   frame f;
   f.id = 40;
