@@ -53,10 +53,24 @@ inline std::uint8_t read() noexcept { return static_cast<std::uint8_t>(data() & 
 inline bool tx_ready() noexcept { return (flags() & flag_tx_full) == 0; }
 inline void write(std::uint8_t byte) noexcept { data() = byte; }
 
+constexpr std::uint32_t interrupt_rx = (1u << 4) | (1u << 6);  // IMSC.RXIM, IMSC.RTIM
+constexpr std::uint32_t interrupt_tx = 1u << 5;                 // IMSC.TXIM
+
+inline volatile std::uint32_t& interrupt_mask() noexcept { return reg(base + 0x38u); }  // IMSC
+
+/// Transmit interrupt on or off (call with interrupts masked, or from the UART ISR).
+inline void enable_tx_interrupt(bool on) noexcept {
+  if (on) {
+    interrupt_mask() |= interrupt_tx;
+  } else {
+    interrupt_mask() &= ~interrupt_tx;
+  }
+}
+
 /// 8N1, receive and receive-timeout interrupts on.
 inline void start() noexcept {
   reg(base + 0x2Cu) = 0x60u;                 // LCRH: 8 data bits, FIFOs off
-  reg(base + 0x38u) = (1u << 4) | (1u << 6);  // IMSC: RXIM, RTIM
+  interrupt_mask() = interrupt_rx;
   reg(base + 0x30u) = 0x301u;                // CR: UARTEN, TXE, RXE
   nvic::enable(irq);
 }
@@ -129,5 +143,11 @@ inline void start() noexcept {
   nvic::enable(rx0_irq);
 }
 }  // namespace can0
+
+/// The keypad's key matrix, scanned by hardware: bit k of the latched state is 1 while key k is down
+/// (k in trionet::ring::key order).
+namespace keys {
+inline std::uint32_t pressed() noexcept { return reg(0x40005000u); }
+}  // namespace keys
 
 }  // namespace board

@@ -1,29 +1,100 @@
 // Firmware image (c): a membrane keypad node on the ring.
 //
-// TRIONET_FIRMWARE_PLACEHOLDER: the ring keypad node (include/trionet/ring/ node and include/trionet/transport.hpp)
-// has not landed yet. Until it does, this image is only the skeleton every ring image shares (UART receive
-// ISR, main loop); it is built normally and as its baseline, and scripts/firmware-size reports it as a
-// placeholder. To fill it: create the node over a vr_table<64> named `vr` and call the node `node`, push every
-// received byte into it from UART0_IRQHandler, and drain its transmit side to the UART in the main loop.
+// The PL011 interrupt is the keypad's link (see include/trionet/transport.hpp): received bytes go to
+// `keypad.receive` (the keypad offset that puts it in network mode, display text, forwarding), and while the
+// transmitter has room it takes bytes from `keypad.transmit`. Every SysTick (10 ms) the main loop reads the
+// hardware-scanned key matrix and reports each key that went down or up (`press` / `release`), with
+// interrupts masked around the calls as transport.hpp asks.
+//
+// Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR, key
+// scan and main loop run without the library. The difference between the two images is the keypad node.
+#include <cstddef>
 #include <cstdint>
 
 #include "board.hpp"
 
+#if !TRIONET_FIRMWARE_BASELINE
+#include "trionet/ring/keypad.hpp"
+#endif
+
 namespace {
 
-volatile std::uint32_t bytes_received = 0;
+constexpr std::uint32_t core_clock_hz = 48000000;
+constexpr std::uint32_t ticks_per_second = 100;
+constexpr unsigned key_count = 18;
+
+volatile bool tick = false;
+std::uint32_t keys_down = 0;  // the key matrix at the previous scan
+
+#if TRIONET_FIRMWARE_BASELINE
 volatile std::uint8_t last_byte = 0;
+volatile std::uint32_t key_events = 0;
+#else
+namespace ring = trionet::ring;
+static_assert(key_count == ring::key_count, "the key matrix has one bit per keypad key");
+
+ring::keypad<> node;
+#endif
 
 }  // namespace
 
+extern "C" void SysTick_Handler() { tick = true; }
+
 extern "C" void UART0_IRQHandler() {
   while (board::uart0::rx_ready()) {
+#if TRIONET_FIRMWARE_BASELINE
     last_byte = board::uart0::read();
-    bytes_received = bytes_received + 1;
+#else
+    node.receive(board::uart0::read());
+#endif
   }
+  std::uint8_t byte = 0;
+#if TRIONET_FIRMWARE_BASELINE
+  while (board::uart0::tx_ready() && (last_byte & 0x80u) != 0) {
+    byte = last_byte;
+    last_byte = 0;
+    board::uart0::write(byte);
+  }
+  board::uart0::enable_tx_interrupt(false);
+#else
+  while (board::uart0::tx_ready()) {
+    if (!node.transmit(byte)) {
+      board::uart0::enable_tx_interrupt(false);
+      break;
+    }
+    board::uart0::write(byte);
+  }
+#endif
 }
 
 int main() {
   board::uart0::start();
-  for (;;) board::wait_for_interrupt();
+  board::systick::start(core_clock_hz / ticks_per_second - 1);
+  for (;;) {
+    if (!tick) {
+      board::wait_for_interrupt();
+      continue;
+    }
+    tick = false;
+    const std::uint32_t now = board::keys::pressed();
+    const std::uint32_t changed = now ^ keys_down;
+    keys_down = now;
+    if (changed == 0) continue;
+    board::disable_interrupts();
+    for (unsigned k = 0; k < key_count; ++k) {
+      if ((changed & (1u << k)) == 0) continue;
+#if TRIONET_FIRMWARE_BASELINE
+      key_events = key_events + 1;
+#else
+      const auto which = static_cast<ring::key>(k);
+      static_cast<void>((now & (1u << k)) != 0 ? node.press(which) : node.release(which));
+#endif
+    }
+#if TRIONET_FIRMWARE_BASELINE
+    board::uart0::enable_tx_interrupt(true);
+#else
+    if (node.transmit_pending()) board::uart0::enable_tx_interrupt(true);
+#endif
+    board::enable_interrupts();
+  }
 }

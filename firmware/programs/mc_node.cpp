@@ -1,29 +1,110 @@
-// Firmware image (b): a UART receive interrupt feeding a ring Motion Coordinator node.
+// Firmware image (b): a UART interrupt feeding a ring Motion Coordinator node.
 //
-// TRIONET_FIRMWARE_PLACEHOLDER: the ring MC node (include/trionet/ring/ node and include/trionet/transport.hpp)
-// has not landed yet. Until it does, this image is only the skeleton every ring image shares (UART receive
-// ISR, main loop); it is built normally and as its baseline, and scripts/firmware-size reports it as a
-// placeholder. To fill it: create the node over a vr_table<64> named `vr` and call the node `node`, push every
-// received byte into it from UART0_IRQHandler, and drain its transmit side to the UART in the main loop.
+// The PL011 interrupt is the node's link (see include/trionet/transport.hpp): every received byte goes to
+// `node.receive` (which forwards, or decodes, fills the receive buffer and writes VR()), and while the
+// transmitter has room it takes bytes from `node.transmit`; the transmit interrupt is switched off when the
+// node has nothing to send. The main loop is the user program: every SysTick (10 ms) it updates VR(0), the axis
+// position, and sends it to the next node (SEND(10,1,0,VR(0))); it echoes any characters that arrived
+// (IF KEY#4 THEN GET#4 ... PRINT#10). The node is not internally synchronised, so the main loop masks
+// interrupts around its calls, as transport.hpp asks. Table-free CRC: the smallest firmware configuration.
+//
+// Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR and
+// main loop move bytes without the library (and do the same double arithmetic on the position). The
+// difference between the two images is the MC node: link, decoder, encoder, receive buffer, VR writes.
+#include <cstddef>
 #include <cstdint>
 
 #include "board.hpp"
 
+#if !TRIONET_FIRMWARE_BASELINE
+#include "trionet/ring/motion_coordinator.hpp"
+#include "trionet/vr.hpp"
+#endif
+
 namespace {
 
-volatile std::uint32_t bytes_received = 0;
+constexpr std::uint32_t core_clock_hz = 48000000;
+constexpr std::uint32_t ticks_per_second = 100;
+
+volatile bool tick = false;
+
+#if TRIONET_FIRMWARE_BASELINE
 volatile std::uint8_t last_byte = 0;
+volatile std::size_t bytes_waiting = 0;
+volatile double position = 0.0;
+constexpr std::uint8_t fixed_frame[16] = {0x8a, 0x00, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x88};
+std::size_t transmitted = sizeof fixed_frame;  // index of the next byte to send
+
+bool next_byte(std::uint8_t& byte) {
+  if (transmitted == sizeof fixed_frame) return false;
+  byte = fixed_frame[transmitted++];
+  return true;
+}
+
+#else
+namespace ring = trionet::ring;
+
+constexpr int next_node = 10;  // BASIC address of the next node round the ring
+constexpr std::uint16_t position_vr = 0;
+
+trionet::vr_table<64> vr;
+ring::motion_coordinator<256, 48, 48, ring::crc16_ccitt_false_bitwise> node(vr);
+#endif
 
 }  // namespace
 
+extern "C" void SysTick_Handler() { tick = true; }
+
 extern "C" void UART0_IRQHandler() {
   while (board::uart0::rx_ready()) {
+#if TRIONET_FIRMWARE_BASELINE
     last_byte = board::uart0::read();
-    bytes_received = bytes_received + 1;
+    bytes_waiting = bytes_waiting + 1;
+#else
+    node.receive(board::uart0::read());
+#endif
+  }
+  std::uint8_t byte = 0;
+  while (board::uart0::tx_ready()) {
+#if TRIONET_FIRMWARE_BASELINE
+    const bool have = next_byte(byte);
+#else
+    const bool have = node.transmit(byte);
+#endif
+    if (!have) {
+      board::uart0::enable_tx_interrupt(false);
+      break;
+    }
+    board::uart0::write(byte);
   }
 }
 
 int main() {
   board::uart0::start();
-  for (;;) board::wait_for_interrupt();
+  board::systick::start(core_clock_hz / ticks_per_second - 1);
+  for (;;) {
+    if (!tick) {
+      board::wait_for_interrupt();
+      continue;
+    }
+    tick = false;
+#if TRIONET_FIRMWARE_BASELINE
+    position = position + 0.001;  // the same application arithmetic as below
+    board::disable_interrupts();
+    if (bytes_waiting != 0) bytes_waiting = 0;
+    transmitted = 0;
+    board::uart0::enable_tx_interrupt(true);
+    board::enable_interrupts();
+#else
+    vr[position_vr] += 0.001;  // the axis moves
+    board::disable_interrupts();
+    static_cast<void>(node.send_variable(next_node, position_vr, vr[position_vr]));
+    std::uint8_t echo[16];
+    std::size_t length = 0;
+    while (length < sizeof echo && node.key(4)) echo[length++] = node.get(4).value;
+    if (length != 0) static_cast<void>(node.print(next_node, trionet::byte_view(echo, length)));
+    if (node.transmit_pending()) board::uart0::enable_tx_interrupt(true);
+    board::enable_interrupts();
+#endif
+  }
 }
