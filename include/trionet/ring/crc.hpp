@@ -38,9 +38,9 @@ struct crc16 {
   }
 
   static constexpr std::array<std::uint16_t, 256> make_table() noexcept {
-    std::array<std::uint16_t, 256> table{};
-    for (unsigned i = 0; i < 256; ++i) table[i] = update_bitwise(0, static_cast<std::uint8_t>(i));
-    return table;
+    std::array<std::uint16_t, 256> entries{};
+    for (unsigned i = 0; i < 256; ++i) entries[i] = update_bitwise(0, static_cast<std::uint8_t>(i));
+    return entries;
   }
 
   static constexpr std::uint16_t update(std::uint16_t crc, std::uint8_t byte) noexcept {

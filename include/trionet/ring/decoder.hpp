@@ -16,7 +16,8 @@
 // then the fields (`bad_field`). Whatever the input, the decoder re-synchronises at the next header.
 //
 // Cost: RAM = the character store (MaxCharacters bytes by default) + 14 bytes + 3 words; per byte O(1),
-// no allocation. `push` may be called from an ISR. A decoded message's `text` points into the decoder and is valid until the next push.
+// no allocation. `push` may be called from an ISR. A decoded message's `text` points into the decoder and is
+// valid until the next push.
 #pragma once
 
 #include <cstddef>
@@ -126,10 +127,15 @@ class basic_decoder {
   [[nodiscard]] decode_result push(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
       switch (state_) {
-        case state::in_message: store(byte); return {};
-        case state::idle: state_ = state::stray; return error(frame_error::stray_data);
+        case state::in_message:
+          store(byte);
+          return {};
+        case state::idle:
+          state_ = state::stray;
+          return error(frame_error::stray_data);
         case state::stray:
-        case state::skipping: return {};
+        case state::skipping:
+          return {};
       }
       return {};
     }

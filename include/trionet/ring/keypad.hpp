@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "trionet/ring/bytes.hpp"
+#include "trionet/ring/crc.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/keypad_codes.hpp"
 #include "trionet/ring/keypad_display.hpp"
@@ -26,10 +27,10 @@ namespace trionet::ring {
 
 /// What became of a key press or release.
 enum class key_result : std::uint8_t {
-  sent,          ///< queued for the node `offset` hops along
-  not_sent,      ///< a key OFF in keypad mode 0: nothing to send
-  local_mode,    ///< the keypad has no offset yet: nothing is sent (counted)
-  queue_full,    ///< no room in the transmit queue (counted)
+  sent,        ///< queued for the node `offset` hops along
+  not_sent,    ///< a key OFF in keypad mode 0: nothing to send
+  local_mode,  ///< the keypad has no offset yet: nothing is sent (counted)
+  queue_full,  ///< no room in the transmit queue (counted)
 };
 
 /// The keypad's configurable behaviour (PROTOCOL.md 1.7-1.8 defaults).
@@ -50,7 +51,7 @@ struct keypad_counters {
 };
 
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
-          std::size_t MaxCharacters = default_max_characters>
+          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
 class keypad final : public byte_port {
  public:
   explicit keypad(const keypad_config& config = keypad_config{}) noexcept : config_(config) {
@@ -79,7 +80,8 @@ class keypad final : public byte_port {
   [[nodiscard]] key_result press(key k) noexcept { return send_key((*config_.codes)[k]); }
 
   [[nodiscard]] key_result release(key k) noexcept {
-    if (mode_ != keypad_mode_key_on_off) return network_mode() ? key_result::not_sent : key_result::local_mode;
+    if (mode_ != keypad_mode_key_on_off)
+      return network_mode() ? key_result::not_sent : key_result::local_mode;
     return send_key(config_.key_off_code((*config_.codes)[k]));
   }
 
@@ -110,11 +112,18 @@ class keypad final : public byte_port {
 
   void handle(const decode_result& r) noexcept {
     switch (r.status) {
-      case decode_status::incomplete: return;
-      case decode_status::frame_error: ++counters_.frame_errors; return;
-      case decode_status::crc_error: ++counters_.crc_errors; return;
-      case decode_status::no_room: return;  // cannot happen: the store holds MaxCharacters
-      case decode_status::message: break;
+      case decode_status::incomplete:
+        return;
+      case decode_status::frame_error:
+        ++counters_.frame_errors;
+        return;
+      case decode_status::crc_error:
+        ++counters_.crc_errors;
+        return;
+      case decode_status::no_room:
+        return;  // cannot happen: the store holds MaxCharacters
+      case decode_status::message:
+        break;
     }
     if (!network_mode()) {
       if (r.msg.type == message_type::keypad_offset) {
@@ -130,15 +139,21 @@ class keypad final : public byte_port {
         display_.write(r.msg.text);
         ++counters_.display_messages;
         return;
-      case message_type::variable: ++counters_.variables_ignored; return;
-      case message_type::keypad_offset: offset_ = r.msg.offset; return;
-      case message_type::keypad_mode: mode_ = r.msg.mode; return;
+      case message_type::variable:
+        ++counters_.variables_ignored;
+        return;
+      case message_type::keypad_offset:
+        offset_ = r.msg.offset;
+        return;
+      case message_type::keypad_mode:
+        mode_ = r.msg.mode;
+        return;
     }
   }
 
   keypad_config config_;
-  link<ForwardCapacity, TransmitCapacity> link_;
-  decoder<MaxCharacters> decoder_;
+  link<ForwardCapacity, TransmitCapacity, Crc> link_;
+  decoder<MaxCharacters, Crc> decoder_;
   keypad_display display_;
   keypad_counters counters_;
   std::uint8_t offset_ = 0;

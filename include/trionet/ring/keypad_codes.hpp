@@ -20,12 +20,30 @@
 namespace trionet::ring {
 
 enum class key : std::uint8_t {
-  digit_0, digit_1, digit_2, digit_3, digit_4, digit_5, digit_6, digit_7, digit_8, digit_9,
-  up, down, clear, yes, no, point, start, stop,
+  digit_0,
+  digit_1,
+  digit_2,
+  digit_3,
+  digit_4,
+  digit_5,
+  digit_6,
+  digit_7,
+  digit_8,
+  digit_9,
+  up,
+  down,
+  clear,
+  yes,
+  no,
+  point,
+  start,
+  stop,
 };
 constexpr std::size_t key_count = 18;
 
-constexpr key digit_key(unsigned digit) noexcept { return static_cast<key>(digit % 10); }
+constexpr key digit_key(unsigned digit) noexcept {
+  return static_cast<key>(digit % 10);
+}
 
 /// The raw character each key sends (key ON), indexed by `key`.
 struct keypad_codes {
@@ -37,7 +55,8 @@ inline constexpr keypad_codes default_keypad_codes = {
     {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9', 'U', 'D', 'C', 'Y', 'N', '.', 'S', 'T'}};
 
 /// The values the manual's programs expect from GET#3, indexed by `key`.
-inline constexpr std::uint8_t defkey_values[key_count] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21};
+inline constexpr std::uint8_t defkey_values[key_count] = {0, 1,  2,  3,  4,  5,  6,  7,  8,
+                                                          9, 10, 11, 12, 13, 14, 15, 20, 21};
 
 /// DEFKEY: GET#3 translates each received character (0..127) through this table.
 struct defkey_table {

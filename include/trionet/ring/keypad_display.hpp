@@ -41,12 +41,23 @@ class keypad_display {
       }
     }
     switch (c) {
-      case 12: clear(); return;
-      case 13: cursor_ = static_cast<std::uint8_t>(cursor_ < columns ? columns : 0); return;
-      case 14: cursor_visible_ = false; return;
-      case 15: cursor_visible_ = true; return;
-      case 27: escape_ = escape::start; return;
-      default: break;
+      case 12:
+        clear();
+        return;
+      case 13:
+        cursor_ = static_cast<std::uint8_t>(cursor_ < columns ? columns : 0);
+        return;
+      case 14:
+        cursor_visible_ = false;
+        return;
+      case 15:
+        cursor_visible_ = true;
+        return;
+      case 27:
+        escape_ = escape::start;
+        return;
+      default:
+        break;
     }
     if (c < 32 || c > 126) return;
     text_[row_of(cursor_)][cursor_ % columns] = static_cast<char>(c);

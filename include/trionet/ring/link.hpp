@@ -21,6 +21,7 @@
 
 #include "trionet/fifo.hpp"
 #include "trionet/ring/bytes.hpp"
+#include "trionet/ring/crc.hpp"
 #include "trionet/ring/encode.hpp"
 #include "trionet/ring/message.hpp"
 
@@ -42,22 +43,26 @@ struct link_counters {
   std::uint32_t messages_sent = 0;       ///< own messages whose end of message has gone out
 };
 
-template <std::size_t ForwardCapacity, std::size_t TransmitCapacity>
+/// `Crc` is the CRC policy the node's own direct variable transfers are sent with.
+template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, class Crc = crc16_ccitt_false>
 class link {
  public:
   /// Takes one received byte and says where it went.
   [[nodiscard]] route receive(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
       switch (receiving_) {
-        case receiving::forward: return forward(byte);
-        case receiving::discard: return route::dropped;
-        case receiving::local: return route::local;
+        case receiving::forward:
+          return forward(byte);
+        case receiving::discard:
+          return route::dropped;
+        case receiving::local:
+          return route::local;
       }
       return route::local;
     }
     const receiving was = receiving_;
     receiving_ = receiving::local;
-    forward_open_ = false;  // any header or end of message ends the message being forwarded
+    forward_open_ = false;     // any header or end of message ends the message being forwarded
     if (type_of(byte) == 0) {  // end of message
       if (was == receiving::forward) {
         const std::uint8_t hops = hops_of(byte);
@@ -130,7 +135,7 @@ class link {
       (void)queue_.push(make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
-      const encode_result encoded = encode(frame, m);
+      const encode_result encoded = encode<Crc>(frame, m);
       for (std::size_t i = 0; i < encoded.length; ++i) (void)queue_.push(frame[i]);
     }
     return {length, encode_error::none};

@@ -57,15 +57,24 @@ enum class send_result : std::uint8_t {
 
 constexpr const char* to_string(send_result result) noexcept {
   switch (result) {
-    case send_result::queued: return "queued";
-    case send_result::bad_address: return "bad_address";
-    case send_result::empty_text: return "empty_text";
-    case send_result::character_out_of_range: return "character_out_of_range";
-    case send_result::vr_out_of_range: return "vr_out_of_range";
-    case send_result::value_out_of_range: return "value_out_of_range";
-    case send_result::offset_out_of_range: return "offset_out_of_range";
-    case send_result::mode_out_of_range: return "mode_out_of_range";
-    case send_result::queue_full: return "queue_full";
+    case send_result::queued:
+      return "queued";
+    case send_result::bad_address:
+      return "bad_address";
+    case send_result::empty_text:
+      return "empty_text";
+    case send_result::character_out_of_range:
+      return "character_out_of_range";
+    case send_result::vr_out_of_range:
+      return "vr_out_of_range";
+    case send_result::value_out_of_range:
+      return "value_out_of_range";
+    case send_result::offset_out_of_range:
+      return "offset_out_of_range";
+    case send_result::mode_out_of_range:
+      return "mode_out_of_range";
+    case send_result::queue_full:
+      return "queue_full";
   }
   return "unknown";
 }
@@ -80,15 +89,15 @@ struct get_result {
 /// Counters of a Motion Coordinator; they only ever grow (and wrap at 2^32).
 /// (The forwarding counters are the link's: `forwarding_counters()`.)
 struct motion_coordinator_counters {
-  std::uint32_t character_messages = 0;   ///< character transfers taken into the receive buffer
-  std::uint32_t receive_overflows = 0;    ///< character transfers dropped whole: no room (NETSTAT bit 4)
-  std::uint32_t variables_written = 0;    ///< direct variable transfers applied to VR()
-  std::uint32_t variables_refused = 0;    ///< ... refused by the write policy
+  std::uint32_t character_messages = 0;      ///< character transfers taken into the receive buffer
+  std::uint32_t receive_overflows = 0;       ///< character transfers dropped whole: no room (NETSTAT bit 4)
+  std::uint32_t variables_written = 0;       ///< direct variable transfers applied to VR()
+  std::uint32_t variables_refused = 0;       ///< ... refused by the write policy
   std::uint32_t variables_out_of_range = 0;  ///< ... to a vr past the VR table
-  std::uint32_t crc_errors = 0;           ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
-  std::uint32_t frame_errors = 0;         ///< frame errors of PROTOCOL.md 1.4 (NETSTAT bit 3)
+  std::uint32_t crc_errors = 0;    ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
+  std::uint32_t frame_errors = 0;  ///< frame errors of PROTOCOL.md 1.4 (NETSTAT bit 3)
   std::uint32_t keypad_messages_ignored = 0;  ///< keypad offset / mode messages sent to this MC
-  std::uint32_t sends_refused = 0;        ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
+  std::uint32_t sends_refused = 0;            ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
 };
 
 /// The receive buffer as the decoder's character store: a message's characters are staged at its end and
@@ -120,8 +129,8 @@ class receive_buffer {
   std::size_t staged_ = 0;
 };
 
-template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 48, std::size_t TransmitCapacity = 48,
-          class Crc = crc16_ccitt_false>
+template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 48,
+          std::size_t TransmitCapacity = 48, class Crc = crc16_ccitt_false>
 class motion_coordinator final : public byte_port {
  public:
   /// `vr` receives direct variable transfers (through its write policy); `defkey` translates GET#3.
@@ -217,25 +226,33 @@ class motion_coordinator final : public byte_port {
   send_result queue(const message& m) noexcept {
     const encode_result queued = link_.queue(m);
     switch (queued.error) {
-      case encode_error::none: return send_result::queued;
+      case encode_error::none:
+        return send_result::queued;
       case encode_error::buffer_too_small:
         netstat_ |= netstat_tx_timeout;
         ++counters_.sends_refused;
         return send_result::queue_full;
-      case encode_error::empty_text: return send_result::empty_text;
-      case encode_error::character_out_of_range: return send_result::character_out_of_range;
-      case encode_error::vr_out_of_range: return send_result::vr_out_of_range;
-      case encode_error::offset_out_of_range: return send_result::offset_out_of_range;
-      case encode_error::mode_out_of_range: return send_result::mode_out_of_range;
+      case encode_error::empty_text:
+        return send_result::empty_text;
+      case encode_error::character_out_of_range:
+        return send_result::character_out_of_range;
+      case encode_error::vr_out_of_range:
+        return send_result::vr_out_of_range;
+      case encode_error::offset_out_of_range:
+        return send_result::offset_out_of_range;
+      case encode_error::mode_out_of_range:
+        return send_result::mode_out_of_range;
       case encode_error::hops_out_of_range:
-      case encode_error::unknown_type: break;
+      case encode_error::unknown_type:
+        break;
     }
     return send_result::bad_address;
   }
 
   void handle(const decode_result& r) noexcept {
     switch (r.status) {
-      case decode_status::incomplete: return;
+      case decode_status::incomplete:
+        return;
       case decode_status::frame_error:
         ++counters_.frame_errors;
         netstat_ |= netstat_rx_frame_error;
@@ -248,23 +265,34 @@ class motion_coordinator final : public byte_port {
         ++counters_.receive_overflows;
         netstat_ |= netstat_rx_overflow;
         return;
-      case decode_status::message: break;
+      case decode_status::message:
+        break;
     }
     switch (r.msg.type) {
-      case message_type::character: ++counters_.character_messages; return;
+      case message_type::character:
+        ++counters_.character_messages;
+        return;
       case message_type::variable:
         switch (vr_->write(r.msg.vr, q32_to_double(r.msg.value))) {
-          case vr_write::written: ++counters_.variables_written; return;
-          case vr_write::refused: ++counters_.variables_refused; return;
-          case vr_write::out_of_range: ++counters_.variables_out_of_range; return;
+          case vr_write::written:
+            ++counters_.variables_written;
+            return;
+          case vr_write::refused:
+            ++counters_.variables_refused;
+            return;
+          case vr_write::out_of_range:
+            ++counters_.variables_out_of_range;
+            return;
         }
         return;
       case message_type::keypad_offset:
-      case message_type::keypad_mode: ++counters_.keypad_messages_ignored; return;
+      case message_type::keypad_mode:
+        ++counters_.keypad_messages_ignored;
+        return;
     }
   }
 
-  link<ForwardCapacity, TransmitCapacity> link_;
+  link<ForwardCapacity, TransmitCapacity, Crc> link_;
   basic_decoder<receive_buffer<ReceiveCapacity>, ReceiveCapacity, Crc> decoder_;
   vr_store* vr_;
   const defkey_table* defkey_;

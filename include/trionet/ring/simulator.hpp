@@ -20,11 +20,11 @@ namespace trionet::ring {
 
 /// One byte on one link, as the trace callback sees it.
 struct link_byte {
-  std::uint64_t time;  ///< the byte-time it was sent in
-  std::size_t link;    ///< link i runs from node i to node (i + 1) mod n
-  std::uint8_t sent;   ///< the byte the transmitter sent
+  std::uint64_t time;     ///< the byte-time it was sent in
+  std::size_t link;       ///< link i runs from node i to node (i + 1) mod n
+  std::uint8_t sent;      ///< the byte the transmitter sent
   std::uint8_t received;  ///< the byte the receiver got (differs when bits were flipped)
-  bool delivered;      ///< false when the byte was dropped or the link is cut
+  bool delivered;         ///< false when the byte was dropped or the link is cut
 };
 
 /// Seconds taken by `byte_times` bytes at `bits_per_second`, with `bits_per_byte` line bits per byte

@@ -1,0 +1,504 @@
+// Ring nodes (PROTOCOL.md 1.5-1.9): forwarding, delivery, the receive buffer, NETSTAT, the keypad and its
+// display, and the simulator's fault injection.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "trionet/ring.hpp"
+#include "trionet/vr.hpp"
+
+namespace ring = trionet::ring;
+using trionet::byte_view;
+
+namespace {
+
+using mc_node = ring::motion_coordinator<>;
+
+std::vector<std::uint8_t> frame_of(const ring::message& m) {
+  std::vector<std::uint8_t> out(ring::frame_length(m));
+  EXPECT_TRUE(ring::encode(trionet::byte_buffer(out.data(), out.size()), m));
+  return out;
+}
+
+std::vector<std::uint8_t> chars(std::uint8_t hops, const std::string& text) {
+  return frame_of(ring::message::characters(
+      hops, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())));
+}
+
+template <class Node>
+void feed(Node& node, const std::vector<std::uint8_t>& bytes) {
+  for (std::uint8_t b : bytes) node.receive(b);
+}
+
+template <class Node>
+std::vector<std::uint8_t> drain(Node& node) {
+  std::vector<std::uint8_t> out;
+  std::uint8_t b = 0;
+  while (node.transmit(b)) out.push_back(b);
+  return out;
+}
+
+template <class Node>
+std::string read_all(Node& node, int channel) {
+  std::string out;
+  while (auto r = node.get(channel)) out += static_cast<char>(r.value);
+  return out;
+}
+
+}  // namespace
+
+// ---- forwarding ----
+
+TEST(RingForwarding, DecrementsHopsInHeaderAndEndOfMessageAndKeepsData) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  feed(mc, chars(3, "HELLO"));
+  EXPECT_EQ(drain(mc), chars(2, "HELLO"));
+  EXPECT_FALSE(mc.key(4));  // re-transmission is invisible to the program
+  EXPECT_EQ(mc.forwarding_counters().messages_forwarded, 1u);
+}
+
+TEST(RingForwarding, IsCutThrough) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  std::uint8_t b = 0;
+  mc.receive(ring::make_header(5, 1));
+  ASSERT_TRUE(mc.transmit(b));  // the header goes out before the message has ended
+  EXPECT_EQ(b, ring::make_header(4, 1));
+  EXPECT_FALSE(mc.transmit(b));  // waiting for the next byte
+  mc.receive('A');
+  ASSERT_TRUE(mc.transmit(b));
+  EXPECT_EQ(b, 'A');
+  mc.receive(ring::make_end_of_message(5));
+  ASSERT_TRUE(mc.transmit(b));
+  EXPECT_EQ(b, ring::make_end_of_message(4));
+}
+
+TEST(RingForwarding, ForwardedTrafficGoesBeforeOwnAtMessageBoundaries) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  const auto forwarded = chars(2, "FW");
+  feed(mc, forwarded);
+  ASSERT_EQ(mc.print(10, "OWN"), ring::send_result::queued);
+  std::vector<std::uint8_t> expected = chars(1, "FW");
+  const auto own = chars(1, "OWN");
+  expected.insert(expected.end(), own.begin(), own.end());
+  EXPECT_EQ(drain(mc), expected);
+}
+
+TEST(RingForwarding, NeverInterleavesTwoMessages) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  ASSERT_EQ(mc.print(10, "OWN MESSAGE"), ring::send_result::queued);
+  std::vector<std::uint8_t> sent;
+  std::uint8_t b = 0;
+  ASSERT_TRUE(mc.transmit(b));  // own message has begun
+  sent.push_back(b);
+  // A forwarded message arrives while the own message is going out: it is buffered, not interleaved.
+  for (std::uint8_t x : chars(3, "FORWARD")) {
+    mc.receive(x);
+    if (mc.transmit(b)) sent.push_back(b);
+  }
+  const auto rest = drain(mc);
+  sent.insert(sent.end(), rest.begin(), rest.end());
+  std::vector<std::uint8_t> expected = chars(1, "OWN MESSAGE");
+  const auto fw = chars(2, "FORWARD");
+  expected.insert(expected.end(), fw.begin(), fw.end());
+  EXPECT_EQ(sent, expected);
+}
+
+TEST(RingForwarding, ForwardBufferOverflowLosesTheMessageAndSetsNetstatBit1) {
+  trionet::vr_table<16> vr;
+  ring::motion_coordinator<256, 8, 48> mc(vr);  // forward buffer of 8
+  ASSERT_EQ(mc.print(10, "A LONG OWN MESSAGE OF THIRTY BYTES"), ring::send_result::queued);
+  std::uint8_t b = 0;
+  ASSERT_TRUE(mc.transmit(b));                       // own message has begun: forwarding must wait
+  feed(mc, chars(3, "THIS DOES NOT FIT IN EIGHT"));  // arrives while the own message holds the link
+  EXPECT_EQ(mc.netstat() & ring::netstat_tx_buffer_error, ring::netstat_tx_buffer_error);
+  EXPECT_EQ(mc.forwarding_counters().forwards_lost, 1u);
+  // A message after the lost one is forwarded normally.
+  feed(mc, chars(3, "OK"));
+  std::vector<std::uint8_t> expected = chars(1, "A LONG OWN MESSAGE OF THIRTY BYTES");
+  expected.erase(expected.begin());  // the header already went out
+  const auto ok = chars(2, "OK");
+  expected.insert(expected.end(), ok.begin(), ok.end());
+  EXPECT_EQ(drain(mc), expected);
+}
+
+TEST(RingForwarding, AForwardedMessageCutShortUpstreamDoesNotBlockTheNode) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  mc.receive(ring::make_header(3, 1));
+  mc.receive('X');
+  // The end of message is lost; a message for this node arrives instead.
+  feed(mc, chars(1, "ME"));
+  ASSERT_EQ(mc.print(10, "OWN"), ring::send_result::queued);
+  std::vector<std::uint8_t> expected = {ring::make_header(2, 1), 'X'};
+  const auto own = chars(1, "OWN");
+  expected.insert(expected.end(), own.begin(), own.end());
+  EXPECT_EQ(drain(mc), expected);
+  EXPECT_EQ(read_all(mc, 4), "ME");
+}
+
+// ---- delivery at a Motion Coordinator ----
+
+TEST(RingMotionCoordinator, KeyAndGetWithDefkey) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  EXPECT_FALSE(mc.key(3));
+  EXPECT_EQ(mc.get(4).status, ring::get_result::status::nothing_yet);
+  feed(mc, chars(1, "U5"));
+  EXPECT_TRUE(mc.key(3));
+  EXPECT_TRUE(mc.key(4));
+  EXPECT_FALSE(mc.key(2));
+  EXPECT_EQ(mc.characters_waiting(), 2u);  // KEY# consumes nothing
+  EXPECT_EQ(mc.get(3).value, 10);          // 'U' through DEFKEY: up = 10
+  EXPECT_EQ(mc.get(3).value, 5);           // '5' -> 5
+  EXPECT_FALSE(mc.get(3));
+  feed(mc, chars(1, "U"));
+  EXPECT_EQ(mc.get(4).value, 'U');  // GET#4 is raw
+  EXPECT_EQ(mc.get(7).status, ring::get_result::status::bad_channel);
+}
+
+TEST(RingMotionCoordinator, DefaultDefkeyTranslatesTheKeypadCodes) {
+  const std::pair<char, int> table[] = {{'0', 0},  {'9', 9},  {'U', 10}, {'D', 11}, {'C', 12},  {'Y', 13},
+                                        {'N', 14}, {'.', 15}, {'S', 20}, {'T', 21}, {'A', 'A'}, {'x', 'x'}};
+  for (const auto& [raw, value] : table)
+    EXPECT_EQ(ring::default_defkey[static_cast<std::uint8_t>(raw)], value) << raw;
+}
+
+TEST(RingMotionCoordinator, ConfigurableDefkey) {
+  ring::defkey_table mine = ring::default_defkey;
+  mine.value['A'] = 99;
+  trionet::vr_table<16> vr;
+  mc_node mc(vr, mine);
+  feed(mc, chars(1, "A"));
+  EXPECT_EQ(mc.get(3).value, 99);
+}
+
+TEST(RingMotionCoordinator, DirectVariableTransferWritesVr) {
+  trionet::vr_table<256> vr;
+  mc_node mc(vr);
+  feed(mc, frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99))));
+  EXPECT_EQ(vr[200], 99.0);
+  EXPECT_EQ(mc.counters().variables_written, 1u);
+  EXPECT_FALSE(mc.key(4));  // not a character
+}
+
+TEST(RingMotionCoordinator, WritePolicyRefusesAndOutOfRangeIsCounted) {
+  auto read_only_below_10 = [](void*, std::uint16_t vr, double) noexcept { return vr >= 10; };
+  trionet::vr_table<64> vr(read_only_below_10);
+  mc_node mc(vr);
+  feed(mc, frame_of(ring::message::variable(1, 5, ring::q32_from_integer(1))));
+  feed(mc, frame_of(ring::message::variable(1, 20, ring::q32_from_integer(2))));
+  feed(mc, frame_of(ring::message::variable(1, 64, ring::q32_from_integer(3))));
+  EXPECT_EQ(vr[5], 0.0);
+  EXPECT_EQ(vr[20], 2.0);
+  EXPECT_EQ(mc.counters().variables_refused, 1u);
+  EXPECT_EQ(mc.counters().variables_written, 1u);
+  EXPECT_EQ(mc.counters().variables_out_of_range, 1u);
+}
+
+TEST(RingMotionCoordinator, CrcErrorSetsNetstatBit2AndDoesNotWrite) {
+  trionet::vr_table<256> vr;
+  mc_node mc(vr);
+  auto frame = frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99)));
+  frame[8] ^= 0x01;
+  feed(mc, frame);
+  EXPECT_EQ(vr[200], 0.0);
+  EXPECT_EQ(mc.netstat(), ring::netstat_rx_crc_error);
+  EXPECT_EQ(mc.counters().crc_errors, 1u);
+}
+
+TEST(RingMotionCoordinator, FrameErrorSetsNetstatBit3AndNetstatClearsOnlyWhenAsked) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  feed(mc, {ring::make_header(1, 1), 'A', ring::make_end_of_message(2)});  // EOM mismatch
+  EXPECT_EQ(mc.netstat(), ring::netstat_rx_frame_error);
+  feed(mc, chars(1, "OK"));
+  EXPECT_EQ(mc.netstat(), ring::netstat_rx_frame_error);  // stays set
+  EXPECT_EQ(read_all(mc, 4), "OK");
+  mc.clear_netstat();
+  EXPECT_EQ(mc.netstat(), 0);
+  EXPECT_EQ(mc.counters().frame_errors, 1u);
+}
+
+TEST(RingMotionCoordinator, InterruptedLocalMessageIsAFrameError) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  feed(mc, {ring::make_header(1, 1), 'A', 'B'});
+  feed(mc, chars(4, "PASSING"));  // a header for another node interrupts the message for us
+  EXPECT_EQ(mc.counters().frame_errors, 1u);
+  EXPECT_FALSE(mc.key(4));  // nothing of the broken message was kept
+}
+
+TEST(RingMotionCoordinator, ReceiveBufferIsAllOrNothingPerMessage) {
+  trionet::vr_table<16> vr;
+  ring::motion_coordinator<8> mc(vr);  // 8-character receive buffer
+  feed(mc, chars(1, "ABCDE"));
+  feed(mc, chars(1, "FGHI"));  // does not fit in the 3 free: dropped whole
+  EXPECT_EQ(mc.netstat(), ring::netstat_rx_overflow);
+  EXPECT_EQ(mc.counters().receive_overflows, 1u);
+  EXPECT_EQ(mc.characters_waiting(), 5u);
+  feed(mc, chars(1, "XYZ"));  // fits exactly
+  EXPECT_EQ(read_all(mc, 4), "ABCDEXYZ");
+  feed(mc, chars(1, "12345678"));  // a whole buffer, after GET freed it (and wraps round)
+  EXPECT_EQ(read_all(mc, 4), "12345678");
+  feed(mc, chars(1, "123456789"));  // longer than the buffer can ever hold: a frame error (bad length)
+  EXPECT_EQ(mc.counters().frame_errors, 1u);
+  EXPECT_EQ(mc.characters_waiting(), 0u);
+}
+
+TEST(RingMotionCoordinator, KeypadMessagesAreIgnoredAndCounted) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  feed(mc, frame_of(ring::message::keypad_offset(1, 3)));
+  feed(mc, frame_of(ring::message::keypad_mode(1, 127)));
+  EXPECT_EQ(mc.counters().keypad_messages_ignored, 2u);
+  EXPECT_EQ(mc.netstat(), 0);
+}
+
+TEST(RingMotionCoordinator, SendCallsRejectOutOfRangeBeforeQueuingAByte) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  EXPECT_EQ(mc.print(9, "X"), ring::send_result::bad_address);
+  EXPECT_EQ(mc.print(25, "X"), ring::send_result::bad_address);
+  EXPECT_EQ(mc.print(10, ""), ring::send_result::empty_text);
+  EXPECT_EQ(mc.print(10, "caf\xc3\xa9"), ring::send_result::character_out_of_range);
+  EXPECT_EQ(mc.send_variable(10, 16384, 1.0), ring::send_result::vr_out_of_range);
+  EXPECT_EQ(mc.send_variable(10, 1, 3e9), ring::send_result::value_out_of_range);
+  EXPECT_EQ(mc.send_variable(8, 1, 1.0), ring::send_result::bad_address);
+  EXPECT_EQ(mc.send_keypad_offset(10, 9), ring::send_result::offset_out_of_range);
+  EXPECT_EQ(mc.send_keypad_offset(10, 25), ring::send_result::offset_out_of_range);
+  EXPECT_EQ(mc.send_keypad_mode(10, 1), ring::send_result::mode_out_of_range);
+  EXPECT_FALSE(mc.transmit_pending());
+  EXPECT_EQ(mc.netstat(), 0);
+  EXPECT_EQ(mc.transmit_free(), 48u);
+}
+
+TEST(RingMotionCoordinator, SendMapsBasicAddressesAndTypes) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  ASSERT_EQ(mc.send_keypad_offset(12, 12), ring::send_result::queued);  // SEND(10+2,2,10+2)
+  EXPECT_EQ(drain(mc), frame_of(ring::message::keypad_offset(3, 3)));
+  ASSERT_EQ(mc.send_variable(10, 200, 99), ring::send_result::queued);
+  EXPECT_EQ(drain(mc), frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99))));
+  ASSERT_EQ(mc.send_keypad_mode(24, 127), ring::send_result::queued);
+  EXPECT_EQ(drain(mc), frame_of(ring::message::keypad_mode(15, 127)));
+}
+
+// Regression: the node's own direct variable transfers used the default CRC whatever the node's policy.
+TEST(RingMotionCoordinator, SendsWithItsOwnCrcPolicy) {
+  using xmodem = ring::crc16<0x1021, 0x0000>;
+  trionet::vr_table<256> vr_a, vr_b;
+  ring::motion_coordinator<256, 48, 48, xmodem> a(vr_a), b(vr_b);
+  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_result::queued);
+  const auto sent = drain(a);
+  std::uint8_t expected[16];
+  ASSERT_TRUE(ring::encode_variable<xmodem>(expected, 1, 200, ring::q32_from_integer(99)));
+  EXPECT_EQ(sent, std::vector<std::uint8_t>(expected, expected + 16));
+  feed(b, sent);
+  EXPECT_EQ(vr_b[200], 99.0);
+  EXPECT_EQ(b.netstat(), 0);
+  // The table-free variant sends the same bytes as the table one.
+  ring::motion_coordinator<256, 48, 48, ring::crc16_ccitt_false_bitwise> c(vr_a);
+  ASSERT_EQ(c.send_variable(10, 200, 99), ring::send_result::queued);
+  EXPECT_EQ(drain(c), frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99))));
+}
+
+TEST(RingMotionCoordinator, FullTransmitQueueRefusesWholeAndSetsNetstatBit0) {
+  trionet::vr_table<16> vr;
+  ring::motion_coordinator<256, 48, 10> mc(vr);                  // 10-byte transmit queue
+  ASSERT_EQ(mc.print(10, "123456"), ring::send_result::queued);  // 8 bytes
+  EXPECT_EQ(mc.print(10, "AB"), ring::send_result::queue_full);  // needs 4, 2 free
+  EXPECT_EQ(mc.netstat(), ring::netstat_tx_timeout);
+  EXPECT_EQ(mc.counters().sends_refused, 1u);
+  EXPECT_EQ(drain(mc), chars(1, "123456"));  // nothing partial was queued
+  EXPECT_EQ(mc.print(10, "12345678"), ring::send_result::queued);
+}
+
+// ---- keypad ----
+
+TEST(RingKeypad, LocalModeUntilItsOffsetArrives) {
+  ring::keypad<> keypad;
+  EXPECT_FALSE(keypad.network_mode());
+  EXPECT_EQ(keypad.press(ring::key::digit_5), ring::key_result::local_mode);
+  feed(keypad, chars(1, "TO ME"));    // to it: dropped
+  feed(keypad, chars(2, "THROUGH"));  // through it: dropped, not forwarded
+  EXPECT_FALSE(keypad.transmit_pending());
+  EXPECT_TRUE(drain(keypad).empty());  // it never transmits in local mode
+  EXPECT_EQ(keypad.counters().dropped_in_local_mode, 1u);
+  EXPECT_EQ(keypad.forwarding_counters().messages_dropped, 1u);
+  EXPECT_EQ(keypad.counters().keys_lost, 1u);
+
+  feed(keypad, frame_of(ring::message::keypad_offset(1, 2)));
+  EXPECT_TRUE(keypad.network_mode());
+  EXPECT_EQ(keypad.offset(), 2);
+  feed(keypad, chars(2, "THROUGH"));
+  EXPECT_EQ(drain(keypad), chars(1, "THROUGH"));  // now it forwards
+}
+
+TEST(RingKeypad, KeyPressesGoToTheOffsetAndModeAddsKeyOff) {
+  ring::keypad<> keypad;
+  feed(keypad, frame_of(ring::message::keypad_offset(1, 3)));
+  EXPECT_EQ(keypad.press(ring::key::digit_7), ring::key_result::sent);
+  EXPECT_EQ(keypad.release(ring::key::digit_7), ring::key_result::not_sent);  // mode 0: key ON only
+  EXPECT_EQ(drain(keypad), chars(3, "7"));
+  feed(keypad, frame_of(ring::message::keypad_mode(1, 127)));
+  EXPECT_EQ(keypad.mode(), 127);
+  EXPECT_EQ(keypad.press(ring::key::up), ring::key_result::sent);
+  EXPECT_EQ(keypad.release(ring::key::up), ring::key_result::sent);
+  std::vector<std::uint8_t> expected = chars(3, "U");
+  const auto off = chars(3, std::string(1, static_cast<char>('U' + 64 < 128 ? 'U' + 64 : 'U')));
+  expected.insert(expected.end(), off.begin(), off.end());
+  EXPECT_EQ(drain(keypad), expected);
+  EXPECT_EQ(ring::default_key_off_code('0'), 'p');  // 48 + 64
+  EXPECT_EQ(ring::default_key_off_code('U'), 'U');  // 85 + 64 > 127: the same character
+}
+
+TEST(RingKeypad, ConfigurableCodesAndKeyOff) {
+  static constexpr ring::keypad_codes codes = {
+      {'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'i', 'j', 'k', 'l', 'm', 'n', 'o', 'p', 'q', 'r'}};
+  ring::keypad_config config;
+  config.codes = &codes;
+  config.key_off_code = [](std::uint8_t on) noexcept { return static_cast<std::uint8_t>(on - 32); };
+  ring::keypad<> keypad(config);
+  feed(keypad, frame_of(ring::message::keypad_offset(1, 1)));
+  feed(keypad, frame_of(ring::message::keypad_mode(1, 127)));
+  ASSERT_EQ(keypad.press(ring::key::start), ring::key_result::sent);
+  ASSERT_EQ(keypad.release(ring::key::start), ring::key_result::sent);
+  std::vector<std::uint8_t> expected = chars(1, "q");
+  const auto off = chars(1, "Q");
+  expected.insert(expected.end(), off.begin(), off.end());
+  EXPECT_EQ(drain(keypad), expected);
+}
+
+TEST(RingKeypad, CharacterMessagesDriveTheDisplayAndVariablesAreIgnored) {
+  ring::keypad<> keypad;
+  feed(keypad, frame_of(ring::message::keypad_offset(1, 1)));
+  feed(keypad, chars(1, "\x0c\x0eHELLO"));
+  EXPECT_EQ(std::string(keypad.display().line(0)), "HELLO               ");
+  EXPECT_FALSE(keypad.display().cursor_visible());
+  feed(keypad, frame_of(ring::message::variable(1, 1, 1)));
+  EXPECT_EQ(keypad.counters().variables_ignored, 1u);
+  EXPECT_EQ(keypad.counters().display_messages, 1u);
+}
+
+TEST(RingKeypadDisplay, ControlCharacters) {
+  ring::keypad_display d;
+  d.write(byte_view(reinterpret_cast<const std::uint8_t*>("AB\rCD\rEF"), 8));
+  EXPECT_EQ(std::string(d.line(0)), "EF                  ");  // 13 goes to the start of the other line
+  EXPECT_EQ(std::string(d.line(1)), "CD                  ");
+  const std::uint8_t to_28[] = {27, 'H', 28, 'X', 14, 20, 7};
+  d.write(byte_view(to_28, sizeof to_28));
+  EXPECT_EQ(std::string(d.line(1)), "CD      X           ");
+  EXPECT_EQ(d.cursor(), 29u);
+  EXPECT_FALSE(d.cursor_visible());
+  d.write(15);
+  EXPECT_TRUE(d.cursor_visible());
+  const std::uint8_t to_39[] = {27, 'H', 39, 'Y', 'Z'};  // writes at 39 and wraps to 0
+  d.write(byte_view(to_39, sizeof to_39));
+  EXPECT_EQ(d.line(1)[19], 'Y');
+  EXPECT_EQ(d.line(0)[0], 'Z');
+  const std::uint8_t bad_position[] = {27, 'H', 40, 27,
+                                       'Q'};  // position 40 ignored; ESC abandoned, 'Q' written
+  d.write(byte_view(bad_position, sizeof bad_position));
+  EXPECT_EQ(d.line(0)[1], 'Q');
+  d.write(12);
+  EXPECT_EQ(std::string(d.line(0)), "                    ");
+  EXPECT_EQ(d.cursor(), 0u);
+}
+
+// ---- simulator ----
+
+TEST(RingSimulator, IsDeterministicAndCountsByteTimes) {
+  auto run = [] {
+    trionet::vr_table<16> vr0, vr1, vr2;
+    mc_node a(vr0), b(vr1), c(vr2);
+    ring::simulator<> sim;
+    EXPECT_TRUE(sim.add(a));
+    EXPECT_TRUE(sim.add(b));
+    EXPECT_TRUE(sim.add(c));
+    (void)a.print(11, "HELLO");
+    std::string trace;
+    sim.run(20, [&](const ring::link_byte& x) {
+      trace += std::to_string(x.time) + ":" + std::to_string(x.link) + "=" + std::to_string(x.sent) + " ";
+    });
+    EXPECT_EQ(read_all(c, 4), "HELLO");
+    return trace;
+  };
+  const std::string first = run();
+  EXPECT_EQ(first, run());
+  // 7 bytes on link 0 at t = 0..6, forwarded on link 1 one byte-time later.
+  EXPECT_NE(first.find("0:0=145 "), std::string::npos);
+  EXPECT_NE(first.find("1:1=137 "), std::string::npos);
+  EXPECT_NE(first.find("7:1=136 "), std::string::npos);
+}
+
+TEST(RingSimulator, FlippedBitIsACrcErrorAtTheDestination) {
+  trionet::vr_table<256> vr0, vr1;
+  mc_node a(vr0), b(vr1);
+  ring::simulator<> sim;
+  (void)sim.add(a);
+  (void)sim.add(b);
+  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_result::queued);
+  sim.run(5);
+  sim.flip_next(0, 0x01);
+  sim.run(20);
+  EXPECT_EQ(vr1[200], 0.0);
+  EXPECT_EQ(b.netstat(), ring::netstat_rx_crc_error);
+}
+
+TEST(RingSimulator, DroppedByteAndCutLink) {
+  trionet::vr_table<16> vr0, vr1;
+  mc_node a(vr0), b(vr1);
+  ring::simulator<> sim;
+  (void)sim.add(a);
+  (void)sim.add(b);
+  ASSERT_EQ(a.print(10, "ABC"), ring::send_result::queued);
+  sim.run(2);
+  sim.drop_next(0);
+  sim.run(10);
+  EXPECT_EQ(read_all(b, 4), "AC");  // a lost data byte is not detectable for a character message
+  sim.cut(0);
+  ASSERT_EQ(a.print(10, "XYZ"), ring::send_result::queued);
+  int lost = 0;
+  sim.run(10, [&](const ring::link_byte& x) { lost += x.delivered ? 0 : 1; });
+  EXPECT_EQ(lost, 5);
+  EXPECT_FALSE(b.key(4));
+  sim.cut(0, false);
+  ASSERT_EQ(a.print(10, "OK"), ring::send_result::queued);
+  sim.run(10);
+  EXPECT_EQ(read_all(b, 4), "OK");
+}
+
+TEST(RingSimulator, ByteTimesToSeconds) {
+  EXPECT_DOUBLE_EQ(ring::byte_times_to_seconds(1000, 10000.0), 1.0);
+  EXPECT_DOUBLE_EQ(ring::byte_times_to_seconds(1, 125000.0, 10), 80e-6);
+  ring::simulator<2> full;
+  trionet::vr_table<1> vr;
+  mc_node a(vr), b(vr), c(vr);
+  EXPECT_FALSE(full.ready());
+  EXPECT_TRUE(full.add(a));
+  EXPECT_TRUE(full.add(b));
+  EXPECT_FALSE(full.add(c));
+  EXPECT_TRUE(full.ready());
+}
+
+// ---- RAM ----
+
+TEST(RingNodeRam, DefaultCapacities) {
+  const std::size_t mc = sizeof(mc_node);
+  const std::size_t keypad = sizeof(ring::keypad<>);
+  std::printf(
+      "RAM with default capacities: motion_coordinator<> %zu bytes, keypad<> %zu bytes (host, %zu-bit)\n", mc,
+      keypad, sizeof(void*) * 8);
+  RecordProperty("motion_coordinator_bytes", static_cast<int>(mc));
+  RecordProperty("keypad_bytes", static_cast<int>(keypad));
+  // The buffers dominate: receive 256 + forward 48 + transmit 48 for an MC.
+  EXPECT_GE(mc, 256u + 48u + 48u);
+  EXPECT_LE(mc, 256u + 48u + 48u + 160u);
+  EXPECT_LE(keypad, 256u + 16u + 16u + 45u + 160u);
+}
