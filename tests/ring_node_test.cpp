@@ -499,6 +499,25 @@ TEST(RingNodeRam, DefaultCapacities) {
   RecordProperty("keypad_bytes", static_cast<int>(keypad));
   // The buffers dominate: receive 256 + forward 48 + transmit 48 for an MC.
   EXPECT_GE(mc, 256u + 48u + 48u);
-  EXPECT_LE(mc, 256u + 48u + 48u + 160u);
+  EXPECT_LE(mc, 256u + 48u + 48u + 192u);
   EXPECT_LE(keypad, 256u + 16u + 16u + 45u + 160u);
+}
+
+TEST(RingForwarding, EveryReceivedByteIsAccountedFor) {
+  trionet::vr_table<16> vr;
+  ring::motion_coordinator<256, 8, 48> mc(vr);
+  std::vector<std::uint8_t> stream = chars(1, "LOCAL");
+  for (auto part : {chars(3, "FORWARDED"), chars(2, "A MESSAGE TOO LONG FOR EIGHT"), std::vector<std::uint8_t>{1, 2, 0x88}}) {
+    stream.insert(stream.end(), part.begin(), part.end());
+  }
+  ASSERT_EQ(mc.print(10, "HOLD THE LINK"), ring::send_result::queued);
+  std::uint8_t b = 0;
+  ASSERT_TRUE(mc.transmit(b));
+  feed(mc, stream);
+  const auto& bytes = mc.forwarding_counters().bytes;
+  EXPECT_EQ(bytes[0] + bytes[1] + bytes[2] + bytes[3], stream.size());
+  EXPECT_EQ(bytes[static_cast<int>(ring::route::local)], 7u + 3u);
+  EXPECT_EQ(bytes[static_cast<int>(ring::route::lost)], 2u);  // both forwarded messages overflow: one lost byte each
+  EXPECT_EQ(mc.forwarding_counters().forwards_lost, 2u);
+  EXPECT_GT(bytes[static_cast<int>(ring::route::dropped)], 0u);
 }

@@ -37,6 +37,8 @@ enum class route : std::uint8_t {
 
 /// Counters of a link; they only ever grow (and wrap at 2^32).
 struct link_counters {
+  /// Received bytes by where they went, indexed by `route`: their sum is every byte received.
+  std::uint32_t bytes[4] = {};
   std::uint32_t messages_forwarded = 0;  ///< headers of messages passed on (A decremented)
   std::uint32_t forwards_lost = 0;       ///< forwarded messages lost to a full forward buffer
   std::uint32_t messages_dropped = 0;    ///< messages through this node dropped while forwarding was off
@@ -49,39 +51,9 @@ class link {
  public:
   /// Takes one received byte and says where it went.
   [[nodiscard]] route receive(std::uint8_t byte) noexcept {
-    if (is_data(byte)) {
-      switch (receiving_) {
-        case receiving::forward:
-          return forward(byte);
-        case receiving::discard:
-          return route::dropped;
-        case receiving::local:
-          return route::local;
-      }
-      return route::local;
-    }
-    const receiving was = receiving_;
-    receiving_ = receiving::local;
-    forward_open_ = false;     // any header or end of message ends the message being forwarded
-    if (type_of(byte) == 0) {  // end of message
-      if (was == receiving::forward) {
-        const std::uint8_t hops = hops_of(byte);
-        return forward(with_hops(byte, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1)));
-      }
-      return was == receiving::discard ? route::dropped : route::local;
-    }
-    const std::uint8_t hops = hops_of(byte);
-    if (hops <= 1) return route::local;
-    if (!forwarding_) {
-      receiving_ = receiving::discard;
-      ++counters_.messages_dropped;
-      return route::dropped;
-    }
-    receiving_ = receiving::forward;
-    forward_open_ = true;
-    incoming_ = 0;
-    ++counters_.messages_forwarded;
-    return forward(with_hops(byte, static_cast<std::uint8_t>(hops - 1)));
+    const route r = route_byte(byte);
+    ++counters_.bytes[static_cast<std::size_t>(r)];
+    return r;
   }
 
   /// The next byte for the link, if any.
@@ -157,6 +129,43 @@ class link {
 
  private:
   enum class receiving : std::uint8_t { local, forward, discard };
+
+  route route_byte(std::uint8_t byte) noexcept {
+    if (is_data(byte)) {
+      switch (receiving_) {
+        case receiving::forward:
+          return forward(byte);
+        case receiving::discard:
+          return route::dropped;
+        case receiving::local:
+          return route::local;
+      }
+      return route::local;
+    }
+    const receiving was = receiving_;
+    receiving_ = receiving::local;
+    forward_open_ = false;     // any header or end of message ends the message being forwarded
+    if (type_of(byte) == 0) {  // end of message
+      if (was == receiving::forward) {
+        const std::uint8_t hops = hops_of(byte);
+        return forward(with_hops(byte, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1)));
+      }
+      return was == receiving::discard ? route::dropped : route::local;
+    }
+    const std::uint8_t hops = hops_of(byte);
+    if (hops <= 1) return route::local;
+    if (!forwarding_) {
+      receiving_ = receiving::discard;
+      ++counters_.messages_dropped;
+      return route::dropped;
+    }
+    receiving_ = receiving::forward;
+    forward_open_ = true;
+    incoming_ = 0;
+    ++counters_.messages_forwarded;
+    return forward(with_hops(byte, static_cast<std::uint8_t>(hops - 1)));
+  }
+
   enum class sending : std::uint8_t { idle, forward, own };
 
   route forward(std::uint8_t byte) noexcept {
