@@ -11,10 +11,8 @@
 
 #include <trionet/can.hpp>
 
-// The host adapters are compiled into the CLI; the test program links only the header library, so it compiles
-// their sources here (once, in this translation unit).
-#include "../src/can_candump.cpp"
-#include "../src/can_socketcan.cpp"
+#include "can_candump.hpp"
+#include "can_socketcan.hpp"
 
 namespace {
 

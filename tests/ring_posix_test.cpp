@@ -1,0 +1,80 @@
+// The POSIX host adapter: ring nodes talking through real file descriptors (a socket pair, a pty).
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <string>
+
+#include "posix_link.hpp"
+#include "trionet/ring.hpp"
+
+namespace ring = trionet::ring;
+
+namespace {
+
+std::string read_all(ring::motion_coordinator<>& mc) {
+  std::string out;
+  while (auto r = mc.get(4)) out += static_cast<char>(r.value);
+  return out;
+}
+
+}  // namespace
+
+TEST(RingPosixLink, TwoNodeRingOverASocketPair) {
+  int sv[2];
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_STREAM, 0, sv), 0);
+  for (int fd : sv) ASSERT_EQ(::fcntl(fd, F_SETFL, O_NONBLOCK), 0);
+  trionet::vr_table<256> vr_a, vr_b;
+  ring::motion_coordinator<> a(vr_a), b(vr_b);
+  trionet::host::fd_link link_a(sv[0], a), link_b(sv[1], b);  // a -> b over one direction, b -> a the other
+
+  ASSERT_EQ(a.print(10, "HELLO"), ring::send_result::queued);
+  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_result::queued);
+  ASSERT_EQ(a.print(11, "ROUND"), ring::send_result::queued);  // 2 hops: b forwards it back to a
+  for (int i = 0; i < 200 && !(read_all(b) == "HELLO" || b.characters_waiting() != 0); ++i) {
+    (void)link_a.pump(5);
+    (void)link_b.pump(5);
+  }
+  for (int i = 0; i < 50; ++i) {
+    (void)link_a.pump(1);
+    (void)link_b.pump(1);
+  }
+  EXPECT_EQ(vr_b[200], 99.0);
+  EXPECT_EQ(read_all(a), "ROUND");
+  EXPECT_EQ(b.forwarding_counters().messages_forwarded, 1u);
+  EXPECT_EQ(link_a.unsent(), 0u);
+  ::close(sv[0]);
+  const auto closed = link_b.pump(100);
+  EXPECT_TRUE(closed.closed);
+  ::close(sv[1]);
+}
+
+TEST(RingPosixLink, SerialPortOnAPty) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const std::string slave = ::ptsname(master);
+  std::string error;
+  const int fd = trionet::host::open_serial(slave, 115200, error);
+  ASSERT_GE(fd, 0) << error;
+  trionet::vr_table<16> vr;
+  ring::motion_coordinator<> mc(vr);
+  trionet::host::fd_link link(fd, mc);
+  const std::uint8_t frame[] = {0x89, 'O', 'K', 0x88};
+  ASSERT_EQ(::write(master, frame, sizeof frame), static_cast<ssize_t>(sizeof frame));
+  for (int i = 0; i < 50 && mc.characters_waiting() < 2; ++i) (void)link.pump(10);
+  EXPECT_EQ(read_all(mc), "OK");
+  ::close(fd);
+  ::close(master);
+
+  EXPECT_EQ(trionet::host::open_serial("/nonexistent/tty", 9600, error), -1);
+  EXPECT_NE(error.find("cannot open"), std::string::npos);
+  EXPECT_EQ(trionet::host::open_serial(slave, 12345, error), -1);
+  EXPECT_NE(error.find("unsupported baud rate"), std::string::npos);
+  EXPECT_EQ(trionet::host::open_serial("/dev/null", 9600, error), -1);
+  EXPECT_NE(error.find("not a serial port"), std::string::npos);
+}
