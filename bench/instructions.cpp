@@ -1,0 +1,344 @@
+// The instruction counter's driver: runs one fixed workload `repeats` times, for callgrind (not a benchmark).
+//
+//   trionet_instructions <workload> <repeats>     prints "<units> <unit name>" fed through the code measured
+//   trionet_instructions --list                   prints the workload names
+//
+// The code measured for each workload is one `trionet_measured_*` function, never inlined, so that
+//   valgrind --tool=callgrind --collect-atstart=no --toggle-collect='trionet_measured_*' ...
+// counts exactly the instructions executed inside it (the library's code inlined there, its callees, and the
+// loop that feeds it bytes) and nothing of start-up, workload generation or checking. scripts/bench runs two
+// repeat counts and divides the difference of the two totals by the difference of the units fed, so that any
+// cost paid once per run cancels too. What is outside the measured functions (e.g. GET# reading a delivered
+// message) is not counted.
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "boost_crc.hpp"
+#include "simulated_ring.hpp"
+#include "trionet/can/frame.hpp"
+#include "trionet/can/node.hpp"
+#include "trionet/can/vr_codec.hpp"
+#include "trionet/ring/crc.hpp"
+#include "trionet/ring/decoder.hpp"
+#include "trionet/ring/motion_coordinator.hpp"
+#include "trionet/vr.hpp"
+#include "workloads.hpp"
+
+namespace tb = trionet::bench;
+namespace ring = trionet::ring;
+namespace can = trionet::can;
+using trionet::byte_view;
+
+namespace {
+
+struct tally {
+  std::uint64_t messages = 0;
+  std::uint64_t characters = 0;
+  std::uint64_t fields = 0;
+  std::uint64_t other = 0;
+
+  void operator()(const ring::decode_result& r) noexcept {
+    if (r.status == ring::decode_status::message) {
+      ++messages;
+      characters += r.msg.text.size();
+      fields += r.msg.vr ^ static_cast<std::uint64_t>(r.msg.value);
+    } else {
+      ++other;
+    }
+  }
+};
+
+[[noreturn]] void fail(const char* what) {
+  std::fprintf(stderr, "trionet_instructions: %s\n", what);
+  std::exit(1);
+}
+
+}  // namespace
+
+// ---- the measured functions (C linkage: plain names for callgrind's --toggle-collect) ----
+
+// An empty asm statement that may touch any memory: no instructions, but the compiler can no longer treat a
+// measured function as pure and drop or merge repeated calls with the same arguments.
+#define TRIONET_OPAQUE() asm volatile("" ::: "memory")
+
+extern "C" {
+
+[[gnu::noinline]] void trionet_measured_decoder_bytewise(ring::decoder<>& d, const std::uint8_t* p, std::size_t n,
+                                                         tally& t) noexcept {
+  TRIONET_OPAQUE();
+  for (const std::uint8_t* const end = p + n; p != end; ++p) {
+    const ring::decode_result r = d.push(*p);
+    if (r.status != ring::decode_status::incomplete) t(r);
+  }
+}
+
+[[gnu::noinline]] void trionet_measured_decoder_bulk(ring::decoder<>& d, const std::uint8_t* p, std::size_t n,
+                                                     tally& t) noexcept {
+  TRIONET_OPAQUE();
+  d.push(byte_view(p, n), t);
+}
+
+[[gnu::noinline]] void trionet_measured_mc_forward(ring::motion_coordinator<>& mc, const std::uint8_t* p,
+                                                   std::size_t n, std::uint64_t& sent) noexcept {
+  TRIONET_OPAQUE();
+  for (const std::uint8_t* const end = p + n; p != end; ++p) {
+    mc.receive(*p);
+    std::uint8_t out = 0;
+    if (mc.transmit(out)) sent += out;
+  }
+}
+
+[[gnu::noinline]] void trionet_measured_mc_receive(ring::motion_coordinator<>& mc, const std::uint8_t* p,
+                                                   std::size_t n) noexcept {
+  TRIONET_OPAQUE();
+  for (const std::uint8_t* const end = p + n; p != end; ++p) mc.receive(*p);
+}
+
+[[gnu::noinline]] std::uint16_t trionet_measured_crc_table(const std::uint8_t* p, std::size_t length,
+                                                           std::size_t count) noexcept {
+  TRIONET_OPAQUE();
+  std::uint16_t sum = 0;
+  for (std::size_t m = 0; m < count; ++m) sum ^= ring::crc16_ccitt_false::compute(p + m * length, length);
+  return sum;
+}
+
+[[gnu::noinline]] std::uint16_t trionet_measured_crc_bitwise(const std::uint8_t* p, std::size_t length,
+                                                             std::size_t count) noexcept {
+  TRIONET_OPAQUE();
+  std::uint16_t sum = 0;
+  for (std::size_t m = 0; m < count; ++m) sum ^= ring::crc16_ccitt_false_bitwise::compute(p + m * length, length);
+  return sum;
+}
+
+[[gnu::noinline]] std::uint16_t trionet_measured_crc_boost(const std::uint8_t* p, std::size_t length,
+                                                           std::size_t count) noexcept {
+  TRIONET_OPAQUE();
+  std::uint16_t sum = 0;
+  for (std::size_t m = 0; m < count; ++m) sum ^= tb::boost_crc16_ccitt_false(p + m * length, length);
+  return sum;
+}
+
+[[gnu::noinline]] void trionet_measured_can_encode_parts(const can::vr_message* messages, std::size_t n,
+                                                         can::frame& out) noexcept {
+  TRIONET_OPAQUE();
+  for (std::size_t i = 0; i < n; ++i) (void)can::encode_vr_message(messages[i], out.data);
+}
+
+[[gnu::noinline]] void trionet_measured_can_encode_double(const double* values, std::size_t n,
+                                                          can::frame& out) noexcept {
+  TRIONET_OPAQUE();
+  for (std::size_t i = 0; i < n; ++i) (void)can::encode_vr(static_cast<std::uint16_t>(i & 0xFF), values[i], out.data);
+}
+
+[[gnu::noinline]] std::uint32_t trionet_measured_can_decode(const can::frame* frames, std::size_t n) noexcept {
+  TRIONET_OPAQUE();
+  std::uint32_t sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const can::decode_result r = can::decode_vr_frame(frames[i]);
+    sum += r.message.value.integer_part + static_cast<std::uint32_t>(r.error);
+  }
+  return sum;
+}
+
+[[gnu::noinline]] void trionet_measured_can_node_receive(can::vr_exchange_node& node, const can::frame* frames,
+                                                         std::size_t n) noexcept {
+  TRIONET_OPAQUE();
+  for (std::size_t i = 0; i < n; ++i) (void)node.receive(frames[i]);
+}
+
+[[gnu::noinline]] void trionet_measured_simulator(tb::simulated_ring& r, std::uint64_t byte_times) noexcept {
+  TRIONET_OPAQUE();
+  r.run(byte_times);
+}
+
+}  // extern "C"
+
+namespace {
+
+// Keeps a result alive without a benchmark library: a volatile store.
+volatile std::uint64_t sink;
+
+struct workload {
+  const char* name;
+  const char* unit;
+  std::uint64_t (*run)(std::size_t repeats);
+};
+
+std::uint64_t decoder_bytewise(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
+  ring::decoder<> d;
+  tally t;
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_decoder_bytewise(d, stream.data(), stream.size(), t);
+  if (t.other != 0 || t.messages != repeats * tb::messages_per_stream) fail("decoder results are wrong");
+  sink = t.characters + t.fields;
+  return repeats * stream.size();
+}
+
+std::uint64_t decoder_bulk(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
+  ring::decoder<> d;
+  tally t;
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_decoder_bulk(d, stream.data(), stream.size(), t);
+  if (t.other != 0 || t.messages != repeats * tb::messages_per_stream) fail("decoder results are wrong");
+  sink = t.characters + t.fields;
+  return repeats * stream.size();
+}
+
+std::uint64_t mc_forward(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
+  trionet::vr_table<256> vr;
+  ring::motion_coordinator<> mc(vr);
+  std::uint64_t sent = 0;
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_mc_forward(mc, stream.data(), stream.size(), sent);
+  if (mc.netstat() != 0 || mc.forward_backlog() != 0 ||
+      mc.forwarding_counters().messages_forwarded != repeats * tb::messages_per_stream) {
+    fail("forwarding went wrong");
+  }
+  sink = sent;
+  return repeats * stream.size();
+}
+
+// Character transfers to the node, one message per call; the program's GET#4 reading between messages is not
+// measured.
+std::uint64_t mc_deliver_characters(std::size_t repeats) {
+  const std::vector<std::uint8_t> stream = tb::character_stream(1);
+  const std::size_t frame = tb::characters_per_message + ring::framing_length;
+  trionet::vr_table<256> vr;
+  ring::motion_coordinator<> mc(vr);
+  std::uint64_t read = 0;
+  for (std::size_t r = 0; r < repeats; ++r) {
+    for (std::size_t start = 0; start < stream.size(); start += frame) {
+      trionet_measured_mc_receive(mc, &stream[start], frame);
+      while (const ring::get_result g = mc.get(4)) read += g.value;
+    }
+  }
+  if (mc.netstat() != 0 || mc.counters().character_messages != repeats * tb::messages_per_stream) {
+    fail("delivery went wrong");
+  }
+  sink = read;
+  return repeats * stream.size();
+}
+
+std::uint64_t mc_deliver_variables(std::size_t repeats) {
+  const std::vector<std::uint8_t> stream = tb::variable_stream(1);
+  trionet::vr_table<256> vr;
+  ring::motion_coordinator<> mc(vr);
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_mc_receive(mc, stream.data(), stream.size());
+  if (mc.netstat() != 0 || mc.counters().variables_written != repeats * tb::messages_per_stream) {
+    fail("delivery went wrong");
+  }
+  return repeats * stream.size();
+}
+
+template <std::uint16_t (*Measured)(const std::uint8_t*, std::size_t, std::size_t)>
+std::uint64_t crc(std::size_t length, std::size_t count, std::size_t repeats) {
+  const std::vector<std::uint8_t> bytes = tb::random_bytes(length * count);
+  std::uint16_t sum = 0;
+  for (std::size_t r = 0; r < repeats; ++r) sum = static_cast<std::uint16_t>(sum ^ Measured(bytes.data(), length, count));
+  sink = sum;
+  return repeats * bytes.size();
+}
+
+constexpr std::size_t frames_per_repeat = 256;
+
+std::uint64_t can_encode_parts(std::size_t repeats) {
+  const std::vector<can::frame> frames = tb::vr_frames(frames_per_repeat);
+  std::vector<can::vr_message> messages;
+  for (const can::frame& f : frames) messages.push_back(can::decode_vr_frame(f).message);
+  can::frame out;
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_can_encode_parts(messages.data(), messages.size(), out);
+  sink = out.data[7];
+  return repeats * frames.size();
+}
+
+std::uint64_t can_encode_double(std::size_t repeats) {
+  const std::vector<can::frame> frames = tb::vr_frames(frames_per_repeat);
+  std::vector<double> values;
+  for (const can::frame& f : frames) values.push_back(can::to_double(can::decode_vr_frame(f).message.value));
+  can::frame out;
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_can_encode_double(values.data(), values.size(), out);
+  sink = out.data[7];
+  return repeats * frames.size();
+}
+
+std::uint64_t can_decode(std::size_t repeats) {
+  const std::vector<can::frame> frames = tb::vr_frames(frames_per_repeat);
+  std::uint32_t sum = 0;
+  for (std::size_t r = 0; r < repeats; ++r) sum += trionet_measured_can_decode(frames.data(), frames.size());
+  sink = sum;
+  return repeats * frames.size();
+}
+
+std::uint64_t can_node_receive(std::size_t repeats) {
+  struct null_port final : can::port {
+    can::transmit_status send(const can::frame&) noexcept override { return can::transmit_status::queued; }
+  } bus;
+  trionet::vr_table<256> vr;
+  can::vr_exchange_node node(can::make_node_address(5, 1).address, bus, vr);
+  const std::vector<can::frame> frames = tb::vr_frames(frames_per_repeat);
+  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_can_node_receive(node, frames.data(), frames.size());
+  if (node.counters().written != repeats * frames.size()) fail("the CAN node did not write every frame");
+  return repeats * frames.size();
+}
+
+std::uint64_t simulator(std::size_t repeats) {
+  constexpr std::uint64_t byte_times = 1024;
+  static tb::simulated_ring r;  // static: four nodes with their VR tables are too big for some stacks
+  for (std::size_t k = 0; k < repeats; ++k) trionet_measured_simulator(r, byte_times);
+  if (!r.healthy()) fail("the simulated ring went wrong");
+  return repeats * byte_times * tb::simulated_ring::nodes;
+}
+
+constexpr std::size_t crc_short = 12;
+constexpr std::size_t crc_short_count = 256;
+constexpr std::size_t crc_long = 4096;
+
+const workload workloads[] = {
+    {"decoder_characters_bytewise", "byte",
+     [](std::size_t n) { return decoder_bytewise(tb::character_stream(1), n); }},
+    {"decoder_characters_bulk", "byte", [](std::size_t n) { return decoder_bulk(tb::character_stream(1), n); }},
+    {"decoder_variables_bytewise", "byte",
+     [](std::size_t n) { return decoder_bytewise(tb::variable_stream(1), n); }},
+    {"decoder_variables_bulk", "byte", [](std::size_t n) { return decoder_bulk(tb::variable_stream(1), n); }},
+    {"mc_forward_characters", "byte", [](std::size_t n) { return mc_forward(tb::character_stream(2), n); }},
+    {"mc_forward_variables", "byte", [](std::size_t n) { return mc_forward(tb::variable_stream(2), n); }},
+    {"mc_deliver_characters", "byte", mc_deliver_characters},
+    {"mc_deliver_variables", "byte", mc_deliver_variables},
+    {"crc_12_bytes_trionet_table", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_table>(crc_short, crc_short_count, n); }},
+    {"crc_12_bytes_trionet_bitwise", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_bitwise>(crc_short, crc_short_count, n); }},
+    {"crc_12_bytes_boost", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_boost>(crc_short, crc_short_count, n); }},
+    {"crc_4096_bytes_trionet_table", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_table>(crc_long, 1, n); }},
+    {"crc_4096_bytes_trionet_bitwise", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_bitwise>(crc_long, 1, n); }},
+    {"crc_4096_bytes_boost", "byte", [](std::size_t n) { return crc<trionet_measured_crc_boost>(crc_long, 1, n); }},
+    {"can_encode_parts", "frame", can_encode_parts},
+    {"can_encode_double", "frame", can_encode_double},
+    {"can_decode", "frame", can_decode},
+    {"can_node_receive", "frame", can_node_receive},
+    {"simulator_4_nodes", "node-byte step", simulator},
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && std::strcmp(argv[1], "--list") == 0) {
+    for (const workload& w : workloads) std::printf("%s %s\n", w.name, w.unit);
+    return 0;
+  }
+  if (argc != 3) fail("usage: trionet_instructions <workload> <repeats> | --list");
+  const long repeats = std::strtol(argv[2], nullptr, 10);
+  if (repeats < 1) fail("repeats must be at least 1");
+  for (const workload& w : workloads) {
+    if (std::strcmp(argv[1], w.name) == 0) {
+      const std::uint64_t units = w.run(static_cast<std::size_t>(repeats));
+      std::printf("%llu %s\n", static_cast<unsigned long long>(units), w.unit);
+      return 0;
+    }
+  }
+  fail("no such workload (see --list)");
+}
