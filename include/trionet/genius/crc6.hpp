@@ -22,7 +22,7 @@ namespace detail {
 constexpr std::uint8_t reflect6(std::uint8_t value) noexcept {
   std::uint8_t out = 0;
   for (unsigned i = 0; i < 6; ++i) {
-    if ((value >> i) & 1u) out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
+    if (((static_cast<unsigned>(value) >> i) & 1u) != 0) out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
   }
   return out;
 }
