@@ -49,7 +49,8 @@ BENCHMARK(BM_can_encode_parts);
 
 void BM_can_encode_double(benchmark::State& state) {
   std::vector<double> values;
-  for (const vr_message& m : messages_of(tb::vr_frames(frames_per_iteration))) values.push_back(to_double(m.value));
+  for (const vr_message& m : messages_of(tb::vr_frames(frames_per_iteration)))
+    values.push_back(to_double(m.value));
   frame out;
   for (auto _ : state) {
     for (std::size_t i = 0; i < values.size(); ++i) {

@@ -1,4 +1,5 @@
-// CRC-16/CCITT-FALSE: trionet's table and table-free policies against Boost.CRC's crc_optimal, in the same run.
+// CRC-16/CCITT-FALSE: trionet's table and table-free policies against Boost.CRC's crc_optimal, in the same
+// run.
 //
 // "12 bytes": 256 independent 12-byte messages per iteration (the CRC of a direct variable transfer covers
 // V0..X9, 12 bytes); "4096 bytes": one 4 KiB buffer per iteration. Every variant gets the same bytes, and the

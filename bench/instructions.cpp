@@ -67,8 +67,8 @@ struct tally {
 
 extern "C" {
 
-[[gnu::noinline]] void trionet_measured_decoder_bytewise(ring::decoder<>& d, const std::uint8_t* p, std::size_t n,
-                                                         tally& t) noexcept {
+[[gnu::noinline]] void trionet_measured_decoder_bytewise(ring::decoder<>& d, const std::uint8_t* p,
+                                                         std::size_t n, tally& t) noexcept {
   TRIONET_OPAQUE();
   for (const std::uint8_t* const end = p + n; p != end; ++p) {
     const ring::decode_result r = d.push(*p);
@@ -110,7 +110,8 @@ extern "C" {
                                                              std::size_t count) noexcept {
   TRIONET_OPAQUE();
   std::uint16_t sum = 0;
-  for (std::size_t m = 0; m < count; ++m) sum ^= ring::crc16_ccitt_false_bitwise::compute(p + m * length, length);
+  for (std::size_t m = 0; m < count; ++m)
+    sum ^= ring::crc16_ccitt_false_bitwise::compute(p + m * length, length);
   return sum;
 }
 
@@ -131,10 +132,12 @@ extern "C" {
 [[gnu::noinline]] void trionet_measured_can_encode_double(const double* values, std::size_t n,
                                                           can::frame& out) noexcept {
   TRIONET_OPAQUE();
-  for (std::size_t i = 0; i < n; ++i) (void)can::encode_vr(static_cast<std::uint16_t>(i & 0xFF), values[i], out.data);
+  for (std::size_t i = 0; i < n; ++i)
+    (void)can::encode_vr(static_cast<std::uint16_t>(i & 0xFF), values[i], out.data);
 }
 
-[[gnu::noinline]] std::uint32_t trionet_measured_can_decode(const can::frame* frames, std::size_t n) noexcept {
+[[gnu::noinline]] std::uint32_t trionet_measured_can_decode(const can::frame* frames,
+                                                            std::size_t n) noexcept {
   TRIONET_OPAQUE();
   std::uint32_t sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -144,8 +147,8 @@ extern "C" {
   return sum;
 }
 
-[[gnu::noinline]] void trionet_measured_can_node_receive(can::vr_exchange_node& node, const can::frame* frames,
-                                                         std::size_t n) noexcept {
+[[gnu::noinline]] void trionet_measured_can_node_receive(can::vr_exchange_node& node,
+                                                         const can::frame* frames, std::size_t n) noexcept {
   TRIONET_OPAQUE();
   for (std::size_t i = 0; i < n; ++i) (void)node.receive(frames[i]);
 }
@@ -171,7 +174,8 @@ struct workload {
 std::uint64_t decoder_bytewise(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
   ring::decoder<> d;
   tally t;
-  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_decoder_bytewise(d, stream.data(), stream.size(), t);
+  for (std::size_t r = 0; r < repeats; ++r)
+    trionet_measured_decoder_bytewise(d, stream.data(), stream.size(), t);
   if (t.other != 0 || t.messages != repeats * tb::messages_per_stream) fail("decoder results are wrong");
   sink = t.characters + t.fields;
   return repeats * stream.size();
@@ -190,7 +194,8 @@ std::uint64_t mc_forward(const std::vector<std::uint8_t>& stream, std::size_t re
   trionet::vr_table<256> vr;
   ring::motion_coordinator<> mc(vr);
   std::uint64_t sent = 0;
-  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_mc_forward(mc, stream.data(), stream.size(), sent);
+  for (std::size_t r = 0; r < repeats; ++r)
+    trionet_measured_mc_forward(mc, stream.data(), stream.size(), sent);
   if (mc.netstat() != 0 || mc.forward_backlog() != 0 ||
       mc.forwarding_counters().messages_forwarded != repeats * tb::messages_per_stream) {
     fail("forwarding went wrong");
@@ -235,7 +240,8 @@ template <std::uint16_t (*Measured)(const std::uint8_t*, std::size_t, std::size_
 std::uint64_t crc(std::size_t length, std::size_t count, std::size_t repeats) {
   const std::vector<std::uint8_t> bytes = tb::random_bytes(length * count);
   std::uint16_t sum = 0;
-  for (std::size_t r = 0; r < repeats; ++r) sum = static_cast<std::uint16_t>(sum ^ Measured(bytes.data(), length, count));
+  for (std::size_t r = 0; r < repeats; ++r)
+    sum = static_cast<std::uint16_t>(sum ^ Measured(bytes.data(), length, count));
   sink = sum;
   return repeats * bytes.size();
 }
@@ -247,7 +253,8 @@ std::uint64_t can_encode_parts(std::size_t repeats) {
   std::vector<can::vr_message> messages;
   for (const can::frame& f : frames) messages.push_back(can::decode_vr_frame(f).message);
   can::frame out;
-  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_can_encode_parts(messages.data(), messages.size(), out);
+  for (std::size_t r = 0; r < repeats; ++r)
+    trionet_measured_can_encode_parts(messages.data(), messages.size(), out);
   sink = out.data[7];
   return repeats * frames.size();
 }
@@ -257,7 +264,8 @@ std::uint64_t can_encode_double(std::size_t repeats) {
   std::vector<double> values;
   for (const can::frame& f : frames) values.push_back(can::to_double(can::decode_vr_frame(f).message.value));
   can::frame out;
-  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_can_encode_double(values.data(), values.size(), out);
+  for (std::size_t r = 0; r < repeats; ++r)
+    trionet_measured_can_encode_double(values.data(), values.size(), out);
   sink = out.data[7];
   return repeats * frames.size();
 }
@@ -277,7 +285,8 @@ std::uint64_t can_node_receive(std::size_t repeats) {
   trionet::vr_table<256> vr;
   can::vr_exchange_node node(can::make_node_address(5, 1).address, bus, vr);
   const std::vector<can::frame> frames = tb::vr_frames(frames_per_repeat);
-  for (std::size_t r = 0; r < repeats; ++r) trionet_measured_can_node_receive(node, frames.data(), frames.size());
+  for (std::size_t r = 0; r < repeats; ++r)
+    trionet_measured_can_node_receive(node, frames.data(), frames.size());
   if (node.counters().written != repeats * frames.size()) fail("the CAN node did not write every frame");
   return repeats * frames.size();
 }
@@ -297,7 +306,8 @@ constexpr std::size_t crc_long = 4096;
 const workload workloads[] = {
     {"decoder_characters_bytewise", "byte",
      [](std::size_t n) { return decoder_bytewise(tb::character_stream(1), n); }},
-    {"decoder_characters_bulk", "byte", [](std::size_t n) { return decoder_bulk(tb::character_stream(1), n); }},
+    {"decoder_characters_bulk", "byte",
+     [](std::size_t n) { return decoder_bulk(tb::character_stream(1), n); }},
     {"decoder_variables_bytewise", "byte",
      [](std::size_t n) { return decoder_bytewise(tb::variable_stream(1), n); }},
     {"decoder_variables_bulk", "byte", [](std::size_t n) { return decoder_bulk(tb::variable_stream(1), n); }},
@@ -315,7 +325,8 @@ const workload workloads[] = {
      [](std::size_t n) { return crc<trionet_measured_crc_table>(crc_long, 1, n); }},
     {"crc_4096_bytes_trionet_bitwise", "byte",
      [](std::size_t n) { return crc<trionet_measured_crc_bitwise>(crc_long, 1, n); }},
-    {"crc_4096_bytes_boost", "byte", [](std::size_t n) { return crc<trionet_measured_crc_boost>(crc_long, 1, n); }},
+    {"crc_4096_bytes_boost", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_boost>(crc_long, 1, n); }},
     {"can_encode_parts", "frame", can_encode_parts},
     {"can_encode_double", "frame", can_encode_double},
     {"can_decode", "frame", can_decode},

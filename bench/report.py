@@ -87,6 +87,9 @@ def hot_lines(callgrind_file, root, limit):
                         cost[(current, int(parts[0]))] += ir
     lines = []
     include = os.path.join(root, "include") + os.sep
+    by_file = collections.Counter()
+    for (path, _), ir in cost.items():
+        by_file[os.path.relpath(path, root) if path.startswith(include) else "caller's code (bench/)"] += ir
     for (path, number), ir in cost.most_common():
         if not path.startswith(include):
             continue
@@ -98,7 +101,7 @@ def hot_lines(callgrind_file, root, limit):
         lines.append((os.path.relpath(path, root), number, ir, text))
         if len(lines) == limit:
             break
-    return total, lines
+    return total, by_file, lines
 
 
 def fmt(x, digits=1):
@@ -212,8 +215,8 @@ def main():
     for workload in ("decoder_characters_bulk", "decoder_characters_bytewise", "decoder_variables_bulk",
                      "decoder_variables_bytewise", "mc_forward_characters", "mc_forward_variables"):
         path = os.path.join(args.callgrind_dir, f"{workload}.out")
-        total, lines = hot_lines(path, args.root, 5)
-        hot.append((workload, total, lines))
+        total, by_file, lines = hot_lines(path, args.root, 5)
+        hot.append((workload, total, by_file, lines))
 
     # ---- console ----
     print()
@@ -227,8 +230,11 @@ def main():
         print(f"  {what}\n      timed: {timed}; callgrind: {ins}; target: {target}; {verdict}")
     print()
     print("Hottest library source lines (callgrind self Ir in the measured run, inlined code on its own line):")
-    for workload, total, lines in hot:
-        print(f"  {workload} ({total} Ir in the measured functions):")
+    def files_of(total, by_file):
+        return ", ".join(f"{name} {100.0 * ir / total:.0f}%" for name, ir in by_file.most_common() if ir * 100 >= total)
+
+    for workload, total, by_file, lines in hot:
+        print(f"  {workload} ({total} Ir in the measured functions; by file: {files_of(total, by_file)}):")
         for path, number, ir, text in lines:
             print(f"    {100.0 * ir / total:5.1f}%  {path}:{number}  {text}")
 
@@ -249,12 +255,13 @@ def main():
     for what, timed, ins, target, verdict in rows:
         out.append(f"| {what} | {timed} | {ins} | {target} | {verdict} |")
     out.append("")
-    out.append("Where the instructions go (callgrind self cost per library source line, inlined code counted on "
-               "its own line; share of the measured function's total):")
+    out.append("Where the instructions go (callgrind self cost per source file and per library source line, "
+               "inlined code counted on its own line; share of the measured function's total; the caller's code "
+               "is the loop that feeds the bytes and consumes the results):")
     out.append("")
-    for workload, total, lines in hot:
+    for workload, total, by_file, lines in hot:
         shown = "; ".join(f"`{path}:{number}` {100.0 * ir / total:.0f}%" for path, number, ir, _ in lines)
-        out.append(f"- `{workload}`: {shown}")
+        out.append(f"- `{workload}`: by file {files_of(total, by_file)}; hottest lines {shown}")
     out.append("")
     out.append(END)
 

@@ -1,6 +1,6 @@
-// Ring benchmarks: the streaming decoder (byte at a time and bulk) on character streams and on direct variable
-// transfers, and a Motion Coordinator's receive path for messages passing through and for messages to it.
-// Throughput is in bytes of ring traffic per second (SetBytesProcessed).
+// Ring benchmarks: the streaming decoder (byte at a time and bulk) on character streams and on direct
+// variable transfers, and a Motion Coordinator's receive path for messages passing through and for messages
+// to it. Throughput is in bytes of ring traffic per second (SetBytesProcessed).
 #include <benchmark/benchmark.h>
 
 #include <cstddef>
@@ -38,7 +38,8 @@ struct tally {
 
 void report(benchmark::State& state, const tally& t, std::size_t stream_bytes) {
   if (t.other != 0) state.SkipWithError("the decoder reported an error on a valid stream");
-  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(stream_bytes));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(stream_bytes));
   state.counters["messages"] =
       benchmark::Counter(static_cast<double>(t.messages), benchmark::Counter::kIsRate);
 }

@@ -57,8 +57,9 @@ class simulated_ring {
   }
 
   vr_table<256> vr_[nodes];
-  ring::motion_coordinator<> nodes_[nodes] = {ring::motion_coordinator<>(vr_[0]), ring::motion_coordinator<>(vr_[1]),
-                                              ring::motion_coordinator<>(vr_[2]), ring::motion_coordinator<>(vr_[3])};
+  ring::motion_coordinator<> nodes_[nodes] = {
+      ring::motion_coordinator<>(vr_[0]), ring::motion_coordinator<>(vr_[1]),
+      ring::motion_coordinator<>(vr_[2]), ring::motion_coordinator<>(vr_[3])};
   ring::simulator<nodes> ring_;
   std::uint32_t sent_[nodes] = {};
 };

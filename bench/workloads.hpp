@@ -38,7 +38,8 @@ class pseudo_random {
 };
 
 /// `messages` character transfers of `characters_per_message` printable characters, to `hops`.
-inline std::vector<std::uint8_t> character_stream(std::uint8_t hops, std::size_t messages = messages_per_stream) {
+inline std::vector<std::uint8_t> character_stream(std::uint8_t hops,
+                                                  std::size_t messages = messages_per_stream) {
   std::vector<std::uint8_t> stream;
   pseudo_random random;
   std::uint8_t text[characters_per_message];
@@ -52,7 +53,8 @@ inline std::vector<std::uint8_t> character_stream(std::uint8_t hops, std::size_t
 }
 
 /// `messages` direct variable transfers (varied VR numbers and values, valid CRC) to `hops`.
-inline std::vector<std::uint8_t> variable_stream(std::uint8_t hops, std::size_t messages = messages_per_stream) {
+inline std::vector<std::uint8_t> variable_stream(std::uint8_t hops,
+                                                 std::size_t messages = messages_per_stream) {
   std::vector<std::uint8_t> stream;
   pseudo_random random;
   std::uint8_t frame[ring::variable_data_length + ring::framing_length];
