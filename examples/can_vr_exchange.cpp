@@ -27,8 +27,8 @@ class exchange final : public bus_listener {
       if (r.status != receive_status::written) continue;
       std::printf("%8.3f ms  node %u -> node %u  Rx #%u  id %3u  VR(%3u) = %-10.4f latency %6.1f us\n",
                   milliseconds(delivery.delivered_at), unsigned{r.sender}, static_cast<unsigned>(i + 1),
-                  unsigned{r.receive_channel}, delivery.sent.identifier(), unsigned{r.message.vr}, r.value,
-                  milliseconds(delivery.latency()) * 1000.0);
+                  unsigned{r.receive_channel}, delivery.sent.identifier(), unsigned{r.message.vr},
+                  trionet::can::to_double(r.message.value), milliseconds(delivery.latency()) * 1000.0);
       if (delivery.latency() > worst_latency_) worst_latency_ = delivery.latency();
     }
   }

@@ -112,7 +112,7 @@ TEST(CanNode, ReceivedFrameOnOwnIdentifierWritesTheVr) {
   EXPECT_EQ(r.sender, 1);
   EXPECT_EQ(r.receive_channel, 1);
   EXPECT_EQ(r.message.vr, 1);
-  EXPECT_EQ(r.value, 2.345);
+  EXPECT_EQ(to_double(r.message.value), 2.345);
   EXPECT_EQ(vrs[1], 2.345);
   const receive_result negative = node4.receive(make_frame(43, {200, 1, 0, 0, 0x01, 0x00, 0x00, 0x05}));
   EXPECT_EQ(negative.status, receive_status::written);

@@ -507,7 +507,8 @@ TEST(RingForwarding, EveryReceivedByteIsAccountedFor) {
   trionet::vr_table<16> vr;
   ring::motion_coordinator<256, 8, 48> mc(vr);
   std::vector<std::uint8_t> stream = chars(1, "LOCAL");
-  for (auto part : {chars(3, "FORWARDED"), chars(2, "A MESSAGE TOO LONG FOR EIGHT"), std::vector<std::uint8_t>{1, 2, 0x88}}) {
+  for (auto part : {chars(3, "FORWARDED"), chars(2, "A MESSAGE TOO LONG FOR EIGHT"),
+                    std::vector<std::uint8_t>{1, 2, 0x88}}) {
     stream.insert(stream.end(), part.begin(), part.end());
   }
   ASSERT_EQ(mc.print(10, "HOLD THE LINK"), ring::send_result::queued);
@@ -517,7 +518,18 @@ TEST(RingForwarding, EveryReceivedByteIsAccountedFor) {
   const auto& bytes = mc.forwarding_counters().bytes;
   EXPECT_EQ(bytes[0] + bytes[1] + bytes[2] + bytes[3], stream.size());
   EXPECT_EQ(bytes[static_cast<int>(ring::route::local)], 7u + 3u);
-  EXPECT_EQ(bytes[static_cast<int>(ring::route::lost)], 2u);  // both forwarded messages overflow: one lost byte each
+  EXPECT_EQ(bytes[static_cast<int>(ring::route::lost)],
+            2u);  // both forwarded messages overflow: one lost byte each
   EXPECT_EQ(mc.forwarding_counters().forwards_lost, 2u);
   EXPECT_GT(bytes[static_cast<int>(ring::route::dropped)], 0u);
+}
+
+TEST(RingMotionCoordinator, Q32TableAndSendWithoutFloatingPoint) {
+  trionet::vr_table<256, std::int64_t> vr_a, vr_b;
+  ring::motion_coordinator<> a(vr_a), b(vr_b);
+  ASSERT_EQ(a.send_variable_q32(10, 200, ring::q32_from_integer(99) + 1), ring::send_result::queued);
+  EXPECT_EQ(a.send_variable_q32(10, 16384, 0), ring::send_result::vr_out_of_range);
+  EXPECT_EQ(a.send_variable_q32(25, 1, 0), ring::send_result::bad_address);
+  feed(b, drain(a));
+  EXPECT_EQ(vr_b[200], ring::q32_from_integer(99) + 1);  // exact: no double on the way
 }

@@ -75,13 +75,13 @@ enum class receive_status : std::uint8_t {
 };
 
 /// A received frame's fate, and for frames on our identifiers, who sent it on which receive channel and what
-/// it said (`message` and `value` are meaningful for written, refused and out_of_range).
+/// it said (`message` is meaningful for written, refused and out_of_range; `to_double(message.value)` gives
+/// the value as a double).
 struct receive_result {
   receive_status status = receive_status::foreign;
   std::uint8_t sender = 0;
   std::uint8_t receive_channel = 0;
   vr_message message{};
-  double value = 0.0;
 };
 
 /// Counts since construction or `clear_counters`. Each wraps at 2^32.
@@ -184,8 +184,9 @@ class vr_exchange_node {
         return result;
     }
     result.message = decoded.message;
-    result.value = to_double(decoded.message.value);
-    switch (store_->write(decoded.message.vr, result.value)) {
+    const vr_value& v = decoded.message.value;
+    switch (store_->write(decoded.message.vr,
+                          network_value::from_decimal(v.negative, v.integer_part, v.fraction))) {
       case vr_write::written:
         ++counters_.written;
         result.status = receive_status::written;
@@ -195,6 +196,7 @@ class vr_exchange_node {
         result.status = receive_status::refused;
         break;
       case vr_write::out_of_range:
+      case vr_write::value_out_of_range:
         ++counters_.out_of_range;
         result.status = receive_status::out_of_range;
         break;

@@ -165,12 +165,17 @@ class motion_coordinator final : public byte_port {
 
   /// SEND(n,1,vr,value): a direct variable transfer; `value` is rounded to Q32.32.
   [[nodiscard]] send_result send_variable(int n, std::uint16_t vr, double value) noexcept {
+    const q32_result q = q32_from_double(value);
+    if (!q) return hops_from_basic_address(n) ? send_result::value_out_of_range : send_result::bad_address;
+    return send_variable_q32(n, vr, q.raw);
+  }
+
+  /// SEND(n,1,vr,value) with the value already in Q32.32 (value * 2^32): no floating point.
+  [[nodiscard]] send_result send_variable_q32(int n, std::uint16_t vr, std::int64_t value) noexcept {
     const auto hops = hops_from_basic_address(n);
     if (!hops) return send_result::bad_address;
     if (vr > max_vr) return send_result::vr_out_of_range;
-    const q32_result q = q32_from_double(value);
-    if (!q) return send_result::value_out_of_range;
-    return queue(message::variable(*hops, vr, q.raw));
+    return queue(message::variable(*hops, vr, value));
   }
 
   /// SEND(n,2,offset): tells the keypad n where to send its key presses (offset: BASIC address 10..24,
@@ -273,7 +278,7 @@ class motion_coordinator final : public byte_port {
         ++counters_.character_messages;
         return;
       case message_type::variable:
-        switch (vr_->write(r.msg.vr, q32_to_double(r.msg.value))) {
+        switch (vr_->write(r.msg.vr, network_value::from_q32(r.msg.value))) {
           case vr_write::written:
             ++counters_.variables_written;
             return;
@@ -281,6 +286,7 @@ class motion_coordinator final : public byte_port {
             ++counters_.variables_refused;
             return;
           case vr_write::out_of_range:
+          case vr_write::value_out_of_range:
             ++counters_.variables_out_of_range;
             return;
         }
