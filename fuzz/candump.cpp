@@ -1,0 +1,111 @@
+// Fuzz harness: the host-side candump text parser and formatter (src/can_candump.hpp) on arbitrary text.
+//
+// Input: the text is parsed as one line, and again split at every '\n' as the lines of a candump file. The
+// last 14 bytes also make a frame (identifier word, DLC, data) that is formatted and parsed back.
+// Invariants:
+//   - no crash, no undefined behaviour, whatever the text (ASan/UBSan in scripts/fuzz);
+//   - a parsed frame is a legal classic frame: an 11-bit identifier (or 29-bit with the extended flag), no
+//     other identifier bits, DLC 0..8;
+//   - parse -> format -> parse gives the same record (timestamp, interface, frame), and formatting that again
+//     gives the same text (the formatter's output is canonical); the compact form round-trips the frame too;
+//   - format -> parse: any frame the formatter can write (identifier within its width, DLC 0..15) parses back
+//     to the frame with the DLC it puts on the wire (min(DLC, 8)).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "can_candump.hpp"
+#include "fuzz_check.hpp"
+
+// The host adapter is compiled into the CLI, not into the header library: compile it here, as the tests do.
+#include "../src/can_candump.cpp"
+
+namespace {
+
+using trionet::can::frame;
+using namespace trionet::host;
+
+bool same(const candump_record& a, const candump_record& b) {
+  return a.has_timestamp == b.has_timestamp && a.seconds == b.seconds && a.microseconds == b.microseconds &&
+         a.interface_name == b.interface_name && a.frame == b.frame;
+}
+
+void check_frame(const frame& f) {
+  if (f.extended()) {
+    FUZZ_CHECK((f.id & ~(frame::extended_flag | frame::remote_flag | frame::extended_mask)) == 0);
+  } else {
+    FUZZ_CHECK((f.id & ~(frame::remote_flag | frame::standard_mask)) == 0);
+  }
+  FUZZ_CHECK(f.dlc <= 8);
+  if (f.remote()) FUZZ_CHECK(f.payload().empty());
+}
+
+void check_line(std::string_view line) {
+  const candump_result parsed = parse_candump_line(line);
+  if (parsed.error != candump_error::none) {
+    FUZZ_CHECK(to_string(parsed.error) != nullptr);
+    return;
+  }
+  const candump_record& record = parsed.record;
+  check_frame(record.frame);
+  FUZZ_CHECK(record.microseconds <= 999999);
+  FUZZ_CHECK(record.has_timestamp != record.interface_name.empty());
+
+  const std::string text = format_candump_line(record);
+  const candump_result again = parse_candump_line(text);
+  FUZZ_CHECK(again.error == candump_error::none);
+  FUZZ_CHECK(same(again.record, record));
+  FUZZ_CHECK(format_candump_line(again.record) == text);
+
+  const std::string compact = format_candump_frame(record.frame);
+  const candump_result bare = parse_candump_line(compact);
+  FUZZ_CHECK(bare.error == candump_error::none);
+  FUZZ_CHECK(!bare.record.has_timestamp && bare.record.interface_name.empty());
+  FUZZ_CHECK(bare.record.frame == record.frame);
+}
+
+void check_format(const std::uint8_t* bytes) {
+  frame f;
+  f.id = static_cast<std::uint32_t>(bytes[0]) << 24 | static_cast<std::uint32_t>(bytes[1]) << 16 |
+         static_cast<std::uint32_t>(bytes[2]) << 8 | bytes[3];
+  f.id &= f.extended() ? frame::extended_flag | frame::remote_flag | frame::extended_mask
+                       : frame::remote_flag | frame::standard_mask;
+  f.dlc = static_cast<std::uint8_t>(bytes[4] & 15u);
+  for (std::size_t i = 0; i < 8; ++i) f.data[i] = bytes[5 + i];
+
+  frame wire = f;  // what the text carries: the DLC of the bytes on the wire
+  wire.dlc = f.dlc > 8 ? std::uint8_t{8} : f.dlc;
+
+  candump_record record;
+  record.frame = f;
+  record.has_timestamp = (bytes[13] & 1u) != 0;
+  record.seconds = bytes[13];
+  record.microseconds = bytes[12] * 3907u;
+  record.interface_name = (bytes[13] & 2u) != 0 ? "vcan0" : "";
+  const candump_result parsed = parse_candump_line(format_candump_line(record));
+  FUZZ_CHECK(parsed.error == candump_error::none);
+  FUZZ_CHECK(parsed.record.frame == wire);
+  FUZZ_CHECK(parsed.record.has_timestamp == record.has_timestamp);
+  if (record.has_timestamp) {
+    FUZZ_CHECK(parsed.record.seconds == record.seconds);
+    FUZZ_CHECK(parsed.record.microseconds == record.microseconds);
+    FUZZ_CHECK(parsed.record.interface_name == (record.interface_name.empty() ? "can0" : "vcan0"));
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), data == nullptr ? 0 : size);
+  check_line(text);
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    if (start != 0 || end != text.size()) check_line(text.substr(start, end - start));
+    start = end + 1;
+  }
+  if (size >= 14) check_format(data + size - 14);
+  return 0;
+}

@@ -1,0 +1,535 @@
+// Fuzz harness: a Motion Coordinator node and a keypad node on the ring (PROTOCOL.md 1.5-1.9), driven by
+// received bytes interleaved with program calls, every choice read from the input.
+//
+// Input: a sequence of operations; the top 3 bits of an operation byte say which:
+//   0, 1  receive the next (op & 63) + 1 input bytes (raw bytes from the fibre)
+//   2     receive one well-formed message built from the input (type op & 3, hops ((op >> 2) & 7) + 1)
+//   3     PRINT #n (n = 10 + (op & 15), 25 is invalid): text from the input, 7-bit unless op & 16
+//   4     SEND: variable, keypad offset, keypad mode, or an out-of-range value (op & 3)
+//   5     GET #3 / GET #4 (op & 16), (op & 15) + 1 times; the 16th is GET on a bad channel
+//   6     pull (op & 31) + 1 bytes from the MC's transmitter
+//   7     clear NETSTAT, KEY#, keypad press/release, pull from the keypad (op & 7)
+// Every received byte goes to both nodes. At the end both transmitters are drained.
+//
+// Invariants (MC):
+//   - forwarding_counters().bytes[0..3] (local, forwarded, dropped, lost) add up to the bytes fed, and each
+//     byte goes exactly one way;
+//   - every result of the node's local decoding is classified and counted exactly once: a reference decoder
+//     fed the same local bytes says what the node must count (frame error, CRC error, message by type; VR
+//     written with the decoded value, refused by the policy, or out of range) and nothing else may change;
+//   - a character message is delivered whole or not at all, in order: when the reference decodes one, the node
+//     either takes it (all its characters join the expected queue) or drops it whole (receive overflow, only
+//     if it could not fit); GET returns exactly the expected queue, `characters_waiting()` equals its size and
+//     never exceeds the receive capacity; KEY# is true exactly when it is non-empty;
+//   - PRINT#/SEND queue the whole frame or nothing; a valid call is refused only for lack of room (NETSTAT
+//     bit 0); NETSTAT bits are set when the matching counters grow;
+//   - the transmitted stream is exactly what the link rules give (PROTOCOL.md 1.5): forwarded bytes with A-1,
+//     data unchanged, forwarded traffic first between messages, own frames whole, a lost forwarded message
+//     removed whole if none of it went out; and a second decoder reading it sees no stray data, stray end
+//     of message or zero hop count.
+// Invariants (keypad): byte routes add up; it never transmits in local mode; its stream is well formed; key
+// results match its mode; the display cursor stays on the display.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <vector>
+
+#include <trionet/ring/decoder.hpp>
+#include <trionet/ring/encode.hpp>
+#include <trionet/ring/keypad.hpp>
+#include <trionet/ring/motion_coordinator.hpp>
+#include <trionet/ring/q32.hpp>
+#include <trionet/vr.hpp>
+
+#include "fuzz_check.hpp"
+
+namespace {
+
+using namespace trionet::ring;
+
+constexpr std::size_t receive_capacity = 64;
+constexpr std::size_t forward_capacity = 16;
+constexpr std::size_t transmit_capacity = 40;
+constexpr std::size_t vr_count = 32;
+
+using node_type = motion_coordinator<receive_capacity, forward_capacity, transmit_capacity>;
+using keypad_type = keypad<8, 8>;
+
+bool refuse_some(void*, std::uint16_t vr, double) noexcept {
+  return vr % 7 != 3;
+}
+
+bool same(const motion_coordinator_counters& a, const motion_coordinator_counters& b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+/// Checks a transmitted stream with a decoder of its own: a node never sends data outside a message, an end
+/// of message without a header, or a header with A = 0.
+struct stream_checker {
+  decoder<256> reader;
+  void take(std::uint8_t byte) {
+    const decode_result r = reader.push(byte);
+    if (r.status == decode_status::frame_error) {
+      FUZZ_CHECK(r.error != frame_error::stray_data);
+      FUZZ_CHECK(r.error != frame_error::stray_eom);
+      FUZZ_CHECK(r.error != frame_error::zero_hops);
+    }
+  }
+};
+
+/// What the MC's link must transmit, from where each received byte went (PROTOCOL.md 1.5).
+struct link_model {
+  std::deque<std::uint8_t> forward;  // forwarded bytes not yet transmitted (A already decremented)
+  std::deque<std::uint8_t> own;      // own frames not yet transmitted
+  std::size_t pushed = 0;            // forwarded bytes ever buffered
+  std::size_t popped = 0;            // ... and transmitted
+  std::size_t message_start = 0;     // `pushed` when the message being forwarded began
+  bool open = false;                 // a forwarded message has begun and not ended on the receive side
+  enum class sending { idle, forward, own } state = sending::idle;
+
+  void received(std::uint8_t byte, route r) {
+    const bool control = !is_data(byte);
+    switch (r) {
+      case route::forwarded: {
+        std::uint8_t out = byte;
+        if (control) {
+          const std::uint8_t hops = hops_of(byte);
+          out = with_hops(byte, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1));
+          if (classify(byte) == byte_class::header) {
+            message_start = pushed;
+            open = true;
+          } else {
+            open = false;
+          }
+        }
+        forward.push_back(out);
+        ++pushed;
+        break;
+      }
+      case route::lost:
+        if (classify(byte) == byte_class::header) message_start = pushed;
+        open = false;
+        if (popped <= message_start) {  // none of it went out: the message is removed whole
+          const std::size_t drop = pushed - message_start;
+          FUZZ_CHECK(drop <= forward.size());
+          forward.erase(forward.end() - static_cast<std::ptrdiff_t>(drop), forward.end());
+          pushed = message_start;
+        }
+        break;
+      case route::local:
+      case route::dropped:
+        if (control) open = false;
+        break;
+    }
+  }
+
+  /// The byte the link must transmit next, if any.
+  bool transmit(std::uint8_t& byte) {
+    if (state == sending::forward) {
+      if (!forward.empty()) return pop_forward(byte);
+      if (open) return false;
+      state = sending::idle;
+    } else if (state == sending::own) {
+      FUZZ_CHECK(!own.empty());  // own frames are queued whole
+      byte = own.front();
+      own.pop_front();
+      if (classify(byte) == byte_class::end_of_message) state = sending::idle;
+      return true;
+    }
+    if (!forward.empty()) return pop_forward(byte);
+    if (!own.empty()) {
+      state = sending::own;
+      return transmit(byte);
+    }
+    return false;
+  }
+
+  bool pop_forward(std::uint8_t& byte) {
+    byte = forward.front();
+    forward.pop_front();
+    ++popped;
+    state = classify(byte) == byte_class::end_of_message ? sending::idle : sending::forward;
+    return true;
+  }
+};
+
+class harness {
+ public:
+  harness() : vr_(refuse_some), mc_(vr_) {}
+
+  void run(trionet_fuzz::input_reader& in) {
+    while (!in.done()) {
+      const std::uint8_t op = in.byte();
+      switch (op >> 5) {
+        case 0:
+        case 1: {
+          const std::size_t n = (op & 63u) + 1u;
+          for (std::size_t i = 0; i < n && !in.done(); ++i) receive(in.byte());
+          break;
+        }
+        case 2:
+          receive_message(op, in);
+          break;
+        case 3:
+          print(op, in);
+          break;
+        case 4:
+          send(op, in);
+          break;
+        case 5:
+          get(op);
+          break;
+        case 6:
+          for (unsigned i = 0; i <= (op & 31u); ++i) pull();
+          break;
+        default:
+          misc(op, in);
+          break;
+      }
+      check_state();
+    }
+    // Drain: the model and the node agree to the end.
+    for (std::size_t i = 0; i < 4096; ++i) {
+      if (!pull()) break;
+    }
+    FUZZ_CHECK(!mc_.transmit_pending());
+    FUZZ_CHECK(link_.forward.empty());
+    FUZZ_CHECK(link_.own.empty() || (link_.state == link_model::sending::forward && link_.open));
+    for (std::size_t i = 0; i < 4096; ++i) {
+      if (!pull_keypad()) break;
+    }
+  }
+
+ private:
+  void receive(std::uint8_t byte) {
+    const motion_coordinator_counters before = mc_.counters();
+    const link_counters links_before = mc_.forwarding_counters();
+    const std::size_t waiting_before = mc_.characters_waiting();
+
+    mc_.receive(byte);
+    ++fed_;
+
+    // Exactly one route, and the routes add up.
+    const link_counters& links = mc_.forwarding_counters();
+    std::uint64_t total = 0;
+    int routes = 0;
+    route r = route::local;
+    for (std::size_t i = 0; i < 4; ++i) {
+      total += links.bytes[i];
+      if (links.bytes[i] != links_before.bytes[i]) {
+        FUZZ_CHECK(links.bytes[i] == links_before.bytes[i] + 1);
+        r = static_cast<route>(i);
+        ++routes;
+      }
+    }
+    FUZZ_CHECK(routes == 1);
+    FUZZ_CHECK(total == fed_);
+    link_.received(byte, r);
+    if (r == route::lost) FUZZ_CHECK((mc_.netstat() & netstat_tx_buffer_error) != 0);
+
+    // What the node must have counted, from the reference decoder.
+    decode_result expected{};
+    if (r == route::local) {
+      if (classify(byte) == byte_class::header && hops_of(byte) != 0) waiting_at_header_ = waiting_before;
+      expected = reference_.push(byte);
+    } else if (classify(byte) == byte_class::header) {
+      expected = reference_.interrupt();
+    }
+    motion_coordinator_counters want = before;
+    switch (expected.status) {
+      case decode_status::incomplete:
+        break;
+      case decode_status::no_room:
+        FUZZ_CHECK(false);  // the reference has its own full-size buffer
+        break;
+      case decode_status::frame_error:
+        ++want.frame_errors;
+        FUZZ_CHECK((mc_.netstat() & netstat_rx_frame_error) != 0);
+        break;
+      case decode_status::crc_error:
+        ++want.crc_errors;
+        FUZZ_CHECK((mc_.netstat() & netstat_rx_crc_error) != 0);
+        break;
+      case decode_status::message:
+        switch (expected.msg.type) {
+          case message_type::character: {
+            const std::size_t length = expected.msg.text.size();
+            if (mc_.counters().character_messages != before.character_messages) {
+              ++want.character_messages;  // taken whole
+              for (std::uint8_t c : expected.msg.text) waiting_.push_back(c);
+            } else {
+              ++want.receive_overflows;  // dropped whole, and only when it could not fit
+              FUZZ_CHECK(length + waiting_at_header_ > receive_capacity);
+              FUZZ_CHECK((mc_.netstat() & netstat_rx_overflow) != 0);
+            }
+            break;
+          }
+          case message_type::variable: {
+            const std::uint16_t vr = expected.msg.vr;
+            if (vr >= vr_count) {
+              ++want.variables_out_of_range;
+            } else if (!refuse_some(nullptr, vr, 0.0)) {
+              ++want.variables_refused;
+            } else {
+              ++want.variables_written;
+              const double value = q32_to_double(expected.msg.value);
+              FUZZ_CHECK(std::memcmp(&vr_[vr], &value, sizeof value) == 0);
+            }
+            break;
+          }
+          case message_type::keypad_offset:
+          case message_type::keypad_mode:
+            ++want.keypad_messages_ignored;
+            break;
+        }
+        break;
+    }
+    FUZZ_CHECK(same(mc_.counters(), want));
+    FUZZ_CHECK(mc_.characters_waiting() == waiting_.size());
+
+    receive_keypad(byte);
+  }
+
+  void receive_keypad(std::uint8_t byte) {
+    keypad_.receive(byte);
+    ++keypad_fed_;
+    const link_counters& links = keypad_.forwarding_counters();
+    FUZZ_CHECK(std::uint64_t{links.bytes[0]} + links.bytes[1] + links.bytes[2] + links.bytes[3] == keypad_fed_);
+    FUZZ_CHECK(keypad_.display().cursor() < keypad_display::positions);
+    if (!keypad_.network_mode()) {
+      FUZZ_CHECK(links.bytes[1] == 0 && links.bytes[3] == 0);  // nothing is forwarded in local mode
+    }
+  }
+
+  void receive_message(std::uint8_t op, trionet_fuzz::input_reader& in) {
+    const auto hops = static_cast<std::uint8_t>(((op >> 2) & 7u) + 1u);
+    std::uint8_t text[24] = {};
+    message m;
+    switch (op & 3u) {
+      case 0: {
+        const std::size_t length = in.byte() % 24u + 1u;
+        for (std::size_t i = 0; i < length; ++i) text[i] = static_cast<std::uint8_t>(in.byte() & 0x7Fu);
+        m = message::characters(hops, trionet::byte_view(text, length));
+        break;
+      }
+      case 1: {
+        const std::uint16_t vr = in.byte();
+        const auto wide = static_cast<std::int64_t>(static_cast<std::int32_t>(in.u32()));
+        const auto value = static_cast<std::int64_t>(static_cast<std::uint64_t>(wide) << (in.byte() & 31u));
+        m = message::variable(hops, vr, value);
+        break;
+      }
+      case 2:
+        m = message::keypad_offset(hops, static_cast<std::uint8_t>(in.byte() % 15u + 1u));
+        break;
+      default:
+        m = message::keypad_mode(hops, (in.byte() & 1u) != 0 ? keypad_mode_key_on_off : keypad_mode_key_on);
+        break;
+    }
+    std::uint8_t frame[framing_length + 24] = {};
+    const encode_result encoded = encode(frame, m);
+    FUZZ_CHECK(encoded);
+    for (std::size_t i = 0; i < encoded.length; ++i) receive(frame[i]);
+  }
+
+  // Checks a PRINT#/SEND outcome: the whole frame is queued, or nothing and the right reason.
+  // `errors` lists every field error that applies (empty: the call is valid); which of several the node
+  // reports first is its own business, but it must be one of them.
+  void sent(send_result result, const std::vector<send_result>& errors, const message& m) {
+    const bool fits = frame_length(m) <= free_before_;
+    if (!errors.empty()) {
+      FUZZ_CHECK(std::find(errors.begin(), errors.end(), result) != errors.end());
+      FUZZ_CHECK(mc_.transmit_free() == free_before_);
+      return;
+    }
+    if (!fits) {
+      FUZZ_CHECK(result == send_result::queue_full);
+      FUZZ_CHECK(mc_.transmit_free() == free_before_);
+      FUZZ_CHECK((mc_.netstat() & netstat_tx_timeout) != 0);
+      return;
+    }
+    FUZZ_CHECK(result == send_result::queued);
+    FUZZ_CHECK(mc_.transmit_free() + frame_length(m) == free_before_);
+    std::uint8_t frame[framing_length + 64] = {};
+    const encode_result encoded = encode(frame, m);
+    FUZZ_CHECK(encoded && encoded.length == frame_length(m));
+    for (std::size_t i = 0; i < encoded.length; ++i) link_.own.push_back(frame[i]);
+  }
+
+  void print(std::uint8_t op, trionet_fuzz::input_reader& in) {
+    const int n = 10 + (op & 15);
+    const std::size_t length = in.byte() % 40u;
+    std::uint8_t text[40] = {};
+    bool seven_bit = true;
+    for (std::size_t i = 0; i < length; ++i) {
+      text[i] = (op & 16u) != 0 ? in.byte() : static_cast<std::uint8_t>(in.byte() & 0x7Fu);
+      if (text[i] > 127) seven_bit = false;
+    }
+    free_before_ = mc_.transmit_free();
+    const send_result result = mc_.print(n, trionet::byte_view(text, length));
+    const message m = message::characters(static_cast<std::uint8_t>(n - 9), trionet::byte_view(text, length));
+    std::vector<send_result> errors;
+    if (n > last_basic_address) errors.push_back(send_result::bad_address);
+    if (length == 0) errors.push_back(send_result::empty_text);
+    if (!seven_bit) errors.push_back(send_result::character_out_of_range);
+    sent(result, errors, m);
+  }
+
+  void send(std::uint8_t op, trionet_fuzz::input_reader& in) {
+    const int n = 9 + in.byte() % 17;  // 9 and 25 are not BASIC addresses
+    const bool good_address = n >= first_basic_address && n <= last_basic_address;
+    const auto hops = static_cast<std::uint8_t>(good_address ? n - 9 : 1);
+    std::vector<send_result> errors;
+    if (!good_address) errors.push_back(send_result::bad_address);
+    free_before_ = mc_.transmit_free();
+    switch (op & 3u) {
+      case 0:
+      case 3: {
+        const std::uint16_t vr = in.u16() % 16400u;  // a few past 16383
+        double value = static_cast<double>(static_cast<std::int32_t>(in.u32())) / 65536.0;
+        if ((op & 3u) == 3) {
+          const std::uint8_t pick = in.byte();
+          value = pick % 3 == 0 ? 1e300 : pick % 3 == 1 ? -2147483648.5 : 2147483647.99999999;
+        }
+        const q32_result q = q32_from_double(value);
+        const send_result result = mc_.send_variable(n, vr, value);
+        if (vr > max_vr) errors.push_back(send_result::vr_out_of_range);
+        if (!q) errors.push_back(send_result::value_out_of_range);
+        sent(result, errors, message::variable(hops, vr, q.raw));
+        break;
+      }
+      case 1: {
+        const int offset = 9 + in.byte() % 17;
+        const send_result result = mc_.send_keypad_offset(n, offset);
+        const bool good_offset = offset >= first_basic_address && offset <= last_basic_address;
+        if (!good_offset) errors.push_back(send_result::offset_out_of_range);
+        sent(result, errors,
+             message::keypad_offset(hops, static_cast<std::uint8_t>(good_offset ? offset - 9 : 1)));
+        break;
+      }
+      default: {
+        const std::uint8_t pick = in.byte();
+        const int mode = pick % 3 == 0 ? 0 : pick % 3 == 1 ? 127 : pick;
+        const send_result result = mc_.send_keypad_mode(n, mode);
+        const bool good_mode = mode == 0 || mode == 127;
+        if (!good_mode) errors.push_back(send_result::mode_out_of_range);
+        sent(result, errors, message::keypad_mode(hops, static_cast<std::uint8_t>(good_mode ? mode : 0)));
+        break;
+      }
+    }
+  }
+
+  void get(std::uint8_t op) {
+    const int channel = (op & 16u) != 0 ? 3 : 4;
+    const unsigned count = (op & 15u) + 1u;
+    for (unsigned i = 0; i < count; ++i) {
+      FUZZ_CHECK(mc_.key(channel) == !waiting_.empty());
+      const int used = i == 15 ? 2 : channel;
+      const get_result got = mc_.get(used);
+      if (used == 2) {
+        FUZZ_CHECK(got.status == get_result::status::bad_channel);
+        FUZZ_CHECK(!mc_.key(used));
+        continue;
+      }
+      if (waiting_.empty()) {
+        FUZZ_CHECK(got.status == get_result::status::nothing_yet);
+        continue;
+      }
+      FUZZ_CHECK(got.status == get_result::status::ok);
+      const std::uint8_t raw = waiting_.front();
+      waiting_.pop_front();
+      FUZZ_CHECK(got.value == (channel == 4 ? raw : default_defkey[raw]));
+    }
+    FUZZ_CHECK(mc_.characters_waiting() == waiting_.size());
+  }
+
+  bool pull() {
+    std::uint8_t want = 0;
+    const bool pending = mc_.transmit_pending();
+    const bool expected = link_.transmit(want);
+    std::uint8_t byte = 0;
+    const bool got = mc_.transmit(byte);
+    FUZZ_CHECK(got == expected);
+    FUZZ_CHECK(pending == expected);
+    if (!got) return false;
+    FUZZ_CHECK(byte == want);
+    mc_stream_.take(byte);
+    return true;
+  }
+
+  bool pull_keypad() {
+    std::uint8_t byte = 0;
+    const bool pending = keypad_.transmit_pending();
+    const bool got = keypad_.transmit(byte);
+    FUZZ_CHECK(pending == got);
+    if (!keypad_.network_mode()) FUZZ_CHECK(!got);
+    if (got) keypad_stream_.take(byte);
+    return got;
+  }
+
+  void misc(std::uint8_t op, trionet_fuzz::input_reader& in) {
+    switch (op & 7u) {
+      case 0:
+        mc_.clear_netstat();
+        FUZZ_CHECK(mc_.netstat() == 0);
+        break;
+      case 1:
+        FUZZ_CHECK(mc_.key(3) == !waiting_.empty());
+        FUZZ_CHECK(mc_.key(4) == !waiting_.empty());
+        FUZZ_CHECK(!mc_.key(5));
+        break;
+      case 2:
+      case 3: {
+        const auto k = static_cast<key>(in.byte() % key_count);
+        const key_result result = (op & 1u) == 0 ? keypad_.press(k) : keypad_.release(k);
+        if (!keypad_.network_mode()) {
+          FUZZ_CHECK(result == key_result::local_mode);
+        } else if ((op & 1u) != 0 && keypad_.mode() != keypad_mode_key_on_off) {
+          FUZZ_CHECK(result == key_result::not_sent);
+        } else {
+          FUZZ_CHECK(result == key_result::sent || result == key_result::queue_full);
+        }
+        break;
+      }
+      case 4:
+        for (int i = 0; i < 8; ++i) (void)pull_keypad();
+        break;
+      default:
+        break;
+    }
+  }
+
+  void check_state() {
+    FUZZ_CHECK(mc_.characters_waiting() == waiting_.size());
+    FUZZ_CHECK(mc_.characters_waiting() <= receive_capacity);
+    FUZZ_CHECK(mc_.transmit_free() <= transmit_capacity);
+    FUZZ_CHECK(mc_.forward_backlog() == link_.forward.size());
+    FUZZ_CHECK(mc_.forward_backlog() <= forward_capacity);
+    FUZZ_CHECK(transmit_capacity - mc_.transmit_free() == link_.own.size());
+  }
+
+  trionet::vr_table<vr_count> vr_;
+  node_type mc_;
+  decoder<receive_capacity> reference_;
+  link_model link_;
+  std::deque<std::uint8_t> waiting_;  // characters GET must return, in order
+  std::size_t waiting_at_header_ = 0;
+  std::size_t free_before_ = 0;
+  std::uint64_t fed_ = 0;
+  stream_checker mc_stream_;
+  keypad_type keypad_;
+  std::uint64_t keypad_fed_ = 0;
+  stream_checker keypad_stream_;
+};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static constexpr std::uint8_t empty[1] = {0};
+  trionet_fuzz::input_reader in(data == nullptr ? empty : data, size);
+  harness h;
+  h.run(in);
+  return 0;
+}
