@@ -275,7 +275,7 @@ TEST(RingMotionCoordinator, SendCallsRejectOutOfRangeBeforeQueuingAByte) {
   EXPECT_EQ(mc.send_keypad_mode(10, 1), ring::send_result::mode_out_of_range);
   EXPECT_FALSE(mc.transmit_pending());
   EXPECT_EQ(mc.netstat(), 0);
-  EXPECT_EQ(mc.transmit_free(), 48u);
+  EXPECT_EQ(mc.transmit_free(), 32u);
 }
 
 TEST(RingMotionCoordinator, SendMapsBasicAddressesAndTypes) {
@@ -497,9 +497,9 @@ TEST(RingNodeRam, DefaultCapacities) {
       keypad, sizeof(void*) * 8);
   RecordProperty("motion_coordinator_bytes", static_cast<int>(mc));
   RecordProperty("keypad_bytes", static_cast<int>(keypad));
-  // The buffers dominate: receive 256 + forward 48 + transmit 48 for an MC.
-  EXPECT_GE(mc, 256u + 48u + 48u);
-  EXPECT_LE(mc, 256u + 48u + 48u + 192u);
+  // The buffers dominate: receive 256 + forward 32 + transmit 32 for an MC.
+  EXPECT_GE(mc, 256u + 32u + 32u);
+  EXPECT_LE(mc, 256u + 32u + 32u + 192u);
   EXPECT_LE(keypad, 256u + 16u + 16u + 45u + 160u);
 }
 

@@ -118,7 +118,7 @@ class character_buffer {
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
 template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
 class basic_decoder {
-  static_assert(MaxCharacters >= 1, "a character transfer holds at least one character");
+  static_assert(MaxCharacters >= 1 && MaxCharacters < 65535, "a character transfer holds 1..65534 characters");
 
  public:
   static constexpr std::size_t max_characters = MaxCharacters;
@@ -282,7 +282,7 @@ class basic_decoder {
   std::uint8_t hops_ = 0;
   std::uint8_t type_ = 0;
   bool no_room_ = false;
-  std::size_t length_ = 0;
+  std::uint16_t length_ = 0;  // data bytes so far, saturating one past the limit
   std::uint8_t payload_[variable_data_length] = {};
   Store store_;
 };

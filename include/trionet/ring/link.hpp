@@ -48,6 +48,8 @@ struct link_counters {
 /// `Crc` is the CRC policy the node's own direct variable transfers are sent with.
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, class Crc = crc16_ccitt_false>
 class link {
+  static_assert(ForwardCapacity < 65535, "the forward buffer holds up to 65534 bytes");
+
  public:
   /// Takes one received byte and says where it went.
   [[nodiscard]] route receive(std::uint8_t byte) noexcept {
@@ -170,7 +172,7 @@ class link {
 
   route forward(std::uint8_t byte) noexcept {
     if (forward_.push(byte)) {
-      if (incoming_ <= ForwardCapacity) ++incoming_;
+      if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity <= 65535: never wraps
       return route::forwarded;
     }
     ++counters_.forwards_lost;
@@ -183,7 +185,7 @@ class link {
   byte_fifo<ForwardCapacity> forward_;
   byte_fifo<TransmitCapacity> queue_;
   link_counters counters_;
-  std::size_t incoming_ = 0;  // bytes of the message being forwarded now in the buffer (saturates)
+  std::uint16_t incoming_ = 0;  // bytes of the message being forwarded now in the buffer (saturates)
   receiving receiving_ = receiving::local;
   sending sending_ = sending::idle;
   bool forward_open_ = false;  // a forwarded message has begun and not ended on the receive side

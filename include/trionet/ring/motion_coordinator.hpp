@@ -10,7 +10,7 @@
 //   mc.send_variable(10, 200, 99.0);    // SEND(10,1,200,99)
 //   if (mc.key(3)) { auto k = mc.get(3); ... }   // IF KEY#3 THEN GET #3,k
 //
-// Cost (defaults): RAM = receive buffer 256 + forward buffer 48 + transmit queue 48 + about 90 bytes of
+// Cost (defaults): RAM = receive buffer 256 + forward buffer 32 + transmit queue 32 + about 120 bytes of
 // state and counters; the VR table and DEFKEY table are the caller's. Per received byte O(1).
 // `receive`/`transmit` may run in an ISR; see transport.hpp for sharing with the main loop.
 #pragma once
@@ -108,7 +108,7 @@ class receive_buffer {
   void begin() noexcept { staged_ = 0; }
   bool put(std::uint8_t c) noexcept {
     if (!fifo_.push(c)) return false;
-    ++staged_;
+    ++staged_;  // at most Capacity <= 65535
     return true;
   }
   byte_view commit() noexcept {  // the characters may wrap round the buffer: no contiguous view
@@ -126,11 +126,11 @@ class receive_buffer {
 
  private:
   byte_fifo<Capacity> fifo_;
-  std::size_t staged_ = 0;
+  std::uint16_t staged_ = 0;
 };
 
-template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 48,
-          std::size_t TransmitCapacity = 48, class Crc = crc16_ccitt_false>
+template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
+          std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false>
 class motion_coordinator final : public byte_port {
  public:
   /// `vr` receives direct variable transfers (through its write policy); `defkey` translates GET#3.
