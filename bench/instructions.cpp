@@ -171,12 +171,24 @@ struct workload {
   std::uint64_t (*run)(std::size_t repeats);
 };
 
+// Every message decoded, none in error, and every character delivered (a character stream's messages carry
+// characters_per_message each; a variable stream's none).
+void check(const tally& t, const std::vector<std::uint8_t>& stream, std::size_t repeats) {
+  const std::uint64_t messages = repeats * tb::messages_per_stream;
+  const bool characters =
+      ring::type_of(stream[0]) == static_cast<std::uint8_t>(ring::message_type::character);
+  if (t.other != 0 || t.messages != messages ||
+      t.characters != (characters ? messages * tb::characters_per_message : 0)) {
+    fail("decoder results are wrong");
+  }
+}
+
 std::uint64_t decoder_bytewise(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
   ring::decoder<> d;
   tally t;
   for (std::size_t r = 0; r < repeats; ++r)
     trionet_measured_decoder_bytewise(d, stream.data(), stream.size(), t);
-  if (t.other != 0 || t.messages != repeats * tb::messages_per_stream) fail("decoder results are wrong");
+  check(t, stream, repeats);
   sink = t.characters + t.fields;
   return repeats * stream.size();
 }
@@ -185,7 +197,7 @@ std::uint64_t decoder_bulk(const std::vector<std::uint8_t>& stream, std::size_t 
   ring::decoder<> d;
   tally t;
   for (std::size_t r = 0; r < repeats; ++r) trionet_measured_decoder_bulk(d, stream.data(), stream.size(), t);
-  if (t.other != 0 || t.messages != repeats * tb::messages_per_stream) fail("decoder results are wrong");
+  check(t, stream, repeats);
   sink = t.characters + t.fields;
   return repeats * stream.size();
 }
