@@ -17,7 +17,7 @@
 //     frame exactly once (the receive counters add up to the frames fed), and a written VR holds the value;
 //   - a send either fails for the stated reason with no frame handed to the port, or hands the port one
 //     frame on the exchange identifier from this node to the destination that decodes to the rounded value;
-//     the send counters add up to the frames handed to the port; a decimal tie rounds away from zero
+//     the send counters add up to the frames handed to the port; a failed encode writes nothing; a decimal tie rounds away from zero
 //     (PROTOCOL.md 2.2: 2.34565 -> 2.3457), checked with integer arithmetic.
 #include <cmath>
 #include <cstddef>
@@ -203,6 +203,12 @@ class harness {
       }
       status = node_.send_to_node(destination, vr, value);
       expected_value = to_vr_value(value);
+      // The encoder itself: on any error nothing is written.
+      std::uint8_t out[vr_message_size];
+      std::memset(out, 0xEE, sizeof out);
+      if (encode_vr(vr, value, out) != encode_error::none) {
+        for (std::uint8_t b : out) FUZZ_CHECK(b == 0xEE);
+      }
       if (tie) {  // independent of the codec's arithmetic: exact decimal rounding
         FUZZ_CHECK(expected_value.error == encode_error::none);
         FUZZ_CHECK(expected_value.value.negative == ((how & 32u) != 0));

@@ -10,6 +10,7 @@
 //   - a decoded message is in range (hops 1..15, type 1..4, characters 1..Max and each < 128, vr <= 16383,
 //     offset 1..15, mode 0 or 127) and decode -> encode -> decode is the identity: the encoder writes
 //     exactly the input bytes the message came from, and a fresh decoder reads them back as the same message;
+//     into a buffer one byte short the encoder fails and writes nothing;
 //   - with the decoder's own character buffer there is never `no_room`;
 //   - whatever came before, the golden frame that follows is decoded (sync recovery at the next header).
 // Run for a small capacity (8) so that over-long character transfers are common, and for the default (256).
@@ -120,6 +121,13 @@ void check_result(const owned_result& r, const std::uint8_t* data) {
       FUZZ_CHECK(encoded.length == frame_length(m));
       FUZZ_CHECK(encoded.length <= r.at + 1);
       FUZZ_CHECK(std::memcmp(frame, data + r.at + 1 - encoded.length, encoded.length) == 0);
+
+      // A buffer one byte short: an error, and nothing written.
+      std::uint8_t short_frame[sizeof frame];
+      std::memset(short_frame, 0xEE, sizeof short_frame);
+      const encode_result refused = encode(trionet::byte_buffer(short_frame, encoded.length - 1), m);
+      FUZZ_CHECK(!refused && refused.error == encode_error::buffer_too_small && refused.length == 0);
+      for (std::uint8_t b : short_frame) FUZZ_CHECK(b == 0xEE);
 
       // encode -> decode: a fresh decoder reads the same message, on the last byte only.
       decoder<Max> again;

@@ -5,7 +5,7 @@
 //   0, 1  receive the next (op & 63) + 1 input bytes (raw bytes from the fibre)
 //   2     receive one well-formed message built from the input (type op & 3, hops ((op >> 2) & 7) + 1)
 //   3     PRINT #n (n = 10 + (op & 15), 25 is invalid): text from the input, 7-bit unless op & 16
-//   4     SEND: variable, keypad offset, keypad mode, or an out-of-range value (op & 3)
+//   4     SEND: variable, keypad offset, keypad mode, or an out-of-range value / a raw Q32.32 (op & 3)
 //   5     GET #3 / GET #4 (op & 16), (op & 15) + 1 times; the 16th is GET on a bad channel
 //   6     pull (op & 31) + 1 bytes from the MC's transmitter
 //   7     clear NETSTAT, KEY#, keypad press/release, pull from the keypad (op & 7)
@@ -391,6 +391,13 @@ class harness {
         double value = static_cast<double>(static_cast<std::int32_t>(in.u32())) / 65536.0;
         if ((op & 3u) == 3) {
           const std::uint8_t pick = in.byte();
+          if ((pick & 4u) != 0) {  // the integer-only form: any Q32.32 value is in range
+            const auto raw = static_cast<std::int64_t>(static_cast<std::uint64_t>(in.u32()) << 32 | in.u32());
+            const send_result result = mc_.send_variable_q32(n, vr, raw);
+            if (vr > max_vr) errors.push_back(send_result::vr_out_of_range);
+            sent(result, errors, message::variable(hops, vr, raw));
+            break;
+          }
           value = pick % 3 == 0 ? 1e300 : pick % 3 == 1 ? -2147483648.5 : 2147483647.99999999;
         }
         const q32_result q = q32_from_double(value);
