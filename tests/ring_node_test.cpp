@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -269,6 +271,8 @@ TEST(RingMotionCoordinator, SendCallsRejectOutOfRangeBeforeQueuingAByte) {
   EXPECT_EQ(mc.print(10, "caf\xc3\xa9"), ring::send_result::character_out_of_range);
   EXPECT_EQ(mc.send_variable(10, 16384, 1.0), ring::send_result::vr_out_of_range);
   EXPECT_EQ(mc.send_variable(10, 1, 3e9), ring::send_result::value_out_of_range);
+  EXPECT_EQ(mc.send_variable(10, 16384, 3e9), ring::send_result::vr_out_of_range);  // address, vr, value
+  EXPECT_EQ(mc.send_variable(9, 16384, 3e9), ring::send_result::bad_address);
   EXPECT_EQ(mc.send_variable(8, 1, 1.0), ring::send_result::bad_address);
   EXPECT_EQ(mc.send_keypad_offset(10, 9), ring::send_result::offset_out_of_range);
   EXPECT_EQ(mc.send_keypad_offset(10, 25), ring::send_result::offset_out_of_range);
@@ -532,4 +536,64 @@ TEST(RingMotionCoordinator, Q32TableAndSendWithoutFloatingPoint) {
   EXPECT_EQ(a.send_variable_q32(25, 1, 0), ring::send_result::bad_address);
   feed(b, drain(a));
   EXPECT_EQ(vr_b[200], ring::q32_from_integer(99) + 1);  // exact: no double on the way
+}
+
+// The bulk forms (a DMA buffer in, a transmit buffer out) behave exactly as the byte-at-a-time forms.
+TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
+  std::mt19937_64 rng(99);
+  for (int round = 0; round < 200; ++round) {
+    std::vector<std::uint8_t> stream;
+    for (int i = 0; i < 30; ++i) {
+      const auto hops = static_cast<std::uint8_t>(1 + rng() % 3);
+      std::vector<std::uint8_t> frame;
+      switch (rng() % 3) {
+        case 0:
+          frame = chars(hops, std::string(1 + rng() % 40, static_cast<char>('a' + rng() % 26)));
+          break;
+        case 1:
+          frame = frame_of(ring::message::variable(hops, static_cast<std::uint16_t>(rng() % 20),
+                                                   static_cast<std::int64_t>(rng())));
+          break;
+        default:
+          frame = frame_of(ring::message::keypad_mode(hops, 127));
+          break;
+      }
+      stream.insert(stream.end(), frame.begin(), frame.end());
+    }
+    for (int i = 0; i < 10; ++i)
+      stream[rng() % stream.size()] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
+    trionet::vr_table<16> vr_one, vr_bulk;
+    ring::motion_coordinator<64, 16, 24> one(vr_one), bulk(vr_bulk);
+    std::vector<std::uint8_t> out_one, out_bulk;
+    std::size_t at = 0;
+    int step = 0;
+    while (at < stream.size()) {
+      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 50);
+      for (std::size_t i = 0; i < n; ++i) one.receive(stream[at + i]);
+      bulk.receive(byte_view(stream.data() + at, n));
+      at += n;
+      if (++step % 3 == 0) {  // own traffic now and then
+        const int address = 10 + static_cast<int>(rng() % 2);
+        ASSERT_EQ(one.print(address, "OWN"), bulk.print(address, "OWN"));
+      }
+      const std::size_t pull = rng() % 64;
+      std::uint8_t b = 0;
+      for (std::size_t i = 0; i < pull && one.transmit(b); ++i) out_one.push_back(b);
+      std::uint8_t buffer[64];
+      const std::size_t got = bulk.transmit(trionet::byte_buffer(buffer, pull));
+      out_bulk.insert(out_bulk.end(), buffer, buffer + got);
+      ASSERT_EQ(out_one, out_bulk) << "round " << round;
+    }
+    EXPECT_EQ(drain(one), drain(bulk));
+    EXPECT_EQ(one.netstat(), bulk.netstat());
+    EXPECT_EQ(read_all(one, 4), read_all(bulk, 4));
+    EXPECT_EQ(std::memcmp(one.forwarding_counters().bytes, bulk.forwarding_counters().bytes,
+                          sizeof one.forwarding_counters().bytes),
+              0);
+    EXPECT_EQ(one.counters().frame_errors, bulk.counters().frame_errors);
+    EXPECT_EQ(one.counters().crc_errors, bulk.counters().crc_errors);
+    EXPECT_EQ(one.counters().variables_written, bulk.counters().variables_written);
+    EXPECT_EQ(one.forwarding_counters().forwards_lost, bulk.forwarding_counters().forwards_lost);
+    for (std::size_t v = 0; v < 16; ++v) EXPECT_EQ(vr_one[v], vr_bulk[v]);
+  }
 }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace trionet {
 
@@ -34,6 +35,26 @@ class byte_fifo {
     head_ = static_cast<std::uint16_t>(wrap(head_ + 1u));
     --size_;
     return true;
+  }
+
+  /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. O(n) with memcpy.
+  std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
+    if (n > Capacity - size_) n = Capacity - size_;
+    const std::size_t tail = wrap(head_ + size_);
+    const std::size_t first = n < Capacity - tail ? n : Capacity - tail;
+    if (first != 0) std::memcpy(data_ + tail, bytes, first);
+    if (n != first) std::memcpy(data_, bytes + first, n - first);
+    size_ = static_cast<std::uint16_t>(size_ + n);
+    return n;
+  }
+
+  /// The oldest bytes that lie contiguously in the buffer (all of them unless they wrap round).
+  const std::uint8_t* front() const noexcept { return data_ + head_; }
+  std::size_t front_size() const noexcept { return size_ < Capacity - head_ ? size_ : Capacity - head_; }
+  /// Removes the `n` oldest bytes. Precondition: n <= size().
+  void consume(std::size_t n) noexcept {
+    head_ = static_cast<std::uint16_t>(wrap(head_ + n));
+    size_ = static_cast<std::uint16_t>(size_ - n);
   }
 
   /// The i-th oldest byte. Precondition: i < size().

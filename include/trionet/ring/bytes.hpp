@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <optional>
 
 namespace trionet::ring {
@@ -55,6 +56,33 @@ constexpr std::uint8_t make_end_of_message(std::uint8_t hops) noexcept {
 /// The same control byte (header or end of message) with A replaced: what a forwarding node sends.
 constexpr std::uint8_t with_hops(std::uint8_t control_byte, std::uint8_t hops) noexcept {
   return static_cast<std::uint8_t>((control_byte & 0x87) | ((hops & 0x0F) << 3));
+}
+
+/// The first control byte (header or end of message) in [first, last), or `last`: the end of a run of data.
+/// Eight bytes at a time where words are 64-bit.
+inline const std::uint8_t* find_control(const std::uint8_t* first, const std::uint8_t* last) noexcept {
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if constexpr (sizeof(void*) >= 8) {
+    if (last - first >= 8) {
+      const auto controls_at = [](const std::uint8_t* at) {
+        std::uint64_t word;
+        std::memcpy(&word, at, sizeof word);
+        return word & 0x8080808080808080ull;
+      };
+      for (; last - first >= 8; first += 8) {
+        const std::uint64_t controls = controls_at(first);
+        if (controls != 0) return first + (__builtin_ctzll(controls) >> 3);  // the lowest address first
+      }
+      if (first == last) return last;
+      // The last 8 bytes, overlapping what is known to be data: the first control in them is at or after
+      // `first`.
+      const std::uint64_t controls = controls_at(last - 8);
+      return controls == 0 ? last : last - 8 + (__builtin_ctzll(controls) >> 3);
+    }
+  }
+#endif
+  while (first != last && is_data(*first)) ++first;
+  return first;
 }
 
 /// BASIC address n (10..24) to hop count (1..15); nothing for any other n.

@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
@@ -82,11 +83,21 @@ struct decode_result {
 };
 
 /// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes (no checks).
-constexpr void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
+inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
   vr = static_cast<std::uint16_t>(data[0] | (data[1] << 7));
-  std::uint64_t bits = 0;
-  for (std::size_t k = 10; k-- > 0;) bits = (bits << 7) | data[2 + k];
-  value = static_cast<std::int64_t>(bits);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  // X0..X7 as one little-endian word, their 7-bit groups squeezed together in three steps: 56 bits.
+  std::uint64_t w = 0;
+  std::memcpy(&w, data + 2, sizeof w);
+  w = (w & 0x007F007F007F007Full) | ((w & 0x7F007F007F007F00ull) >> 1);
+  w = (w & 0x00003FFF00003FFFull) | ((w & 0x3FFF00003FFF0000ull) >> 2);
+  w = (w & 0x000000000FFFFFFFull) | ((w & 0x0FFFFFFF00000000ull) >> 4);
+  value = static_cast<std::int64_t>(w | static_cast<std::uint64_t>(data[10]) << 56 |
+                                    static_cast<std::uint64_t>(data[11]) << 63);
+#else
+  const auto x = [data](unsigned k) { return static_cast<std::uint64_t>(data[2 + k]) << (7 * k); };
+  value = static_cast<std::int64_t>(x(0) | x(1) | x(2) | x(3) | x(4) | x(5) | x(6) | x(7) | x(8) | x(9));
+#endif
 }
 
 /// The default character store: a plain array of N characters, so a decoded message's `text` is contiguous.
@@ -95,6 +106,7 @@ constexpr void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, s
 /// if the message turns out valid:
 ///   void begin();                  // a character transfer begins
 ///   bool put(std::uint8_t c);      // one more character; false if there is no room
+///   std::size_t put(const std::uint8_t* c, std::size_t n);  // many: how many fitted (a prefix)
 ///   byte_view commit();            // the message is valid: keep it (view of it, or empty if not contiguous)
 ///   void abort();                  // the message is discarded: forget what `put` took since `begin`
 /// A node can stage characters straight into its receive buffer this way, so no message is held twice.
@@ -107,6 +119,12 @@ class character_buffer {
     data_[length_++] = c;
     return true;
   }
+  std::size_t put(const std::uint8_t* c, std::size_t n) noexcept {
+    if (n > N - length_) n = N - length_;
+    std::memcpy(data_ + length_, c, n);
+    length_ += n;
+    return n;
+  }
   byte_view commit() noexcept { return byte_view(data_, length_); }
   void abort() noexcept { length_ = 0; }
 
@@ -118,7 +136,8 @@ class character_buffer {
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
 template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
 class basic_decoder {
-  static_assert(MaxCharacters >= 1 && MaxCharacters < 65535, "a character transfer holds 1..65534 characters");
+  static_assert(MaxCharacters >= 1 && MaxCharacters < 65535,
+                "a character transfer holds 1..65534 characters");
 
  public:
   static constexpr std::size_t max_characters = MaxCharacters;
@@ -146,11 +165,12 @@ class basic_decoder {
       if (was == state::skipping) return {};
       return error(frame_error::stray_eom);
     }
-    const decode_result interrupted = interrupt();
+    const bool was_open = state_ == state::in_message;
+    if (was_open && type_ == 1) store_.abort();
     const std::uint8_t hops = hops_of(byte);
     if (hops == 0) {
       state_ = state::skipping;
-      return interrupted.status != decode_status::incomplete ? interrupted : error(frame_error::zero_hops);
+      return error(was_open ? frame_error::interrupted : frame_error::zero_hops);
     }
     state_ = state::in_message;
     hops_ = hops;
@@ -158,7 +178,7 @@ class basic_decoder {
     length_ = 0;
     no_room_ = false;
     if (type_ == 1) store_.begin();
-    return interrupted;
+    return was_open ? error(frame_error::interrupted) : decode_result{};
   }
 
   /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
@@ -168,8 +188,18 @@ class basic_decoder {
     const std::uint8_t* p = bytes.begin();
     const std::uint8_t* const end = bytes.end();
     while (p != end) {
-      if (state_ == state::in_message) {  // the common case: a run of message data
-        while (p != end && is_data(*p)) store(*p++);
+      if (state_ != state::in_message && end - p >= 16 && is_whole_variable_transfer(p)) {
+        // A whole direct variable transfer in the buffer: checked in place, as the bytes one by one would be.
+        state_ = state::idle;
+        const decode_result result = check_variable(hops_of(*p), p + 1);
+        p += 16;
+        sink(result);
+        continue;
+      }
+      if (state_ == state::in_message) {  // the common case: a run of message data, copied whole
+        const std::uint8_t* const run = find_control(p, end);
+        store(p, static_cast<std::size_t>(run - p));
+        p = run;
         if (p == end) break;
       }
       const decode_result result = push(*p++);
@@ -216,6 +246,19 @@ class basic_decoder {
     }
   }
 
+  // The same as `store(byte)` for each of `n` data bytes, with one copy.
+  void store(const std::uint8_t* data, std::size_t n) noexcept {
+    const std::size_t limit = type_ == 1 ? MaxCharacters : variable_data_length;
+    const std::size_t room = length_ < limit ? limit - length_ : 0;
+    const std::size_t take = n < room ? n : room;
+    if (type_ == 1) {
+      if (!no_room_ && take != 0 && store_.put(data, take) != take) no_room_ = true;
+    } else if (take != 0) {
+      std::memcpy(payload_ + length_, data, take);
+    }
+    length_ = static_cast<std::uint16_t>(n > room ? limit + 1 : length_ + take);
+  }
+
   static decode_result error(frame_error reason) noexcept {
     decode_result result;
     result.status = decode_status::frame_error;
@@ -248,20 +291,9 @@ class basic_decoder {
         if (length_ == 0 || length_ > MaxCharacters) return error(frame_error::bad_length);
         if (no_room_) result.status = decode_status::no_room;
         return result;
-      case message_type::variable: {
+      case message_type::variable:
         if (length_ != variable_data_length) return error(frame_error::bad_length);
-        read_variable_data(payload_, result.msg.vr, result.msg.value);
-        std::uint16_t crc = Crc::initial;
-        for (std::size_t i = 0; i < variable_crc_length; ++i) crc = Crc::update(crc, payload_[i]);
-        crc = Crc::finish(crc);
-        const auto received = static_cast<std::uint16_t>(payload_[12] | (payload_[13] << 8));
-        if (crc_wire_bits(crc) != received) {
-          result.status = decode_status::crc_error;
-          return result;
-        }
-        if ((payload_[11] & 0x7E) != 0) return error(frame_error::bad_field);
-        return result;
-      }
+        return check_variable(hops_, payload_);
       case message_type::keypad_offset:
         if (length_ != 1) return error(frame_error::bad_length);
         if (!valid_hops(payload_[0])) return error(frame_error::bad_field);
@@ -276,6 +308,31 @@ class basic_decoder {
         return result;
     }
     return error(frame_error::unknown_type);
+  }
+
+  // Header A = hops (not 0), type 2; 14 data bytes; end of message with the same A.
+  static bool is_whole_variable_transfer(const std::uint8_t* p) noexcept {
+    if (type_of(p[0]) != 2 || p[15] != make_end_of_message(hops_of(p[0])) || hops_of(p[0]) == 0 ||
+        is_data(p[0])) {
+      return false;
+    }
+    return find_control(p + 1, p + 15) == p + 15;
+  }
+
+  // The checks of a direct variable transfer whose 14 data bytes are well framed: CRC, then X9.
+  static decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) noexcept {
+    decode_result result;
+    result.status = decode_status::message;
+    result.msg.type = message_type::variable;
+    result.msg.hops = hops;
+    read_variable_data(data, result.msg.vr, result.msg.value);
+    const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
+    if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
+      result.status = decode_status::crc_error;
+      return result;
+    }
+    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
+    return result;
   }
 
   state state_ = state::idle;

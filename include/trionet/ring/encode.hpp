@@ -88,9 +88,7 @@ constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int
     out[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
     bits >>= 7;
   }
-  std::uint16_t crc = Crc::initial;
-  for (std::size_t i = 0; i < variable_crc_length; ++i) crc = Crc::update(crc, out[i]);
-  crc = Crc::finish(crc);
+  const std::uint16_t crc = crc_of<Crc, variable_crc_length>(out);
   out[12] = static_cast<std::uint8_t>(crc & 0x7F);
   out[13] = static_cast<std::uint8_t>((crc >> 8) & 0x7F);
 }

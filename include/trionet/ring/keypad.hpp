@@ -60,6 +60,9 @@ class keypad final : public byte_port {
 
   // ---- the link (byte_port) ----
 
+  using byte_port::receive;  // the bulk forms, one byte at a time
+  using byte_port::transmit;
+
   void receive(std::uint8_t byte) noexcept override {
     const route r = link_.receive(byte);
     if (r == route::local) {

@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "trionet/fifo.hpp"
 #include "trionet/ring/bytes.hpp"
@@ -56,6 +57,56 @@ class link {
     const route r = route_byte(byte);
     ++counters_.bytes[static_cast<std::size_t>(r)];
     return r;
+  }
+
+  /// A run of data bytes (no header or end of message among them): the same as `receive` for each, with one
+  /// copy. Returns where they went; if a forwarded message overflows part-way, the byte that did not fit is
+  /// `lost`, the rest `dropped`, and the result is `lost`.
+  [[nodiscard]] route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
+    const auto count = [this](route r, std::size_t k) {
+      counters_.bytes[static_cast<std::size_t>(r)] += static_cast<std::uint32_t>(k);
+    };
+    switch (receiving_) {
+      case receiving::local:
+        count(route::local, n);
+        return route::local;
+      case receiving::discard:
+        count(route::dropped, n);
+        return route::dropped;
+      case receiving::forward:
+        break;
+    }
+    const std::size_t pushed = forward_.push(data, n);
+    count(route::forwarded, pushed);
+    const std::size_t incoming = incoming_ + pushed;
+    incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
+    if (pushed == n) return route::forwarded;
+    count(lose(), 1);
+    count(route::dropped, n - pushed - 1);
+    return route::lost;
+  }
+
+  /// Fills `out` with up to `capacity` bytes for the link: the same bytes as that many calls of `transmit`,
+  /// runs of message data copied whole.
+  [[nodiscard]] std::size_t transmit(std::uint8_t* out, std::size_t capacity) noexcept {
+    std::size_t n = 0;
+    const auto copy_data = [&](auto& fifo) {
+      const std::uint8_t* const front = fifo.front();
+      const std::size_t room = capacity - n;
+      const std::size_t available = fifo.front_size() < room ? fifo.front_size() : room;
+      const auto k = static_cast<std::size_t>(find_control(front, front + available) - front);
+      std::memcpy(out + n, front, k);
+      fifo.consume(k);
+      n += k;
+      return k != 0;
+    };
+    while (n < capacity) {
+      if (sending_ == sending::forward && copy_data(forward_)) continue;
+      if (sending_ == sending::own && copy_data(queue_)) continue;
+      if (!transmit(out[n])) break;  // control bytes, message boundaries, waiting
+      ++n;
+    }
+    return n;
   }
 
   /// The next byte for the link, if any.
@@ -172,9 +223,14 @@ class link {
 
   route forward(std::uint8_t byte) noexcept {
     if (forward_.push(byte)) {
-      if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity <= 65535: never wraps
+      if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity < 65535: never wraps
       return route::forwarded;
     }
+    return lose();
+  }
+
+  // The forwarded message being received does not fit: it is lost.
+  route lose() noexcept {
     ++counters_.forwards_lost;
     if (incoming_ <= forward_.size()) forward_.drop_back(incoming_);  // none of it has gone out yet
     forward_open_ = false;

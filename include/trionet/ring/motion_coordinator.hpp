@@ -111,6 +111,11 @@ class receive_buffer {
     ++staged_;  // at most Capacity <= 65535
     return true;
   }
+  std::size_t put(const std::uint8_t* c, std::size_t n) noexcept {
+    const std::size_t pushed = fifo_.push(c, n);
+    staged_ = static_cast<std::uint16_t>(staged_ + pushed);
+    return pushed;
+  }
   byte_view commit() noexcept {  // the characters may wrap round the buffer: no contiguous view
     staged_ = 0;
     return {};
@@ -148,7 +153,29 @@ class motion_coordinator final : public byte_port {
     if (r == route::lost) netstat_ |= netstat_tx_buffer_error;
     if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
   }
+  void receive(byte_view bytes) noexcept override {
+    const std::uint8_t* p = bytes.begin();
+    const std::uint8_t* const end = bytes.end();
+    while (p != end) {
+      if (!is_data(*p)) {
+        receive(*p++);
+        continue;
+      }
+      const std::uint8_t* const run = find_control(p, end);
+      const auto n = static_cast<std::size_t>(run - p);
+      const route r = link_.receive_data(p, n);
+      if (r == route::local) {
+        decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
+      } else if (r == route::lost) {
+        netstat_ |= netstat_tx_buffer_error;
+      }
+      p = run;
+    }
+  }
   [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept override { return link_.transmit(byte); }
+  [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept override {
+    return link_.transmit(out.data(), out.size());
+  }
   [[nodiscard]] bool transmit_pending() const noexcept override { return link_.transmit_pending(); }
 
   // ---- PRINT# and SEND (BASIC addresses 10..24) ----
@@ -166,7 +193,10 @@ class motion_coordinator final : public byte_port {
   /// SEND(n,1,vr,value): a direct variable transfer; `value` is rounded to Q32.32.
   [[nodiscard]] send_result send_variable(int n, std::uint16_t vr, double value) noexcept {
     const q32_result q = q32_from_double(value);
-    if (!q) return hops_from_basic_address(n) ? send_result::value_out_of_range : send_result::bad_address;
+    if (!q) {  // the same order of checks as send_variable_q32: address, vr, then value
+      if (!hops_from_basic_address(n)) return send_result::bad_address;
+      return vr > max_vr ? send_result::vr_out_of_range : send_result::value_out_of_range;
+    }
     return send_variable_q32(n, vr, q.raw);
   }
 
