@@ -164,10 +164,14 @@ def main():
                     "BM_ring_decoder_variables_bulk", "decoder_variables_bulk", 12)
     instruction_row("Ring decoder, variable transfers (CRC included), byte at a time",
                     "BM_ring_decoder_variables_bytewise", "decoder_variables_bytewise", 12)
-    instruction_row("MC node receive-and-forward (`receive` + `transmit`), character stream, hops 2",
+    instruction_row("MC node receive-and-forward (`receive(byte)` + `transmit(byte&)`), character stream, hops 2",
                     "BM_ring_mc_forward_characters", "mc_forward_characters", 10)
     instruction_row("MC node receive-and-forward, variable transfers, hops 2",
                     "BM_ring_mc_forward_variables", "mc_forward_variables", 10)
+    instruction_row("MC node receive-and-forward, bulk (`receive(byte_view)` of 16 bytes + `transmit(byte_buffer)`), "
+                    "character stream", "BM_ring_mc_forward_characters_bulk", "mc_forward_characters_bulk", 10)
+    instruction_row("MC node receive-and-forward, bulk, variable transfers",
+                    "BM_ring_mc_forward_variables_bulk", "mc_forward_variables_bulk", 10)
     instruction_row("MC node, character transfers delivered to it (timed: with GET# reading; counted: `receive` only)",
                     "BM_ring_mc_deliver_characters_with_get", "mc_deliver_characters", None)
     instruction_row("MC node, variable transfers delivered to it (decode, CRC, write VR())",
@@ -213,7 +217,8 @@ def main():
     # Where the instructions go, for the workloads with a target.
     hot = []
     for workload in ("decoder_characters_bulk", "decoder_characters_bytewise", "decoder_variables_bulk",
-                     "decoder_variables_bytewise", "mc_forward_characters", "mc_forward_variables"):
+                     "decoder_variables_bytewise", "mc_forward_characters", "mc_forward_variables",
+                     "mc_forward_characters_bulk", "mc_forward_variables_bulk"):
         path = os.path.join(args.callgrind_dir, f"{workload}.out")
         total, by_file, lines = hot_lines(path, args.root, 5)
         hot.append((workload, total, by_file, lines))

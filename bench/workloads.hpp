@@ -23,6 +23,11 @@ constexpr std::size_t characters_per_message = 200;
 /// in L1/L2.
 constexpr std::size_t messages_per_stream = 16;
 
+/// Bytes per call of a node's bulk `receive(byte_view)`, as a UART DMA or a read() might deliver them; the
+/// node's bulk `transmit(byte_buffer)` is then given room for twice that. Below the default forward buffer
+/// (32 bytes), so cut-through forwarding never overflows.
+constexpr std::size_t dma_chunk = 16;
+
 /// A deterministic generator (xorshift32), so every run measures the same bytes.
 class pseudo_random {
  public:
