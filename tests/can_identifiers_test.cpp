@@ -166,3 +166,18 @@ TEST(CanIdentifierScheme, MisuseIsReportedWithAReason) {
 }
 
 }  // namespace
+
+TEST(CanIdentifiers, EveryStandardIdentifierRoutesAsTheDivisionSays) {
+  for (std::uint8_t n = 2; n <= 11; ++n) {
+    for (std::uint32_t id = 0; id <= 0x7FF; ++id) {
+      const auto r = trionet::can::route_of(n, id);
+      const std::uint32_t receiver = id / 10, channel = id % 10 + 1;
+      const bool ours = receiver >= 1 && receiver <= n && channel < n;
+      ASSERT_EQ(r.error == trionet::can::scheme_error::none, ours) << int{n} << " " << id;
+      if (ours) {
+        ASSERT_EQ(r.value.receiver, receiver);
+        ASSERT_EQ(r.value.receive_channel, channel);
+      }
+    }
+  }
+}

@@ -218,3 +218,31 @@ TEST(CanVrCodec, UsableAtCompileTime) {
 }
 
 }  // namespace
+
+TEST(CanVrCodec, Q32ValuesRoundWithIntegersOnly) {
+  using trionet::can::to_vr_value_q32;
+  const auto check = [](std::int64_t raw, bool negative, std::uint32_t integer, std::uint16_t fraction) {
+    const auto v = to_vr_value_q32(raw);
+    EXPECT_EQ(v.negative, negative) << raw;
+    EXPECT_EQ(v.integer_part, integer) << raw;
+    EXPECT_EQ(v.fraction, fraction) << raw;
+  };
+  check(std::int64_t{5} << 31, false, 2, 5000);     // 2.5
+  check(-(std::int64_t{5} << 30), true, 1, 2500);   // -1.25
+  check((std::int64_t{1} << 32) - 1, false, 1, 0);  // 0.99999999977 carries into 1.0000
+  check(-((std::int64_t{1} << 32) - 1), true, 1, 0);
+  check(214748, false, 0, 0);               // 0.0000499999: rounds to zero...
+  check(-214748, false, 0, 0);              // ... and zero has sign 0
+  check(214749, false, 0, 1);               // 0.0000500003: up
+  check(INT64_MIN, true, 2147483648u, 0);   // -2^31
+  check(INT64_MAX, false, 2147483648u, 0);  // 2^31 - 2^-32 rounds to 2^31
+  // Agrees with the double path wherever the double is exact.
+  for (std::int64_t raw : {std::int64_t{12345} << 20, -(std::int64_t{98765} << 16), std::int64_t{3} << 30}) {
+    const auto from_double = trionet::can::to_vr_value(static_cast<double>(raw) / 4294967296.0);
+    ASSERT_EQ(from_double.error, trionet::can::encode_error::none);
+    const auto from_q32 = to_vr_value_q32(raw);
+    EXPECT_EQ(from_q32.negative, from_double.value.negative);
+    EXPECT_EQ(from_q32.integer_part, from_double.value.integer_part);
+    EXPECT_EQ(from_q32.fraction, from_double.value.fraction);
+  }
+}

@@ -71,3 +71,14 @@ TEST(VrTable, Q32TableNeedsNoFloatingPoint) {
   EXPECT_EQ(guarded.write(0, network_value::from_q32(-1)), vr_write::refused);
   EXPECT_EQ(guarded.write(0, network_value::from_q32(1)), vr_write::written);
 }
+
+TEST(VrNetworkValue, DecimalFractionToQ32IsExactlyRoundedForEveryTenThousandth) {
+  for (std::uint32_t t = 0; t <= 9999; ++t) {
+    std::int64_t raw = 0;
+    ASSERT_TRUE(network_value::from_decimal(false, 0, static_cast<std::uint16_t>(t)).to_q32(raw));
+    const std::uint64_t expected = ((static_cast<std::uint64_t>(t) << 32) + 5000u) / 10000u;  // round half up
+    ASSERT_EQ(static_cast<std::uint64_t>(raw), expected) << t;
+  }
+  std::int64_t raw = 0;
+  EXPECT_FALSE(network_value::from_decimal(false, 0, 10000).to_q32(raw));
+}

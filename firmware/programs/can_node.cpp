@@ -2,13 +2,13 @@
 //
 // The CAN receive-FIFO interrupt hands every frame to trionet::can::vr_exchange_node, which writes VR() for
 // the frames addressed to this node (through a vr_table with the default write policy) and counts the rest.
-// Every SysTick (10 ms) the main loop sends VR(0), the axis position it keeps up to date, to the next node round
-// the ring (transmit channel 5) through a one-mailbox bxCAN port.
+// Every SysTick (10 ms) the main loop sends VR(0), the axis position it keeps up to date, to the next node
+// round the ring (transmit channel 5) through a one-mailbox bxCAN port.
 //
 // Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISRs and
-// main loop move frames without the library (and do the same double arithmetic on the position, so that the
-// application's own floating point is not charged to the library). The difference between the two images is
-// the CAN codec + node, including the software floating-point routines the node's double interface needs.
+// main loop move frames without the library (and do the same integer arithmetic on the position). The
+// difference between the two images is the CAN codec + node. VRs are Q32.32 and values go out through the
+// parts-based interface, so the image has no floating point.
 #include <cstdint>
 
 #include "board.hpp"
@@ -28,7 +28,7 @@ volatile std::uint32_t frames_received = 0;
 
 #if TRIONET_FIRMWARE_BASELINE
 volatile std::uint32_t last_identifier = 0;
-volatile double position = 0.0;
+volatile std::int64_t position = 0;  // Q32.32
 
 #else
 namespace can = trionet::can;
@@ -52,14 +52,16 @@ class bxcan_port final : public can::port {
   }
 };
 
-trionet::vr_table<64> vr;
+trionet::vr_table<64, std::int64_t> vr;  // Q32.32 VRs: no floating point anywhere in the image
 bxcan_port can_port;
 can::vr_exchange_node node(can::make_node_address(node_count, this_node).address, can_port, vr);
 #endif
 
 }  // namespace
 
-extern "C" void SysTick_Handler() { tick = true; }
+extern "C" void SysTick_Handler() {
+  tick = true;
+}
 
 extern "C" void CAN0_RX0_IRQHandler() {
   while (board::can0::rx_pending()) {
@@ -87,14 +89,17 @@ int main() {
     }
     tick = false;
 #if TRIONET_FIRMWARE_BASELINE
-    position = position + 0.001;  // the same application arithmetic as below
+    position = position + 4294967;  // the same application arithmetic as below (0.001 in Q32.32)
     if (board::can0::tx_free()) {
       const board::can0::raw_frame fixed{20, 8, {0, 0, 0, 0, 0, 0, 0, 0}};
       board::can0::write(fixed);
     }
 #else
-    vr[position_vr] += 0.001;  // the axis moves
-    static_cast<void>(node.send_on_channel(next_node_channel, position_vr, vr[position_vr]));
+    vr[position_vr] += 4294967;                 // the axis moves 0.001 (Q32.32)
+    can::vr_message message;
+    message.vr = position_vr;
+    message.value = can::to_vr_value_q32(vr[position_vr]);
+    static_cast<void>(node.send_on_channel(next_node_channel, message));
 #endif
   }
 }

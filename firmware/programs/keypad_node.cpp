@@ -38,7 +38,9 @@ ring::keypad<> node;
 
 }  // namespace
 
-extern "C" void SysTick_Handler() { tick = true; }
+extern "C" void SysTick_Handler() {
+  tick = true;
+}
 
 extern "C" void UART0_IRQHandler() {
   while (board::uart0::rx_ready()) {

@@ -3,13 +3,13 @@
 // The PL011 interrupt is the node's link (see include/trionet/transport.hpp): every received byte goes to
 // `node.receive` (which forwards, or decodes, fills the receive buffer and writes VR()), and while the
 // transmitter has room it takes bytes from `node.transmit`; the transmit interrupt is switched off when the
-// node has nothing to send. The main loop is the user program: every SysTick (10 ms) it updates VR(0), the axis
-// position, and sends it to the next node (SEND(10,1,0,VR(0))); it echoes any characters that arrived
+// node has nothing to send. The main loop is the user program: every SysTick (10 ms) it updates VR(0), the
+// axis position, and sends it to the next node (SEND(10,1,0,VR(0))); it echoes any characters that arrived
 // (IF KEY#4 THEN GET#4 ... PRINT#10). The node is not internally synchronised, so the main loop masks
 // interrupts around its calls, as transport.hpp asks. Table-free CRC: the smallest firmware configuration.
 //
 // Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR and
-// main loop move bytes without the library (and do the same double arithmetic on the position). The
+// main loop move bytes without the library (and do the same integer arithmetic on the position). The
 // difference between the two images is the MC node: link, decoder, encoder, receive buffer, VR writes.
 #include <cstddef>
 #include <cstdint>
@@ -31,7 +31,7 @@ volatile bool tick = false;
 #if TRIONET_FIRMWARE_BASELINE
 volatile std::uint8_t last_byte = 0;
 volatile std::size_t bytes_waiting = 0;
-volatile double position = 0.0;
+volatile std::int64_t position = 0;  // Q32.32
 constexpr std::uint8_t fixed_frame[16] = {0x8a, 0x00, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x88};
 std::size_t transmitted = sizeof fixed_frame;  // index of the next byte to send
 
@@ -47,13 +47,17 @@ namespace ring = trionet::ring;
 constexpr int next_node = 10;  // BASIC address of the next node round the ring
 constexpr std::uint16_t position_vr = 0;
 
-trionet::vr_table<64> vr;
-ring::motion_coordinator<256, 48, 48, ring::crc16_ccitt_false_bitwise> node(vr);
+constexpr std::int64_t step = ring::q32_from_double(0.001).raw;  // computed at compile time
+
+trionet::vr_table<64, std::int64_t> vr;  // Q32.32 VRs: no floating point anywhere in the image
+ring::motion_coordinator<256, 32, 32, ring::crc16_ccitt_false_bitwise> node(vr);  // default capacities
 #endif
 
 }  // namespace
 
-extern "C" void SysTick_Handler() { tick = true; }
+extern "C" void SysTick_Handler() {
+  tick = true;
+}
 
 extern "C" void UART0_IRQHandler() {
   while (board::uart0::rx_ready()) {
@@ -89,16 +93,16 @@ int main() {
     }
     tick = false;
 #if TRIONET_FIRMWARE_BASELINE
-    position = position + 0.001;  // the same application arithmetic as below
+    position = position + 4294967;  // the same application arithmetic as below (0.001 in Q32.32)
     board::disable_interrupts();
     if (bytes_waiting != 0) bytes_waiting = 0;
     transmitted = 0;
     board::uart0::enable_tx_interrupt(true);
     board::enable_interrupts();
 #else
-    vr[position_vr] += 0.001;  // the axis moves
+    vr[position_vr] += step;  // the axis moves
     board::disable_interrupts();
-    static_cast<void>(node.send_variable(next_node, position_vr, vr[position_vr]));
+    static_cast<void>(node.send_variable_q32(next_node, position_vr, vr[position_vr]));
     std::uint8_t echo[16];
     std::size_t length = 0;
     while (length < sizeof echo && node.key(4)) echo[length++] = node.get(4).value;

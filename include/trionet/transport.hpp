@@ -23,10 +23,7 @@
 // SEND, GET#, ...) from one context, or mask the UART interrupt around program-level calls.
 #pragma once
 
-#include <cstddef>
 #include <cstdint>
-
-#include "trionet/span.hpp"
 
 namespace trionet {
 
@@ -39,19 +36,6 @@ class byte_port {
   [[nodiscard]] virtual bool transmit(std::uint8_t& byte) noexcept = 0;
   /// True when `transmit` would give a byte: use it to (re-)enable a transmit interrupt.
   [[nodiscard]] virtual bool transmit_pending() const noexcept = 0;
-
-  /// Many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in order.
-  /// Nodes override it with a faster path for runs of message data.
-  virtual void receive(byte_view bytes) noexcept {
-    for (std::uint8_t byte : bytes) receive(byte);
-  }
-  /// Fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that many
-  /// calls of `transmit`, stopping at the first that has none.
-  [[nodiscard]] virtual std::size_t transmit(byte_buffer out) noexcept {
-    std::size_t n = 0;
-    while (n < out.size() && transmit(out[n])) ++n;
-    return n;
-  }
 
  protected:
   byte_port() = default;

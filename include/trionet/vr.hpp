@@ -57,13 +57,20 @@ struct network_value {
   }
 
   /// As Q32.32 with integer arithmetic only: exact for ring values; a decimal is rounded to the nearest
-  /// 2^-32 (ties away from zero). False when the value is outside [-2^31, 2^31 - 2^-32].
+  /// 2^-32 (ties away from zero). False when the value is outside [-2^31, 2^31 - 2^-32] (or the fraction
+  /// is not 0..9999).
   constexpr bool to_q32(std::int64_t& raw) const noexcept {
     if (kind == encoding::q32) {
       raw = q32;
       return true;
     }
-    const std::uint64_t fraction = ((static_cast<std::uint64_t>(ten_thousandths) << 32) + 5000u) / 10000u;
+    if (ten_thousandths > 9999) return false;
+    // (t * 2^32 + 5000) / 10000 with 2^32 = 429496 * 10000 + 7296, the remainder's division done as an exact
+    // multiply-and-shift (n * ceil(2^40 / 10000) >> 40 is floor(n / 10000) for n < 2^27): no division
+    // routine.
+    const std::uint32_t n = static_cast<std::uint32_t>(ten_thousandths) * 7296u + 5000u;
+    const std::uint64_t fraction = static_cast<std::uint64_t>(ten_thousandths) * 429496u +
+                                   ((static_cast<std::uint64_t>(n) * 109951163u) >> 40);
     const std::uint64_t magnitude = (static_cast<std::uint64_t>(integer) << 32) + fraction;
     constexpr std::uint64_t limit = std::uint64_t{1} << 63;
     if (magnitude > limit || (!negative && magnitude == limit)) return false;
@@ -103,8 +110,8 @@ class vr_table final : public vr_store {
                 "VR values are double or Q32.32 (std::int64_t)");
 
  public:
-  vr_table() = default;
-  explicit vr_table(vr_write_policy_for<Value> policy, void* context = nullptr) noexcept
+  constexpr vr_table() noexcept = default;
+  constexpr explicit vr_table(vr_write_policy_for<Value> policy, void* context = nullptr) noexcept
       : policy_(policy), context_(context) {}
 
   [[nodiscard]] vr_write write(std::uint16_t vr, const network_value& value) noexcept override {

@@ -124,8 +124,10 @@ namespace detail {
 [[nodiscard]] constexpr route_result route_of(std::uint8_t node_count, std::uint32_t identifier) noexcept {
   if (!valid_node_count(node_count)) return {scheme_error::bad_node_count, {}};
   if (identifier > max_standard_identifier) return {scheme_error::not_exchange_identifier, {}};
-  const std::uint32_t receiver = identifier / 10U;
-  const std::uint32_t receive_channel = identifier % 10U + 1U;
+  // identifier / 10 as a multiply and shift, exact for identifiers up to 0x7FF (no division routine on a
+  // core without a divider).
+  const std::uint32_t receiver = (identifier * 6554U) >> 16U;
+  const std::uint32_t receive_channel = identifier - receiver * 10U + 1U;
   if (receiver < 1 || receiver > node_count || receive_channel >= node_count) {
     return {scheme_error::not_exchange_identifier, {}};
   }
@@ -157,7 +159,9 @@ namespace detail {
     return {scheme_error::bad_channel, 0};
   }
   const unsigned step = transmit_channel - (first_transmit_channel - 1U);
-  return {scheme_error::none, static_cast<std::uint8_t>((sender - 1U + step) % node_count + 1U)};
+  const unsigned ahead = sender - 1U + step;  // < 2N: one subtraction is the modulo
+  return {scheme_error::none,
+          static_cast<std::uint8_t>((ahead >= node_count ? ahead - node_count : ahead) + 1U)};
 }
 
 /// The transmit channel (5..N+3) with which `sender` reaches `destination`.
@@ -167,7 +171,9 @@ namespace detail {
   if (error == scheme_error::none) error = detail::check_node(node_count, destination);
   if (error != scheme_error::none) return {error, 0};
   if (sender == destination) return {scheme_error::same_node, 0};
-  const unsigned step = (destination + node_count - unsigned{sender}) % node_count;  // 1..N-1
+  const unsigned distance =
+      destination + node_count - unsigned{sender};  // 1..2N-1: one subtraction is the modulo
+  const unsigned step = distance >= node_count ? distance - node_count : distance;  // 1..N-1
   return {scheme_error::none, static_cast<std::uint8_t>(first_transmit_channel - 1U + step)};
 }
 

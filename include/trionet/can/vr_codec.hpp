@@ -113,6 +113,27 @@ struct decode_result {
   return {encode_error::none, out};
 }
 
+/// A Q32.32 value (value * 2^32, as the ring and Q32.32 VR tables hold it) rounded to 4 decimals, ties away
+/// from zero, with integer arithmetic only: for firmware without floating point. Always in range.
+[[nodiscard]] constexpr vr_value to_vr_value_q32(std::int64_t raw) noexcept {
+  const bool negative = raw < 0;
+  const std::uint64_t magnitude =
+      negative ? ~static_cast<std::uint64_t>(raw) + 1U : static_cast<std::uint64_t>(raw);
+  auto integer = static_cast<std::uint32_t>(magnitude >> 32U);  // at most 2^31
+  // (fraction * 10000 + 2^31) / 2^32: the nearest ten-thousandth, a tie rounded up (away from zero).
+  auto ten_thousandths =
+      static_cast<std::uint32_t>(((magnitude & 0xFFFFFFFFU) * fraction_scale + (1ULL << 31U)) >> 32U);
+  if (ten_thousandths == fraction_scale) {
+    ten_thousandths = 0;
+    ++integer;
+  }
+  vr_value out;
+  out.negative = negative && (integer != 0 || ten_thousandths != 0);
+  out.integer_part = integer;
+  out.fraction = static_cast<std::uint16_t>(ten_thousandths);
+  return out;
+}
+
 /// The value a message carries, as the double nearest to it (exact decimal numerator, one rounding).
 /// Sign 1 with a zero magnitude gives -0.0.
 [[nodiscard]] constexpr double to_double(const vr_value& value) noexcept {

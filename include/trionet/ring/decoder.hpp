@@ -263,7 +263,8 @@ class basic_decoder {
 #if defined(__GNUC__)
   [[gnu::noinline]]  // one copy of the result set-up instead of one per error: smaller firmware
 #endif
-  static decode_result error(frame_error reason) noexcept {
+  static decode_result
+  error(frame_error reason) noexcept {
     decode_result result;
     result.status = decode_status::frame_error;
     result.error = reason;

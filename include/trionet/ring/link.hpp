@@ -173,7 +173,7 @@ class link {
 
   /// Forwarding on (a Motion Coordinator, a keypad in network mode) or off (a keypad in local mode: messages
   /// through the node are dropped and counted).
-  void set_forwarding(bool on) noexcept { forwarding_ = on; }
+  constexpr void set_forwarding(bool on) noexcept { forwarding_ = on; }
 
   const link_counters& counters() const noexcept { return counters_; }
 

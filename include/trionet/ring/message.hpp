@@ -36,10 +36,10 @@ constexpr std::uint8_t keypad_mode_key_on_off = 127;
 
 /// One decoded or to-be-encoded message. Which fields mean something depends on `type`; the others are 0.
 /// `text` is a view: in a decoded message it points into the decoder and is valid until its next push.
-struct message {  // (largest fields first: 24 bytes on a 32-bit core, 32 on a 64-bit one)
-  std::int64_t value = 0;   ///< variable: Q32.32 value (value / 2^32)
-  byte_view text;           ///< character: the characters, each 0..127
-  std::uint16_t vr = 0;     ///< variable: VR number 0..16383
+struct message {           // (largest fields first: 24 bytes on a 32-bit core, 32 on a 64-bit one)
+  std::int64_t value = 0;  ///< variable: Q32.32 value (value / 2^32)
+  byte_view text;          ///< character: the characters, each 0..127
+  std::uint16_t vr = 0;    ///< variable: VR number 0..16383
   message_type type = message_type::character;
   std::uint8_t hops = 0;    ///< A: hops from the sender to the receiver, 1..15
   std::uint8_t offset = 0;  ///< keypad offset: hops from the keypad to where it sends its keys, 1..15

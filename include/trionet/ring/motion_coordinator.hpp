@@ -153,7 +153,9 @@ class motion_coordinator final : public byte_port {
     if (r == route::lost) netstat_ |= netstat_tx_buffer_error;
     if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
   }
-  void receive(byte_view bytes) noexcept override {
+  /// Many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in order, with
+  /// runs of message data copied whole. Not virtual, so firmware that does not call it does not link it.
+  void receive(byte_view bytes) noexcept {
     const std::uint8_t* p = bytes.begin();
     const std::uint8_t* const end = bytes.end();
     while (p != end) {
@@ -173,7 +175,9 @@ class motion_coordinator final : public byte_port {
     }
   }
   [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept override { return link_.transmit(byte); }
-  [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept override {
+  /// Fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that many calls
+  /// of `transmit`, stopping at the first that has none.
+  [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept {
     return link_.transmit(out.data(), out.size());
   }
   [[nodiscard]] bool transmit_pending() const noexcept override { return link_.transmit_pending(); }
