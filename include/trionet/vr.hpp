@@ -64,18 +64,22 @@ struct network_value {
       raw = q32;
       return true;
     }
-    if (ten_thousandths > 9999) return false;
-    // (t * 2^32 + 5000) / 10000 with 2^32 = 429496 * 10000 + 7296, the remainder's division done as an exact
+    if (ten_thousandths > 9999 || integer > 0x80000000u) return false;
+    // (t * 2^32 + 5000) / 10000 with 2^32 = 429496 * 10000 + 7296; the remainder's division is an exact
     // multiply-and-shift (n * ceil(2^40 / 10000) >> 40 is floor(n / 10000) for n < 2^27): no division
-    // routine.
+    // routine, and the sum stays below 2^32.
     const std::uint32_t n = static_cast<std::uint32_t>(ten_thousandths) * 7296u + 5000u;
-    const std::uint64_t fraction = static_cast<std::uint64_t>(ten_thousandths) * 429496u +
-                                   ((static_cast<std::uint64_t>(n) * 109951163u) >> 40);
-    const std::uint64_t magnitude = (static_cast<std::uint64_t>(integer) << 32) + fraction;
-    constexpr std::uint64_t limit = std::uint64_t{1} << 63;
-    if (magnitude > limit || (!negative && magnitude == limit)) return false;
-    raw = negative ? (magnitude == limit ? INT64_MIN : -static_cast<std::int64_t>(magnitude))
-                   : static_cast<std::int64_t>(magnitude);
+    const std::uint32_t fraction =
+        static_cast<std::uint32_t>(ten_thousandths) * 429496u +
+        static_cast<std::uint32_t>((static_cast<std::uint64_t>(n) * 109951163u) >> 40);
+    const std::uint64_t magnitude = (static_cast<std::uint64_t>(integer) << 32) | fraction;
+    if (!negative) {
+      if (integer == 0x80000000u) return false;  // 2^31 and above
+      raw = static_cast<std::int64_t>(magnitude);
+    } else {
+      if (integer == 0x80000000u && fraction != 0) return false;  // below -2^31
+      raw = integer == 0x80000000u ? INT64_MIN : -static_cast<std::int64_t>(magnitude);
+    }
     return true;
   }
 };
