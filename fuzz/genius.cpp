@@ -136,7 +136,7 @@ void check_complete(const transmission& t, const std::vector<character>& since_s
   for (std::size_t w = 0; w < words.size(); ++w) {
     FUZZ_CHECK(words[w] == encode_character(characters[w]));
     for (unsigned b = 0; b < character_bits; ++b) {
-      const receive_result r = receiver.push(((words[w] >> b) & 1u) != 0);
+      const receive_result r = receiver.push(((static_cast<unsigned>(words[w]) >> b) & 1u) != 0);
       if (b + 1 < character_bits) {
         FUZZ_CHECK(r.bit == bit_status::nothing_yet);
       } else {
