@@ -1,5 +1,5 @@
-// CRC-16/CCITT-FALSE: trionet's table and table-free policies against Boost.CRC's crc_optimal, in the same
-// run.
+// CRC-16/CCITT-FALSE: trionet's table, sliced and table-free policies against Boost.CRC's crc_optimal, in the
+// same run.
 //
 // "12 bytes": 256 independent 12-byte messages per iteration (the CRC of a direct variable transfer covers
 // V0..X9, 12 bytes); "4096 bytes": one 4 KiB buffer per iteration. Every variant gets the same bytes, and the
@@ -30,6 +30,11 @@ struct table_crc {
     return crc16_ccitt_false::compute(data, size);
   }
 };
+struct sliced_crc {
+  static std::uint16_t compute(const std::uint8_t* data, std::size_t size) noexcept {
+    return trionet::ring::crc16_ccitt_false_sliced::compute(data, size);
+  }
+};
 struct bitwise_crc {
   static std::uint16_t compute(const std::uint8_t* data, std::size_t size) noexcept {
     return crc16_ccitt_false_bitwise::compute(data, size);
@@ -46,6 +51,7 @@ void check_agreement(benchmark::State& state, const std::vector<std::uint8_t>& b
   for (std::size_t start = 0; start + length <= bytes.size(); start += length) {
     const std::uint16_t reference = tb::boost_crc16_ccitt_false(&bytes[start], length);
     if (table_crc::compute(&bytes[start], length) != reference ||
+        sliced_crc::compute(&bytes[start], length) != reference ||
         bitwise_crc::compute(&bytes[start], length) != reference) {
       state.SkipWithError("trionet's CRC differs from Boost.CRC");
       return;
@@ -84,9 +90,11 @@ void BM_crc_4096_bytes(benchmark::State& state) {
 }
 
 BENCHMARK_TEMPLATE(BM_crc_12_bytes, table_crc)->Name("BM_crc_12_bytes/trionet_table");
+BENCHMARK_TEMPLATE(BM_crc_12_bytes, sliced_crc)->Name("BM_crc_12_bytes/trionet_sliced");
 BENCHMARK_TEMPLATE(BM_crc_12_bytes, bitwise_crc)->Name("BM_crc_12_bytes/trionet_bitwise");
 BENCHMARK_TEMPLATE(BM_crc_12_bytes, boost_reference)->Name("BM_crc_12_bytes/boost_crc_optimal");
 BENCHMARK_TEMPLATE(BM_crc_4096_bytes, table_crc)->Name("BM_crc_4096_bytes/trionet_table");
+BENCHMARK_TEMPLATE(BM_crc_4096_bytes, sliced_crc)->Name("BM_crc_4096_bytes/trionet_sliced");
 BENCHMARK_TEMPLATE(BM_crc_4096_bytes, bitwise_crc)->Name("BM_crc_4096_bytes/trionet_bitwise");
 BENCHMARK_TEMPLATE(BM_crc_4096_bytes, boost_reference)->Name("BM_crc_4096_bytes/boost_crc_optimal");
 

@@ -116,6 +116,15 @@ extern "C" {
   return sum;
 }
 
+[[gnu::noinline]] std::uint16_t trionet_measured_crc_sliced(const std::uint8_t* p, std::size_t length,
+                                                            std::size_t count) noexcept {
+  TRIONET_OPAQUE();
+  std::uint16_t sum = 0;
+  for (std::size_t m = 0; m < count; ++m)
+    sum ^= ring::crc16_ccitt_false_sliced::compute(p + m * length, length);
+  return sum;
+}
+
 [[gnu::noinline]] std::uint16_t trionet_measured_crc_bitwise(const std::uint8_t* p, std::size_t length,
                                                              std::size_t count) noexcept {
   TRIONET_OPAQUE();
@@ -359,12 +368,16 @@ const workload workloads[] = {
     {"mc_deliver_variables", "byte", mc_deliver_variables},
     {"crc_12_bytes_trionet_table", "byte",
      [](std::size_t n) { return crc<trionet_measured_crc_table>(crc_short, crc_short_count, n); }},
+    {"crc_12_bytes_trionet_sliced", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_sliced>(crc_short, crc_short_count, n); }},
     {"crc_12_bytes_trionet_bitwise", "byte",
      [](std::size_t n) { return crc<trionet_measured_crc_bitwise>(crc_short, crc_short_count, n); }},
     {"crc_12_bytes_boost", "byte",
      [](std::size_t n) { return crc<trionet_measured_crc_boost>(crc_short, crc_short_count, n); }},
     {"crc_4096_bytes_trionet_table", "byte",
      [](std::size_t n) { return crc<trionet_measured_crc_table>(crc_long, 1, n); }},
+    {"crc_4096_bytes_trionet_sliced", "byte",
+     [](std::size_t n) { return crc<trionet_measured_crc_sliced>(crc_long, 1, n); }},
     {"crc_4096_bytes_trionet_bitwise", "byte",
      [](std::size_t n) { return crc<trionet_measured_crc_bitwise>(crc_long, 1, n); }},
     {"crc_4096_bytes_boost", "byte",

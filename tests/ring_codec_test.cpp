@@ -573,3 +573,50 @@ TEST(RingProperty, BytewiseAndBulkGiveTheSameResultsOnCorruptedStreams) {
   }
   EXPECT_GT(total_events, 10000u);  // the streams really exercised the decoder
 }
+
+TEST(RingCrc, SlicedTablesGiveTheSameCrc) {
+  const char* check = "123456789";
+  EXPECT_EQ(ring::crc16_ccitt_false_sliced::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
+  constexpr std::uint8_t check_bytes[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  static_assert(ring::crc16_ccitt_false_sliced::compute(check_bytes, 9) == 0x29B1, "sliced CRC check value");
+  std::mt19937_64 rng(5);
+  std::vector<std::uint8_t> bytes(1000);
+  for (auto& b : bytes) b = static_cast<std::uint8_t>(rng());
+  for (std::size_t length = 0; length <= bytes.size(); length += 1 + length / 7) {
+    ASSERT_EQ(ring::crc16_ccitt_false_sliced::compute(bytes.data(), length),
+              ring::crc16_ccitt_false::compute(bytes.data(), length))
+        << length;
+  }
+  using xmodem_sliced = ring::crc16<0x1021, 0x0000, 0, ring::crc_table::sliced>;
+  EXPECT_EQ(xmodem_sliced::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x31C3);
+  // A decoder and an encoder with the sliced policy agree with the golden frame.
+  std::uint8_t frame[16];
+  ASSERT_TRUE(
+      ring::encode_variable<ring::crc16_ccitt_false_sliced>(frame, 1, 200, ring::q32_from_integer(99)));
+  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
+  ring::decoder<256, ring::crc16_ccitt_false_sliced> d;
+  const auto events = decode_bulk(d, golden);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::message);
+}
+
+// A CRC policy written by hand, with only initial, update and finish, plugs in too.
+namespace {
+struct sum16 {
+  static constexpr std::uint16_t initial = 0;
+  static constexpr std::uint16_t update(std::uint16_t crc, std::uint8_t b) noexcept {
+    return static_cast<std::uint16_t>(crc + b);
+  }
+  static constexpr std::uint16_t finish(std::uint16_t crc) noexcept { return crc; }
+};
+}  // namespace
+
+TEST(RingCrc, HandWrittenPolicyWithTheMinimalInterface) {
+  std::uint8_t frame[16];
+  ASSERT_TRUE(ring::encode_variable<sum16>(frame, 1, 1, 1));
+  ring::decoder<256, sum16> d;
+  const auto events = decode_bytewise(d, std::vector<std::uint8_t>(frame, frame + 16));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(frame[13], 2);  // V0 + X0 = 1 + 1
+}
