@@ -91,9 +91,11 @@ class link {
   [[nodiscard]] std::size_t transmit(std::uint8_t* out, std::size_t capacity) noexcept {
     std::size_t n = 0;
     const auto copy_data = [&](auto& fifo) {
-      const std::uint8_t* const front = fifo.front();
       const std::size_t room = capacity - n;
-      const std::size_t available = fifo.front_size() < room ? fifo.front_size() : room;
+      const std::size_t contiguous = fifo.front_size();
+      if (contiguous == 0) return false;
+      const std::uint8_t* const front = fifo.front();
+      const std::size_t available = contiguous < room ? contiguous : room;
       const auto k = static_cast<std::size_t>(find_control(front, front + available) - front);
       std::memcpy(out + n, front, k);
       fifo.consume(k);
