@@ -173,7 +173,7 @@ TEST(RingMotionCoordinator, DefaultDefkeyTranslatesTheKeypadCodes) {
 
 TEST(RingMotionCoordinator, ConfigurableDefkey) {
   ring::defkey_table mine = ring::default_defkey;
-  mine.value['A'] = 99;
+  mine.value[static_cast<std::uint8_t>('A')] = 99;
   trionet::vr_table<16> vr;
   mc_node mc(vr, mine);
   feed(mc, chars(1, "A"));

@@ -50,15 +50,15 @@ struct crc16 {
 
   /// Table k: the effect of a byte followed by k zero bytes (table 0 is the byte-at-a-time table).
   static constexpr std::array<std::array<std::uint16_t, 256>, 4> make_slices() noexcept {
-    std::array<std::array<std::uint16_t, 256>, 4> slices{};
-    slices[0] = make_table();
+    std::array<std::array<std::uint16_t, 256>, 4> tables{};
+    tables[0] = make_table();
     for (std::size_t k = 1; k < 4; ++k) {
       for (unsigned i = 0; i < 256; ++i) {
-        const std::uint16_t previous = slices[k - 1][i];
-        slices[k][i] = static_cast<std::uint16_t>((previous << 8) ^ slices[0][previous >> 8]);
+        const std::uint16_t previous = tables[k - 1][i];
+        tables[k][i] = static_cast<std::uint16_t>((previous << 8) ^ tables[0][previous >> 8]);
       }
     }
-    return slices;
+    return tables;
   }
 
   static constexpr std::uint16_t update(std::uint16_t crc, std::uint8_t byte) noexcept {
