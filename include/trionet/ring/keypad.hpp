@@ -7,7 +7,8 @@
 //     else to or through it           - character messages drive the 2 x 20 display
 //   - never transmits                 - direct variable transfers are ignored (counted)
 //
-// Cost (defaults): RAM = forward buffer 16 + transmit queue 16 + decoder 256 + display 45 + about 60 bytes.
+// Cost (defaults): RAM = forward buffer 16 + transmit queue 16 + decoder 256 + display 45 + state and counters
+// = 452 bytes on a 32-bit core (472 on a 64-bit host).
 // `receive`/`transmit` may run in an ISR; `press`/`release` from the key-scan context (see transport.hpp).
 #pragma once
 
