@@ -18,7 +18,6 @@ class byte_fifo {
   std::size_t size() const noexcept { return size_; }
   std::size_t free() const noexcept { return Capacity - size_; }
   bool empty() const noexcept { return size_ == 0; }
-  bool full() const noexcept { return size_ == Capacity; }
 
   /// Appends a byte; false (and nothing changes) when full.
   [[nodiscard]] bool push(std::uint8_t byte) noexcept {
@@ -57,13 +56,8 @@ class byte_fifo {
     size_ = static_cast<std::uint16_t>(size_ - n);
   }
 
-  /// The i-th oldest byte. Precondition: i < size().
-  std::uint8_t peek(std::size_t i = 0) const noexcept { return data_[wrap(head_ + i)]; }
-
   /// Removes the `n` most recently pushed bytes (at most size()).
   void drop_back(std::size_t n) noexcept { size_ = static_cast<std::uint16_t>(n >= size_ ? 0 : size_ - n); }
-
-  void clear() noexcept { head_ = size_ = 0; }
 
  private:
   static std::size_t wrap(std::size_t index) noexcept { return index >= Capacity ? index - Capacity : index; }
