@@ -7,6 +7,7 @@
 
 namespace {
 
+using trionet::test::expect_usage_error;
 using trionet::test::run_cli;
 
 const std::string seed_devices = "--after 4 --device 4@0 --device 5@2000 --device 6@0";
@@ -122,14 +123,6 @@ TEST(GeniusCli, DecodeReportsWireErrorsWithExit1) {
   EXPECT_EQ(unfinished.out,
             "error at end of input: transmission not finished\n"
             "0 transmissions, 1 error, 0 characters skipped\n");
-}
-
-void expect_usage_error(const std::string& args, const std::string& mentions) {
-  const auto r = run_cli(args);
-  EXPECT_EQ(r.exit_code, 2) << args;
-  EXPECT_EQ(r.out, "") << args;
-  EXPECT_EQ(r.err.rfind("trionet: ", 0), 0u) << args << ": " << r.err;
-  EXPECT_NE(r.err.find(mentions), std::string::npos) << args << ": " << r.err;
 }
 
 TEST(GeniusCli, BadArgumentsExit2WithAMessage) {

@@ -3,18 +3,8 @@
 
 #include "support/run_cli.hpp"
 
+using trionet::test::expect_usage_error;
 using trionet::test::run_cli;
-
-namespace {
-
-void expect_usage_error(const std::string& args, const std::string& stdin_text = "") {
-  const auto r = run_cli(args, stdin_text);
-  EXPECT_EQ(r.exit_code, 2) << args;
-  EXPECT_EQ(r.out, "") << args;
-  EXPECT_NE(r.err, "") << args;
-}
-
-}  // namespace
 
 TEST(RingCli, EncodeVarGoldenExample) {
   const auto r = run_cli("ring encode var --to 10 --vr 200 --value 99");
@@ -94,7 +84,7 @@ TEST(RingCli, DecodeEmptyInputPrintsNothing) {
 }
 
 TEST(RingCli, BadInputIsAUsageError) {
-  expect_usage_error("ring decode", "8a zz");
+  expect_usage_error("ring decode", "not hex", "8a zz");
   expect_usage_error("ring decode 8a4");
   expect_usage_error("ring decode 0x8a");
   expect_usage_error("ring encode print --to 9 HI");

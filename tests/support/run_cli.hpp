@@ -1,6 +1,7 @@
 // Runs the built `trionet` tool for CLI tests and captures its stdout, stderr and exit code.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <unistd.h>
@@ -44,6 +45,17 @@ inline cli_result run_cli(const std::string& args, const std::string& input = ""
   std::remove(out_path.c_str());
   std::remove(err_path.c_str());
   return result;
+}
+
+/// A usage error: exit status 2, nothing on stdout, and on stderr a "trionet: " message that mentions
+/// `mentions` (when given).
+inline void expect_usage_error(const std::string& args, const std::string& mentions = "",
+                               const std::string& input = "") {
+  const cli_result r = run_cli(args, input);
+  EXPECT_EQ(r.exit_code, 2) << args;
+  EXPECT_EQ(r.out, "") << args;
+  EXPECT_EQ(r.err.rfind("trionet: ", 0), 0u) << args << ": " << r.err;
+  EXPECT_NE(r.err.find(mentions), std::string::npos) << args << ": " << r.err;
 }
 
 }  // namespace trionet::test
