@@ -47,6 +47,16 @@ class byte_fifo {
     return n;
   }
 
+  /// Takes up to `n` of the oldest bytes into `bytes`; returns how many. O(n) with memcpy.
+  std::size_t pop(std::uint8_t* bytes, std::size_t n) noexcept {
+    if (n > size_) n = size_;
+    const std::size_t first = n < Capacity - head_ ? n : Capacity - head_;
+    if (first != 0) std::memcpy(bytes, data_ + head_, first);
+    if (n != first) std::memcpy(bytes + first, data_, n - first);
+    consume(n);
+    return n;
+  }
+
   /// The oldest bytes that lie contiguously in the buffer (all of them unless they wrap round).
   const std::uint8_t* front() const noexcept { return data_ + head_; }
   std::size_t front_size() const noexcept { return size_ < Capacity - head_ ? size_ : Capacity - head_; }
@@ -55,6 +65,11 @@ class byte_fifo {
     head_ = static_cast<std::uint16_t>(wrap(head_ + n));
     size_ = static_cast<std::uint16_t>(size_ - n);
   }
+
+  /// The byte `i` places from the oldest (0 = the oldest). Precondition: i < size().
+  std::uint8_t& at(std::size_t i) noexcept { return data_[wrap(head_ + i)]; }
+  /// The most recently pushed byte. Precondition: !empty().
+  std::uint8_t& back() noexcept { return at(size_ - 1u); }
 
   /// Removes the `n` most recently pushed bytes (at most size()).
   void drop_back(std::size_t n) noexcept { size_ = static_cast<std::uint16_t>(n >= size_ ? 0 : size_ - n); }

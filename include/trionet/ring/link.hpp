@@ -86,26 +86,76 @@ class link {
     return route::lost;
   }
 
+  /// What `receive_passing` took.
+  struct passing {
+    const std::uint8_t* stop;  ///< the first byte not taken (one for the node itself), or the end
+    bool header;               ///< a header was taken: a message the node was receiving has ended
+    bool lost;                 ///< a forwarded message was lost
+  };
+
+  /// Takes bytes from [first, last) while they are not for the node itself: the same as `receive` for each,
+  /// in order, with runs of data copied whole, stopping before the first byte `receive` would route `local`.
+  [[nodiscard]] passing receive_passing(const std::uint8_t* first, const std::uint8_t* last) noexcept {
+    passing result{first, false, false};
+    const std::uint8_t* p = first;
+    while (p != last) {
+      if (receiving_ != receiving::local) {
+        const std::uint8_t* const run = find_control(p, last);
+        if (receiving_ == receiving::forward && run != last && type_of(*run) == 0 && forward_end(p, run)) {
+          p = run + 1;
+          continue;
+        }
+        if (run != p && receive_data(p, static_cast<std::size_t>(run - p)) == route::lost) result.lost = true;
+        p = run;
+        if (p == last) break;
+      }
+      const std::uint8_t byte = *p;  // a control byte, or data for the node
+      if (is_data(byte)) break;
+      if (type_of(byte) == 0) {
+        if (receiving_ == receiving::local) break;  // the end of the node's own message
+      } else {
+        if (hops_of(byte) <= 1) break;  // a message for the node
+        result.header = true;
+        if (forwarding_ && receiving_ == receiving::local && last - p > 1) {  // a whole message to forward?
+          const std::uint8_t* const end = find_control(p + 1, last);
+          if (end != last && type_of(*end) == 0 && forward_whole(p, end)) {
+            p = end + 1;
+            continue;
+          }
+        }
+      }
+      if (receive(byte) == route::lost) result.lost = true;
+      ++p;
+    }
+    result.stop = p;
+    return result;
+  }
+
   /// Fills `out` with up to `capacity` bytes for the link: the same bytes as that many calls of `transmit`,
-  /// runs of message data copied whole.
+  /// with the forward buffer's bytes copied whole (they go out first, in order, whatever they are) and runs
+  /// of the node's own message data too.
   [[nodiscard]] std::size_t transmit(std::uint8_t* out, std::size_t capacity) noexcept {
     std::size_t n = 0;
-    const auto copy_data = [&](auto& fifo) {
-      const std::size_t room = capacity - n;
-      const std::size_t contiguous = fifo.front_size();
-      if (contiguous == 0) return false;
-      const std::uint8_t* const front = fifo.front();
-      const std::size_t available = contiguous < room ? contiguous : room;
-      const auto k = static_cast<std::size_t>(find_control(front, front + available) - front);
-      std::memcpy(out + n, front, k);
-      fifo.consume(k);
-      n += k;
-      return k != 0;
-    };
     while (n < capacity) {
-      if (sending_ == sending::forward && copy_data(forward_)) continue;
-      if (sending_ == sending::own && copy_data(queue_)) continue;
-      if (!transmit(out[n])) break;  // control bytes, message boundaries, waiting
+      if (sending_ != sending::own && !forward_.empty()) {
+        n += forward_.pop(out + n, capacity - n);
+        sending_ = classify(out[n - 1]) == byte_class::end_of_message ? sending::idle : sending::forward;
+        continue;
+      }
+      if (sending_ == sending::own) {  // a run of own message data up to its next control byte
+        const std::size_t room = capacity - n;
+        const std::size_t contiguous = queue_.front_size();
+        const std::uint8_t* const front = queue_.front();
+        const std::size_t available = contiguous < room ? contiguous : room;
+        const auto k = static_cast<std::size_t>(find_control(front, front + available) - front);
+        if (k != 0) {
+          std::memcpy(out + n, front, k);
+          queue_.consume(k);
+          n += k;
+          continue;
+        }
+      }
+      if (!transmit(out[n])) break;  // control bytes of own messages, message boundaries, waiting
       ++n;
     }
     return n;
@@ -202,8 +252,7 @@ class link {
     forward_open_ = false;     // any header or end of message ends the message being forwarded
     if (type_of(byte) == 0) {  // end of message
       if (was == receiving::forward) {
-        const std::uint8_t hops = hops_of(byte);
-        return forward(with_hops(byte, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1)));
+        return forward(forwarded_end_of_message(byte));
       }
       return was == receiving::discard ? route::dropped : route::local;
     }
@@ -229,6 +278,38 @@ class link {
       return route::forwarded;
     }
     return lose();
+  }
+
+  // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
+  // all fits (the same as `receive` for each byte); false, and nothing done, if it does not.
+  bool forward_end(const std::uint8_t* data, const std::uint8_t* end_of_message) noexcept {
+    const auto n = static_cast<std::size_t>(end_of_message - data) + 1;
+    if (n > forward_.free()) return false;
+    (void)forward_.push(data, n);
+    forward_.back() = forwarded_end_of_message(*end_of_message);
+    counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
+    receiving_ = receiving::local;
+    forward_open_ = false;
+    return true;
+  }
+
+  // A whole message to forward, [header, end_of_message] (header A > 1, forwarding on, between messages): in
+  // one copy if it all fits (the same as `receive` for each byte); false, and nothing done, if it does not.
+  bool forward_whole(const std::uint8_t* header, const std::uint8_t* end_of_message) noexcept {
+    const auto n = static_cast<std::size_t>(end_of_message - header) + 1;
+    if (n > forward_.free()) return false;
+    const std::size_t header_at = forward_.size();
+    (void)forward_.push(header, n);
+    forward_.at(header_at) = with_hops(*header, static_cast<std::uint8_t>(hops_of(*header) - 1));
+    forward_.back() = forwarded_end_of_message(*end_of_message);
+    counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
+    ++counters_.messages_forwarded;
+    return true;
+  }
+
+  static constexpr std::uint8_t forwarded_end_of_message(std::uint8_t end_of_message) noexcept {
+    const std::uint8_t hops = hops_of(end_of_message);
+    return with_hops(end_of_message, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1));
   }
 
   // The forwarded message being received does not fit: it is lost.

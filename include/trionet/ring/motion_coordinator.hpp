@@ -159,19 +159,22 @@ class motion_coordinator final : public byte_port {
   void receive(byte_view bytes) noexcept {
     const std::uint8_t* p = bytes.begin();
     const std::uint8_t* const end = bytes.end();
-    while (p != end) {
+    for (;;) {
+      // Traffic through the node: forwarded (or dropped) whole runs at a time.
+      const auto passed = link_.receive_passing(p, end);
+      if (passed.header) handle(decoder_.interrupt());  // once is enough: the decoder is then between messages
+      if (passed.lost) netstat_ |= netstat_tx_buffer_error;
+      p = passed.stop;
+      if (p == end) return;
+      // Bytes for the node: a control byte, or a run of message data for the decoder.
       if (!is_data(*p)) {
         receive(*p++);
         continue;
       }
       const std::uint8_t* const run = find_control(p, end);
       const auto n = static_cast<std::size_t>(run - p);
-      const route r = link_.receive_data(p, n);
-      if (r == route::local) {
-        decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
-      } else if (r == route::lost) {
-        netstat_ |= netstat_tx_buffer_error;
-      }
+      (void)link_.receive_data(p, n);  // route::local: counted
+      decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
       p = run;
     }
   }
