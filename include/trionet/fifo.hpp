@@ -9,6 +9,28 @@
 
 namespace trionet {
 
+namespace detail {
+/// std::memcpy for the short runs a node moves (a DMA chunk, part of a message): on 64-bit cores eight bytes
+/// per step inline, which beats a library call for runs of a few words. `to` and `from` do not overlap.
+inline void copy_bytes(std::uint8_t* to, const std::uint8_t* from, std::size_t n) noexcept {
+#if UINTPTR_MAX > 0xFFFFFFFFu
+  if (n >= 8) {
+    const std::uint8_t* const last = from + (n - 8);
+    std::uint8_t* const to_last = to + (n - 8);
+    std::uint64_t word;
+    for (; from < last; from += 8, to += 8) {
+      std::memcpy(&word, from, sizeof word);
+      std::memcpy(to, &word, sizeof word);
+    }
+    std::memcpy(&word, last, sizeof word);  // the last eight bytes, overlapping what is already copied
+    std::memcpy(to_last, &word, sizeof word);
+    return;
+  }
+#endif
+  std::memcpy(to, from, n);
+}
+}  // namespace detail
+
 template <std::size_t Capacity>
 class byte_fifo {
   static_assert(Capacity >= 1 && Capacity <= 65535, "a byte FIFO holds 1..65535 bytes");
@@ -36,23 +58,23 @@ class byte_fifo {
     return true;
   }
 
-  /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. O(n) with memcpy.
+  /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. O(n).
   std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
     if (n > Capacity - size_) n = Capacity - size_;
     const std::size_t tail = wrap(head_ + size_);
     const std::size_t first = n < Capacity - tail ? n : Capacity - tail;
-    if (first != 0) std::memcpy(data_ + tail, bytes, first);
-    if (n != first) std::memcpy(data_, bytes + first, n - first);
+    detail::copy_bytes(data_ + tail, bytes, first);
+    if (n != first) detail::copy_bytes(data_, bytes + first, n - first);
     size_ = static_cast<std::uint16_t>(size_ + n);
     return n;
   }
 
-  /// Takes up to `n` of the oldest bytes into `bytes`; returns how many. O(n) with memcpy.
+  /// Takes up to `n` of the oldest bytes into `bytes`; returns how many. O(n).
   std::size_t pop(std::uint8_t* bytes, std::size_t n) noexcept {
     if (n > size_) n = size_;
     const std::size_t first = n < Capacity - head_ ? n : Capacity - head_;
-    if (first != 0) std::memcpy(bytes, data_ + head_, first);
-    if (n != first) std::memcpy(bytes + first, data_, n - first);
+    detail::copy_bytes(bytes, data_ + head_, first);
+    if (n != first) detail::copy_bytes(bytes + first, data_, n - first);
     consume(n);
     return n;
   }
