@@ -205,4 +205,48 @@ TEST(CanNode, ElevenNodeExchangeEveryPairDelivers) {
   }
 }
 
+// The node's own identifier arithmetic agrees with the scheme's functions (identifiers.hpp) for every node of
+// every exchange size: which frames it takes, from whom and on which receive channel, for every 11-bit
+// identifier and with the extended and remote flags; and the identifier it sends to every destination.
+TEST(CanNode, IdentifiersAgreeWithTheSchemeForEveryNodeAndIdentifier) {
+  recording_port wire;
+  vr_table<256> vr;
+  for (std::uint8_t n = min_node_count; n <= max_node_count; ++n) {
+    for (std::uint8_t k = 1; k <= n; ++k) {
+      vr_exchange_node node(address(n, k), wire, vr);
+      const frame value = make_frame(0, {1, 0, 0, 0, 0, 2, 0, 0});
+      for (std::uint32_t id = 0; id <= 0x7FF; ++id) {
+        for (std::uint32_t flags : {0U, frame::extended_flag, frame::remote_flag}) {
+          frame f = value;
+          f.id = id | flags;
+          const receive_result got = node.receive(f);
+          const channel_result channel = receive_channel_of(n, k, f.id);
+          if (channel.error != scheme_error::none) {  // flagged identifiers included: never exchange frames
+            ASSERT_EQ(got.status, receive_status::foreign) << int(n) << " " << int(k) << " " << f.id;
+            continue;
+          }
+          ASSERT_EQ(flags, 0U);
+          ASSERT_EQ(got.status, receive_status::written) << int(n) << " " << int(k) << " " << f.id;
+          ASSERT_EQ(got.receive_channel, channel.channel);
+          const route_result route = route_of(n, f.id);
+          ASSERT_EQ(got.sender, route.value.sender);
+          ASSERT_EQ(exchange_identifier(n, got.sender, k).identifier, f.id);
+        }
+      }
+      for (std::uint8_t d = 0; d <= n + 1; ++d) {
+        wire.frames.clear();
+        const send_status sent = node.send_to_node(d, vr_message{});
+        const identifier_result expected = exchange_identifier(n, k, d);
+        if (expected.error != scheme_error::none) {
+          ASSERT_EQ(sent, d == k ? send_status::own_node : send_status::no_such_node);
+          ASSERT_TRUE(wire.frames.empty());
+          continue;
+        }
+        ASSERT_EQ(sent, send_status::sent);
+        ASSERT_EQ(wire.frames.at(0).id, expected.identifier) << int(n) << " " << int(k) << " " << int(d);
+      }
+    }
+  }
+}
+
 }  // namespace

@@ -246,3 +246,23 @@ TEST(CanVrCodec, Q32ValuesRoundWithIntegersOnly) {
     EXPECT_EQ(from_q32.fraction, from_double.value.fraction);
   }
 }
+
+// The 32-bit arithmetic gives (fraction * 10000 + 2^31) >> 32 exactly: checked against 64-bit arithmetic at
+// every rounding boundary (two fractions either side of each k + 1/2 ten-thousandths) and on random values.
+TEST(CanVrCodec, Q32FractionRoundingMatchesSixtyFourBitArithmetic) {
+  using trionet::can::to_vr_value_q32;
+  const auto expect_exact = [](std::uint32_t fraction) {
+    const std::uint64_t nearest = (std::uint64_t{fraction} * 10000u + (1ULL << 31U)) >> 32U;
+    const auto v = to_vr_value_q32(static_cast<std::int64_t>((std::uint64_t{7} << 32U) | fraction));
+    const std::uint64_t got = v.integer_part == 8 ? 10000 : v.fraction;  // 10000 carries into the integer
+    ASSERT_EQ(got, nearest) << fraction;
+  };
+  for (std::uint64_t k = 0; k < 10000; ++k) {
+    const std::uint64_t boundary = ((2 * k + 1) << 32U) / 20000u;  // floor((k + 1/2) * 2^32 / 10000)
+    for (std::uint64_t f = boundary - 2; f <= boundary + 2; ++f) expect_exact(static_cast<std::uint32_t>(f));
+  }
+  std::mt19937 rng(2017);
+  for (int i = 0; i < 1000000; ++i) expect_exact(static_cast<std::uint32_t>(rng()));
+  expect_exact(0);
+  expect_exact(0xFFFFFFFFu);
+}

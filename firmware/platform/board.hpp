@@ -93,49 +93,44 @@ inline volatile std::uint32_t& rdt0r() noexcept { return reg(base + 0x1B4u); }
 inline volatile std::uint32_t& rdl0r() noexcept { return reg(base + 0x1B8u); }
 inline volatile std::uint32_t& rdh0r() noexcept { return reg(base + 0x1BCu); }
 
-/// A classic CAN frame as the registers hold it. `identifier` follows the SocketCAN convention: the 11- or
-/// 29-bit identifier, bit 31 set for an extended frame, bit 30 for a remote frame.
-struct raw_frame {
-  std::uint32_t identifier;
-  std::uint8_t length;  ///< DLC
-  std::uint8_t data[8];
-};
-
+/// A classic CAN frame as the registers hold it, in parts: `identifier` follows the SocketCAN convention (the
+/// 11- or 29-bit identifier, bit 31 set for an extended frame, bit 30 for a remote frame), `length` is the
+/// DLC, `data` the 8 data bytes. Parts rather than a struct, so that a program reads into and writes from its
+/// own frame type without a copy.
 constexpr std::uint32_t extended_flag = 1u << 31;
 constexpr std::uint32_t remote_flag = 1u << 30;
 
 inline bool rx_pending() noexcept { return (rf0r() & 0x3u) != 0; }  // FMP0
 
 /// Reads the oldest frame of FIFO 0 and releases it.
-inline raw_frame read() noexcept {
-  raw_frame frame{};
+inline void read(std::uint32_t& identifier, std::uint8_t& length, std::uint8_t (&data)[8]) noexcept {
   const std::uint32_t rir = ri0r();
-  frame.identifier = (rir & 0x4u) != 0 ? extended_flag | (rir >> 3) : rir >> 21;  // IDE: EXID or STID
-  if ((rir & 0x2u) != 0) frame.identifier |= remote_flag;                          // RTR
-  frame.length = static_cast<std::uint8_t>(rdt0r() & 0xFu);
+  identifier = (rir & 0x4u) != 0 ? extended_flag | (rir >> 3) : rir >> 21;  // IDE: EXID or STID
+  if ((rir & 0x2u) != 0) identifier |= remote_flag;                          // RTR
+  length = static_cast<std::uint8_t>(rdt0r() & 0xFu);
   const std::uint32_t low = rdl0r();
   const std::uint32_t high = rdh0r();
   for (unsigned i = 0; i < 4; ++i) {
-    frame.data[i] = static_cast<std::uint8_t>(low >> (8u * i));
-    frame.data[4 + i] = static_cast<std::uint8_t>(high >> (8u * i));
+    data[i] = static_cast<std::uint8_t>(low >> (8u * i));
+    data[4 + i] = static_cast<std::uint8_t>(high >> (8u * i));
   }
   rf0r() = 1u << 5;  // RFOM0: release the FIFO output mailbox
-  return frame;
 }
 
 inline bool tx_free() noexcept { return (tsr() & (1u << 26)) != 0; }  // TME0
 
-inline void write(const raw_frame& frame) noexcept {
+/// Puts a standard data frame in transmit mailbox 0 and requests its transmission.
+inline void write(std::uint32_t identifier, std::uint8_t length, const std::uint8_t (&data)[8]) noexcept {
   std::uint32_t low = 0;
   std::uint32_t high = 0;
   for (unsigned i = 0; i < 4; ++i) {
-    low |= static_cast<std::uint32_t>(frame.data[i]) << (8u * i);
-    high |= static_cast<std::uint32_t>(frame.data[4 + i]) << (8u * i);
+    low |= static_cast<std::uint32_t>(data[i]) << (8u * i);
+    high |= static_cast<std::uint32_t>(data[4 + i]) << (8u * i);
   }
-  tdt0r() = frame.length;
+  tdt0r() = length;
   tdl0r() = low;
   tdh0r() = high;
-  ti0r() = ((frame.identifier & 0x7FFu) << 21) | 1u;  // STID (standard frames only), TXRQ
+  ti0r() = ((identifier & 0x7FFu) << 21) | 1u;  // STID (standard frames only), TXRQ
 }
 
 inline void start() noexcept {

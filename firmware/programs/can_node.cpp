@@ -43,11 +43,7 @@ class bxcan_port final : public can::port {
  public:
   can::transmit_status send(const can::frame& outgoing) noexcept override {
     if (!board::can0::tx_free()) return can::transmit_status::busy;
-    board::can0::raw_frame raw{};
-    raw.identifier = outgoing.id;
-    raw.length = outgoing.dlc;
-    for (unsigned i = 0; i < 8; ++i) raw.data[i] = outgoing.data[i];
-    board::can0::write(raw);
+    board::can0::write(outgoing.id, outgoing.dlc, outgoing.data);
     return can::transmit_status::queued;
   }
 };
@@ -65,15 +61,16 @@ extern "C" void SysTick_Handler() {
 
 extern "C" void CAN0_RX0_IRQHandler() {
   while (board::can0::rx_pending()) {
-    const board::can0::raw_frame raw = board::can0::read();
     frames_received = frames_received + 1;
 #if TRIONET_FIRMWARE_BASELINE
-    last_identifier = raw.identifier;
+    std::uint32_t identifier = 0;
+    std::uint8_t length = 0;
+    std::uint8_t data[8];
+    board::can0::read(identifier, length, data);
+    last_identifier = identifier;
 #else
     can::frame received;
-    received.id = raw.identifier;
-    received.dlc = raw.length;
-    for (unsigned i = 0; i < 8; ++i) received.data[i] = raw.data[i];
+    board::can0::read(received.id, received.dlc, received.data);
     static_cast<void>(node.receive(received));  // counted by the node
 #endif
   }
@@ -91,8 +88,8 @@ int main() {
 #if TRIONET_FIRMWARE_BASELINE
     position = position + 4294967;  // the same application arithmetic as below (0.001 in Q32.32)
     if (board::can0::tx_free()) {
-      const board::can0::raw_frame fixed{20, 8, {0, 0, 0, 0, 0, 0, 0, 0}};
-      board::can0::write(fixed);
+      const std::uint8_t zeros[8] = {};
+      board::can0::write(20, 8, zeros);
     }
 #else
     vr[position_vr] += 4294967;                 // the axis moves 0.001 (Q32.32)

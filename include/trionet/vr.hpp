@@ -65,13 +65,17 @@ struct network_value {
       return true;
     }
     if (ten_thousandths > 9999 || integer > 0x80000000u) return false;
-    // (t * 2^32 + 5000) / 10000 with 2^32 = 429496 * 10000 + 7296; the remainder's division is an exact
-    // multiply-and-shift (n * ceil(2^40 / 10000) >> 40 is floor(n / 10000) for n < 2^27): no division
-    // routine, and the sum stays below 2^32.
+    // (t * 2^32 + 5000) / 10000 with 2^32 = 429496 * 10000 + 7296, so the part left to divide is
+    // n = t * 7296 + 5000 < 2^27. floor(n / 10000) in 32-bit arithmetic only (no division or 64-bit multiply
+    // routine on a core without them): (n >> 11) * 13422 >> 16 is within one of it, then one correction.
     const std::uint32_t n = static_cast<std::uint32_t>(ten_thousandths) * 7296u + 5000u;
-    const std::uint32_t fraction =
-        static_cast<std::uint32_t>(ten_thousandths) * 429496u +
-        static_cast<std::uint32_t>((static_cast<std::uint64_t>(n) * 109951163u) >> 40);
+    std::uint32_t quotient = ((n >> 11) * 13422u) >> 16;
+    if (quotient * 10000u > n) {
+      --quotient;
+    } else if (n - quotient * 10000u >= 10000u) {
+      ++quotient;
+    }
+    const std::uint32_t fraction = static_cast<std::uint32_t>(ten_thousandths) * 429496u + quotient;
     const std::uint64_t magnitude = (static_cast<std::uint64_t>(integer) << 32) | fraction;
     if (!negative) {
       if (integer == 0x80000000u) return false;  // 2^31 and above
@@ -91,7 +95,7 @@ class vr_store {
   [[nodiscard]] virtual vr_write write(std::uint16_t vr, const network_value& value) noexcept = 0;
 
  protected:
-  vr_store() = default;
+  constexpr vr_store() = default;
   vr_store(const vr_store&) = default;
   vr_store& operator=(const vr_store&) = default;
   ~vr_store() = default;

@@ -111,7 +111,9 @@ struct node_counters {
 /// and one sending context may run concurrently; two contexts must not both send (or both receive) at once.
 class vr_exchange_node {
  public:
-  vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
+  /// constexpr, so that a node defined at namespace scope in firmware is constant-initialized (no start-up
+  /// code).
+  constexpr vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
       : address_(address), port_(&port), store_(&store) {}
 
   [[nodiscard]] node_address address() const noexcept { return address_; }
@@ -158,14 +160,18 @@ class vr_exchange_node {
   /// writes VR(vr) through the store; otherwise classifies and counts it. Never fails.
   receive_result receive(const frame& received) noexcept {
     receive_result result;
-    const route_result found = route_of(address_.node_count(), received.id);
-    if (found.error != scheme_error::none || found.value.receiver != address_.node()) {
+    // This node's receive identifiers are 10k .. 10k + N - 2 (PROTOCOL.md 2.1): one unsigned comparison
+    // also rejects identifiers below them and any with the extended or remote flag set. (`route_of` answers
+    // the same for any identifier; a test checks that they agree.)
+    const std::uint8_t k = address_.node();
+    const std::uint32_t offset = received.id - 10U * k;
+    if (offset >= address_.node_count() - 1U) {
       ++counters_.foreign;
       result.status = receive_status::foreign;
       return result;
     }
-    result.sender = found.value.sender;
-    result.receive_channel = found.value.receive_channel;
+    result.receive_channel = static_cast<std::uint8_t>(offset + 1U);
+    result.sender = static_cast<std::uint8_t>(result.receive_channel < k ? offset + 1U : offset + 2U);
     const decode_result decoded = decode_vr_frame(received);
     switch (decoded.error) {
       case decode_error::none:
@@ -205,8 +211,15 @@ class vr_exchange_node {
   }
 
  private:
+  // The identifier of a frame from this node to `destination`: 10d + rank - 1, where rank is this node's
+  // place among the nodes other than d (what `exchange_identifier` gives, without re-checking this node's
+  // own, already valid, address).
   [[nodiscard]] identifier_result identifier_to(std::uint8_t destination) const noexcept {
-    return exchange_identifier(address_.node_count(), address_.node(), destination);
+    const std::uint8_t k = address_.node();
+    if (destination < 1 || destination > address_.node_count()) return {scheme_error::bad_node, 0};
+    if (destination == k) return {scheme_error::same_node, 0};
+    const unsigned rank = k < destination ? k : k - 1U;
+    return {scheme_error::none, static_cast<std::uint16_t>(10U * destination + rank - 1U)};
   }
 
   [[nodiscard]] static constexpr send_status scheme_to_send(scheme_error error) noexcept {
@@ -248,7 +261,7 @@ class vr_exchange_node {
   node_address address_;
   port* port_;
   vr_store* store_;
-  node_counters counters_;
+  node_counters counters_{};
 };
 
 }  // namespace trionet::can

@@ -25,7 +25,7 @@ class port {
   [[nodiscard]] virtual transmit_status send(const frame& outgoing) noexcept = 0;
 
  protected:
-  port() = default;
+  constexpr port() = default;
   port(const port&) = default;
   port& operator=(const port&) = default;
   ~port() = default;

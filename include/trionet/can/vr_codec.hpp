@@ -120,9 +120,11 @@ struct decode_result {
   const std::uint64_t magnitude =
       negative ? ~static_cast<std::uint64_t>(raw) + 1U : static_cast<std::uint64_t>(raw);
   auto integer = static_cast<std::uint32_t>(magnitude >> 32U);  // at most 2^31
-  // (fraction * 10000 + 2^31) / 2^32: the nearest ten-thousandth, a tie rounded up (away from zero).
-  auto ten_thousandths =
-      static_cast<std::uint32_t>(((magnitude & 0xFFFFFFFFU) * fraction_scale + (1ULL << 31U)) >> 32U);
+  // (fraction * 10000 + 2^31) / 2^32: the nearest ten-thousandth, a tie rounded up (away from zero). In 32-bit
+  // pieces, fraction = high * 2^16 + low, so that no 64-bit multiply routine is needed on a core without one.
+  const auto fraction = static_cast<std::uint32_t>(magnitude);
+  const std::uint32_t low = (fraction & 0xFFFFU) * fraction_scale + 0x80000000U;  // < 2^32
+  auto ten_thousandths = ((fraction >> 16U) * fraction_scale + (low >> 16U)) >> 16U;
   if (ten_thousandths == fraction_scale) {
     ten_thousandths = 0;
     ++integer;
