@@ -102,6 +102,16 @@ extern "C" {
   }
 }
 
+[[gnu::noinline]] void trionet_measured_mc_relay(ring::motion_coordinator<>& mc, const std::uint8_t* p,
+                                                 std::size_t n, std::uint8_t* out,
+                                                 std::size_t& sent) noexcept {
+  TRIONET_OPAQUE();
+  for (std::size_t i = 0; i < n; i += tb::dma_chunk) {
+    sent += mc.relay(byte_view(p + i, n - i < tb::dma_chunk ? n - i : tb::dma_chunk),
+                     trionet::byte_buffer(out, tb::dma_chunk * 2));
+  }
+}
+
 [[gnu::noinline]] void trionet_measured_mc_receive(ring::motion_coordinator<>& mc, const std::uint8_t* p,
                                                    std::size_t n) noexcept {
   TRIONET_OPAQUE();
@@ -251,6 +261,22 @@ std::uint64_t mc_forward_bulk(const std::vector<std::uint8_t>& stream, std::size
   return repeats * stream.size();
 }
 
+std::uint64_t mc_relay(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
+  trionet::vr_table<256> vr;
+  ring::motion_coordinator<> mc(vr);
+  std::uint8_t out[tb::dma_chunk * 2];
+  std::size_t sent = 0;
+  for (std::size_t r = 0; r < repeats; ++r) {
+    trionet_measured_mc_relay(mc, stream.data(), stream.size(), out, sent);
+  }
+  if (mc.netstat() != 0 || mc.forward_backlog() != 0 || sent != repeats * stream.size() ||
+      mc.forwarding_counters().messages_forwarded != repeats * tb::messages_per_stream) {
+    fail("relaying went wrong");
+  }
+  sink = out[0];
+  return repeats * stream.size();
+}
+
 // Character transfers to the node, one message per call; the program's GET#4 reading between messages is not
 // measured.
 std::uint64_t mc_deliver_characters(std::size_t repeats) {
@@ -364,6 +390,8 @@ const workload workloads[] = {
      [](std::size_t n) { return mc_forward_bulk(tb::character_stream(2), n); }},
     {"mc_forward_variables_bulk", "byte",
      [](std::size_t n) { return mc_forward_bulk(tb::variable_stream(2), n); }},
+    {"mc_relay_characters", "byte", [](std::size_t n) { return mc_relay(tb::character_stream(2), n); }},
+    {"mc_relay_variables", "byte", [](std::size_t n) { return mc_relay(tb::variable_stream(2), n); }},
     {"mc_deliver_characters", "byte", mc_deliver_characters},
     {"mc_deliver_variables", "byte", mc_deliver_variables},
     {"crc_12_bytes_trionet_table", "byte",

@@ -191,6 +191,18 @@ TEST(RingBytes, HeaderAndEndOfMessageCarryHops) {
   }
 }
 
+// What a forwarder sends for every control byte: A - 1 with type (and bit 7) unchanged, A = 0 left at 0.
+TEST(RingBytes, DecrementHopsForEveryControlByte) {
+  for (unsigned b = 0x80; b <= 0xFF; ++b) {
+    const auto byte = static_cast<std::uint8_t>(b);
+    const std::uint8_t hops = ring::hops_of(byte);
+    const std::uint8_t forwarded = ring::decrement_hops(byte);
+    EXPECT_EQ(ring::hops_of(forwarded), hops == 0 ? 0 : hops - 1) << b;
+    EXPECT_EQ(ring::type_of(forwarded), ring::type_of(byte)) << b;
+    EXPECT_EQ(ring::classify(forwarded), ring::classify(byte)) << b;
+  }
+}
+
 TEST(RingAddressing, BasicAddressIsHopsPlusNine) {
   EXPECT_FALSE(ring::hops_from_basic_address(9).has_value());
   EXPECT_FALSE(ring::hops_from_basic_address(25).has_value());

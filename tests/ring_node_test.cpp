@@ -538,6 +538,103 @@ TEST(RingMotionCoordinator, Q32TableAndSendWithoutFloatingPoint) {
   EXPECT_EQ(vr_b[200], ring::q32_from_integer(99) + 1);  // exact: no double on the way
 }
 
+// Now and then, bytes outside any message between frames: stray data, or a header with A = 0 and its data.
+void insert_junk(std::vector<std::uint8_t>& stream, std::mt19937_64& rng) {
+  switch (rng() % 8) {
+    case 0:
+      for (std::uint64_t k = 1 + rng() % 3; k > 0; --k)
+        stream.push_back(static_cast<std::uint8_t>(rng() % 128));
+      break;
+    case 1:
+      stream.push_back(ring::make_header(0, static_cast<std::uint8_t>(1 + rng() % 4)));
+      stream.push_back(0x20);
+      break;
+    default:
+      break;
+  }
+}
+
+// Regression: a message passing through the node ends the decoder's run of stray data (or its skipping of an
+// A = 0 message), so stray data after it is a new frame error, in the bulk and relay forms as byte by byte.
+TEST(RingMotionCoordinator, PassingMessageEndsStrayRunInEveryForm) {
+  const std::vector<std::uint8_t> passing = chars(2, "THROUGH");
+  std::vector<std::uint8_t> stray_then_passing = {0x41, 0x42};  // stray data
+  stray_then_passing.insert(stray_then_passing.end(), passing.begin(), passing.end());
+  stray_then_passing.push_back(0x43);  // stray data again: a second frame error
+  std::vector<std::uint8_t> skipped_then_passing = {ring::make_header(0, 1), 0x41};  // A = 0: skipped
+  skipped_then_passing.insert(skipped_then_passing.end(), passing.begin(), passing.end());
+  skipped_then_passing.push_back(0x43);  // stray data: a frame error
+  for (const auto& stream : {stray_then_passing, skipped_then_passing}) {
+    trionet::vr_table<4> vr_one, vr_bulk, vr_relay;
+    ring::motion_coordinator<> one(vr_one), bulk(vr_bulk), relayed(vr_relay);
+    for (std::uint8_t b : stream) one.receive(b);
+    bulk.receive(byte_view(stream.data(), stream.size()));
+    std::uint8_t out[64];
+    const std::size_t sent =
+        relayed.relay(byte_view(stream.data(), stream.size()), trionet::byte_buffer(out, 64));
+    EXPECT_EQ(std::vector<std::uint8_t>(out, out + sent), drain(bulk));
+    EXPECT_EQ(one.counters().frame_errors, 2u);  // stray data or A = 0 before, stray data after
+    EXPECT_EQ(bulk.counters().frame_errors, one.counters().frame_errors);
+    EXPECT_EQ(relayed.counters().frame_errors, one.counters().frame_errors);
+  }
+}
+
+// relay(in, out) is exactly receive(in) then transmit(out), whether it goes straight through (forward buffer
+// empty, between own messages, everything fits) or not.
+TEST(RingMotionCoordinator, RelayIsReceiveThenTransmit) {
+  std::mt19937_64 rng(2024);
+  std::uint64_t straight_candidates = 0, lost = 0;
+  for (int round = 0; round < 300; ++round) {
+    std::vector<std::uint8_t> stream;
+    for (int i = 0; i < 30; ++i) {
+      const auto hops = static_cast<std::uint8_t>(1 + rng() % 3);
+      std::vector<std::uint8_t> frame =
+          rng() % 2 == 0 ? chars(hops, std::string(1 + rng() % 30, static_cast<char>('a' + rng() % 26)))
+                         : frame_of(ring::message::variable(hops, static_cast<std::uint16_t>(rng() % 20),
+                                                            static_cast<std::int64_t>(rng())));
+      insert_junk(stream, rng);
+      stream.insert(stream.end(), frame.begin(), frame.end());
+    }
+    for (int i = 0; i < 8; ++i) stream[rng() % stream.size()] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
+    trionet::vr_table<16> vr_two, vr_relayed;
+    ring::motion_coordinator<64, 16, 24> two(vr_two), relayed(vr_relayed);
+    std::vector<std::uint8_t> out_two, out_relayed;
+    for (std::size_t at = 0; at < stream.size();) {
+      const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 24);
+      if (rng() % 4 == 0) {  // own traffic now and then
+        const int address = 10 + static_cast<int>(rng() % 3);
+        ASSERT_EQ(two.print(address, "OWN"), relayed.print(address, "OWN"));
+      }
+      const std::size_t pull = rng() % 40;
+      if (two.forward_backlog() == 0 && n <= 16 && n <= pull) ++straight_candidates;
+      // Buffers of exactly `pull` bytes on the heap, so that the sanitizer build catches a write past them.
+      std::vector<std::uint8_t> buffer_two(pull), buffer_relayed(pull);
+      two.receive(byte_view(stream.data() + at, n));
+      const std::size_t got_two = two.transmit(trionet::byte_buffer(buffer_two.data(), pull));
+      const std::size_t got_relayed =
+          relayed.relay(byte_view(stream.data() + at, n), trionet::byte_buffer(buffer_relayed.data(), pull));
+      ASSERT_LE(got_relayed, pull);
+      out_two.insert(out_two.end(), buffer_two.begin(), buffer_two.begin() + static_cast<long>(got_two));
+      out_relayed.insert(out_relayed.end(), buffer_relayed.begin(),
+                         buffer_relayed.begin() + static_cast<long>(got_relayed));
+      ASSERT_EQ(out_two, out_relayed) << "round " << round << " at " << at;
+      at += n;
+    }
+    EXPECT_EQ(drain(two), drain(relayed));
+    EXPECT_EQ(two.netstat(), relayed.netstat());
+    EXPECT_EQ(read_all(two, 4), read_all(relayed, 4));
+    EXPECT_EQ(
+        std::memcmp(&two.forwarding_counters(), &relayed.forwarding_counters(), sizeof(ring::link_counters)),
+        0);
+    EXPECT_EQ(std::memcmp(&two.counters(), &relayed.counters(), sizeof(ring::motion_coordinator_counters)),
+              0);
+    for (std::size_t v = 0; v < 16; ++v) EXPECT_EQ(vr_two[v], vr_relayed[v]);
+    lost += two.forwarding_counters().forwards_lost;
+  }
+  EXPECT_GT(straight_candidates, 1000u);  // the straight path was exercised...
+  EXPECT_GT(lost, 10u);                   // ... and so was the forward buffer overflowing
+}
+
 // The bulk forms (a DMA buffer in, a transmit buffer out) behave exactly as the byte-at-a-time forms.
 TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
   std::mt19937_64 rng(99);
@@ -559,6 +656,7 @@ TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
           frame = frame_of(ring::message::keypad_mode(hops, 127));
           break;
       }
+      insert_junk(stream, rng);
       stream.insert(stream.end(), frame.begin(), frame.end());
     }
     for (int i = 0; i < 10; ++i)
@@ -589,9 +687,8 @@ TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
     EXPECT_EQ(one.netstat(), bulk.netstat());
     EXPECT_EQ(read_all(one, 4), read_all(bulk, 4));
     // Every counter, the link's and the node's (plain structs of 32-bit counters: compared whole).
-    EXPECT_EQ(std::memcmp(&one.forwarding_counters(), &bulk.forwarding_counters(),
-                          sizeof(ring::link_counters)),
-              0);
+    EXPECT_EQ(
+        std::memcmp(&one.forwarding_counters(), &bulk.forwarding_counters(), sizeof(ring::link_counters)), 0);
     EXPECT_EQ(std::memcmp(&one.counters(), &bulk.counters(), sizeof(ring::motion_coordinator_counters)), 0);
     lost += one.forwarding_counters().forwards_lost;
     forwarded_whole += one.forwarding_counters().messages_forwarded;

@@ -10,20 +10,18 @@
 namespace trionet {
 
 namespace detail {
-/// std::memcpy for the short runs a node moves (a DMA chunk, part of a message): on 64-bit cores eight bytes
-/// per step inline, which beats a library call for runs of a few words. `to` and `from` do not overlap.
+/// std::memcpy for the short runs a node moves (part of a message, a variable transfer, a DMA chunk): on
+/// 64-bit cores, 8 to 16 bytes as two overlapping words inline, which beats a library call. `to` and `from`
+/// do not overlap.
 inline void copy_bytes(std::uint8_t* to, const std::uint8_t* from, std::size_t n) noexcept {
 #if UINTPTR_MAX > 0xFFFFFFFFu
-  if (n >= 8) {
-    const std::uint8_t* const last = from + (n - 8);
-    std::uint8_t* const to_last = to + (n - 8);
-    std::uint64_t word;
-    for (; from < last; from += 8, to += 8) {
-      std::memcpy(&word, from, sizeof word);
-      std::memcpy(to, &word, sizeof word);
-    }
-    std::memcpy(&word, last, sizeof word);  // the last eight bytes, overlapping what is already copied
-    std::memcpy(to_last, &word, sizeof word);
+  if (n >= 8 && n <= 16) {
+    std::uint64_t first;
+    std::uint64_t last;
+    std::memcpy(&first, from, sizeof first);
+    std::memcpy(&last, from + (n - 8), sizeof last);
+    std::memcpy(to, &first, sizeof first);
+    std::memcpy(to + (n - 8), &last, sizeof last);
     return;
   }
 #endif

@@ -13,6 +13,8 @@
 #include <cstring>
 #include <optional>
 
+#include "trionet/attributes.hpp"
+
 namespace trionet::ring {
 
 /// The three classes of byte on the ring, told apart by bit 7 and the type field.
@@ -53,14 +55,20 @@ constexpr std::uint8_t make_header(std::uint8_t hops, std::uint8_t type) noexcep
 constexpr std::uint8_t make_end_of_message(std::uint8_t hops) noexcept {
   return static_cast<std::uint8_t>(control_flag | ((hops & 0x0F) << 3));
 }
-/// The same control byte (header or end of message) with A replaced: what a forwarding node sends.
+/// The same control byte (header or end of message) with A - 1, and A = 0 left as it is: what a forwarding
+/// node sends (A sits in bits 6..3, so this is one subtraction).
+constexpr std::uint8_t decrement_hops(std::uint8_t control_byte) noexcept {
+  return static_cast<std::uint8_t>((control_byte & 0x78) != 0 ? control_byte - 0x08 : control_byte);
+}
+/// The same control byte (header or end of message) with A replaced.
 constexpr std::uint8_t with_hops(std::uint8_t control_byte, std::uint8_t hops) noexcept {
   return static_cast<std::uint8_t>((control_byte & 0x87) | ((hops & 0x0F) << 3));
 }
 
 /// The first control byte (header or end of message) in [first, last), or `last`: the end of a run of data.
 /// Eight bytes at a time where words are 64-bit.
-inline const std::uint8_t* find_control(const std::uint8_t* first, const std::uint8_t* last) noexcept {
+TRIONET_ALWAYS_INLINE inline const std::uint8_t* find_control(const std::uint8_t* first,
+                                                              const std::uint8_t* last) noexcept {
 #if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
   if constexpr (sizeof(void*) >= 8) {
     if (last - first >= 8) {

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "trionet/attributes.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
@@ -260,11 +261,8 @@ class basic_decoder {
     length_ = static_cast<std::uint16_t>(n > room ? limit + 1 : length_ + take);
   }
 
-#if defined(__GNUC__)
-  [[gnu::noinline]]  // one copy of the result set-up instead of one per error: smaller firmware
-#endif
-  static decode_result
-  error(frame_error reason) noexcept {
+  // Out of line: one copy of the result set-up instead of one per error (smaller firmware).
+  TRIONET_NOINLINE static decode_result error(frame_error reason) noexcept {
     decode_result result;
     result.status = decode_status::frame_error;
     result.error = reason;

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "trionet/attributes.hpp"
 #include "trionet/fifo.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
@@ -53,82 +54,81 @@ class link {
 
  public:
   /// Takes one received byte and says where it went.
-  [[nodiscard]] route receive(std::uint8_t byte) noexcept {
-    const route r = route_byte(byte);
-    ++counters_.bytes[static_cast<std::size_t>(r)];
-    return r;
-  }
+  [[nodiscard]] route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
 
   /// A run of data bytes (no header or end of message among them): the same as `receive` for each, with one
   /// copy. Returns where they went; if a forwarded message overflows part-way, the byte that did not fit is
   /// `lost`, the rest `dropped`, and the result is `lost`.
   [[nodiscard]] route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
-    const auto count = [this](route r, std::size_t k) {
-      counters_.bytes[static_cast<std::size_t>(r)] += static_cast<std::uint32_t>(k);
-    };
-    switch (receiving_) {
-      case receiving::local:
-        count(route::local, n);
-        return route::local;
-      case receiving::discard:
-        count(route::dropped, n);
-        return route::dropped;
-      case receiving::forward:
-        break;
-    }
-    const std::size_t pushed = forward_.push(data, n);
-    count(route::forwarded, pushed);
-    const std::size_t incoming = incoming_ + pushed;
-    incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
-    if (pushed == n) return route::forwarded;
-    count(lose(), 1);
-    count(route::dropped, n - pushed - 1);
-    return route::lost;
+    return receive_data(data, n, forward_);
   }
 
   /// What `receive_passing` took.
   struct passing {
+    static constexpr std::uint8_t header = 1;  ///< a header was taken: a message the node was receiving ended
+    static constexpr std::uint8_t lost = 2;    ///< a forwarded message was lost
     const std::uint8_t* stop;  ///< the first byte not taken (one for the node itself), or the end
-    bool header;               ///< a header was taken: a message the node was receiving has ended
-    bool lost;                 ///< a forwarded message was lost
+    std::uint8_t events;       ///< `header` and `lost` bits: what happened on the way
   };
 
   /// Takes bytes from [first, last) while they are not for the node itself: the same as `receive` for each,
   /// in order, with runs of data copied whole, stopping before the first byte `receive` would route `local`.
-  [[nodiscard]] passing receive_passing(const std::uint8_t* first, const std::uint8_t* last) noexcept {
-    passing result{first, false, false};
-    const std::uint8_t* p = first;
-    while (p != last) {
-      if (receiving_ != receiving::local) {
-        const std::uint8_t* const run = find_control(p, last);
-        if (receiving_ == receiving::forward && run != last && type_of(*run) == 0 && forward_end(p, run)) {
-          p = run + 1;
-          continue;
-        }
-        if (run != p && receive_data(p, static_cast<std::size_t>(run - p)) == route::lost) result.lost = true;
-        p = run;
-        if (p == last) break;
-      }
-      const std::uint8_t byte = *p;  // a control byte, or data for the node
-      if (is_data(byte)) break;
-      if (type_of(byte) == 0) {
-        if (receiving_ == receiving::local) break;  // the end of the node's own message
-      } else {
-        if (hops_of(byte) <= 1) break;  // a message for the node
-        result.header = true;
-        if (forwarding_ && receiving_ == receiving::local && last - p > 1) {  // a whole message to forward?
-          const std::uint8_t* const end = find_control(p + 1, last);
-          if (end != last && type_of(*end) == 0 && forward_whole(p, end)) {
-            p = end + 1;
-            continue;
-          }
-        }
-      }
-      if (receive(byte) == route::lost) result.lost = true;
-      ++p;
+  TRIONET_ALWAYS_INLINE [[nodiscard]] passing receive_passing(const std::uint8_t* first,
+                                                              const std::uint8_t* last) noexcept {
+    return receive_passing(first, last, forward_);
+  }
+
+  /// The caller's transmit buffer standing in for the forward buffer while the forward buffer is empty and
+  /// nothing else is being sent: forwarded bytes go straight into it (see `straight_through`), one copy
+  /// instead of two. It only ever receives part of the bytes `straight_through` was asked about, which fit in
+  /// it by that check: so it never runs out of room, and says so (`free`), which keeps its pushes unchecked.
+  class straight_out {
+   public:
+    std::size_t size() const noexcept { return size_; }
+    static constexpr std::size_t free() noexcept { return ForwardCapacity; }  // never less than what comes
+    [[nodiscard]] bool push(std::uint8_t byte) noexcept {
+      data_[size_++] = byte;
+      return true;
     }
-    result.stop = p;
-    return result;
+    std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
+      trionet::detail::copy_bytes(data_ + size_, bytes, n);
+      size_ += n;
+      return n;
+    }
+    std::uint8_t& at(std::size_t i) noexcept { return data_[i]; }
+    std::uint8_t& back() noexcept { return data_[size_ - 1]; }
+    void drop_back(std::size_t n) noexcept { size_ = n >= size_ ? 0 : size_ - n; }
+
+   private:
+    friend class link;
+    explicit straight_out(std::uint8_t* data) noexcept : data_(data) {}
+    std::uint8_t* data_;
+    std::size_t size_ = 0;
+  };
+
+  /// Whether `received` bytes and then `transmit(out, capacity)` can go straight through: the forward buffer
+  /// is empty, the node is not in the middle of its own message, and both the forward buffer and `out` have
+  /// room for every received byte (so nothing received could be lost, and everything forwarded goes out
+  /// first). If so, forwarded bytes are written into `out` (`receive_passing` with the returned stand-in),
+  /// and `transmit_after` then adds what `transmit` would give after them.
+  [[nodiscard]] bool straight_through(std::size_t received, std::size_t capacity) const noexcept {
+    return forward_.empty() && sending_ != sending::own && received <= ForwardCapacity &&
+           received <= capacity;
+  }
+  [[nodiscard]] static straight_out straight_buffer(std::uint8_t* out) noexcept { return straight_out(out); }
+  TRIONET_ALWAYS_INLINE [[nodiscard]] passing receive_passing(const std::uint8_t* first,
+                                                              const std::uint8_t* last,
+                                                              straight_out& into) noexcept {
+    return receive_passing<straight_out>(first, last, into);
+  }
+  /// The bytes `transmit(out, capacity)` gives after the forwarded bytes already in `straight` (= out[0..]).
+  [[nodiscard]] std::size_t transmit_after(const straight_out& straight, std::uint8_t* out,
+                                           std::size_t capacity) noexcept {
+    const std::size_t n = straight.size();
+    if (n != 0)
+      sending_ = classify(out[n - 1]) == byte_class::end_of_message ? sending::idle : sending::forward;
+    if (queue_.empty()) return n;  // the forward buffer is empty too: nothing more (`transmit` would say so)
+    return n + transmit(out + n, capacity - n);
   }
 
   /// Fills `out` with up to `capacity` bytes for the link: the same bytes as that many calls of `transmit`,
@@ -141,6 +141,10 @@ class link {
         n += forward_.pop(out + n, capacity - n);
         sending_ = classify(out[n - 1]) == byte_class::end_of_message ? sending::idle : sending::forward;
         continue;
+      }
+      if (queue_.empty()) {  // and the forward buffer too: nothing to send (as `transmit` would find)
+        if (sending_ == sending::forward && !forward_open_) sending_ = sending::idle;
+        break;
       }
       if (sending_ == sending::own) {  // a run of own message data up to its next control byte
         const std::size_t room = capacity - n;
@@ -235,11 +239,86 @@ class link {
  private:
   enum class receiving : std::uint8_t { local, forward, discard };
 
-  route route_byte(std::uint8_t byte) noexcept {
+  // The receive side, forwarding `into` the forward buffer or a `straight_out`.
+  template <class Into>
+  route receive(std::uint8_t byte, Into& into) noexcept {
+    const route r = route_byte(byte, into);
+    ++counters_.bytes[static_cast<std::size_t>(r)];
+    return r;
+  }
+
+  template <class Into>
+  route receive_data(const std::uint8_t* data, std::size_t n, Into& into) noexcept {
+    const auto count = [this](route r, std::size_t k) {
+      counters_.bytes[static_cast<std::size_t>(r)] += static_cast<std::uint32_t>(k);
+    };
+    switch (receiving_) {
+      case receiving::local:
+        count(route::local, n);
+        return route::local;
+      case receiving::discard:
+        count(route::dropped, n);
+        return route::dropped;
+      case receiving::forward:
+        break;
+    }
+    const std::size_t pushed = into.push(data, n);
+    count(route::forwarded, pushed);
+    const std::size_t incoming = incoming_ + pushed;
+    incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
+    if (pushed == n) return route::forwarded;
+    count(lose(into), 1);
+    count(route::dropped, n - pushed - 1);
+    return route::lost;
+  }
+
+  template <class Into>
+  TRIONET_ALWAYS_INLINE passing receive_passing(const std::uint8_t* first, const std::uint8_t* last,
+                                                Into& into) noexcept {
+    passing result{first, 0};
+    const std::uint8_t* p = first;
+    while (p != last) {
+      if (receiving_ != receiving::local) {
+        const std::uint8_t* const run = find_control(p, last);
+        if (receiving_ == receiving::forward && run != last && type_of(*run) == 0 &&
+            forward_end(p, run, into)) {
+          p = run + 1;
+          continue;
+        }
+        if (run != p && receive_data(p, static_cast<std::size_t>(run - p), into) == route::lost) {
+          result.events |= passing::lost;
+        }
+        p = run;
+        if (p == last) break;
+      }
+      const std::uint8_t byte = *p;  // a control byte, or data for the node
+      if (is_data(byte)) break;
+      if (type_of(byte) == 0) {
+        if (receiving_ == receiving::local) break;  // the end of the node's own message
+      } else {
+        if (hops_of(byte) <= 1) break;  // a message for the node
+        result.events |= passing::header;
+        if (forwarding_ && receiving_ == receiving::local) {  // a whole message to forward?
+          const std::uint8_t* const end = find_control(p + 1, last);
+          if (end != last && type_of(*end) == 0 && forward_whole(p, end, into)) {
+            p = end + 1;
+            continue;
+          }
+        }
+      }
+      if (receive(byte, into) == route::lost) result.events |= passing::lost;
+      ++p;
+    }
+    result.stop = p;
+    return result;
+  }
+
+  template <class Into>
+  route route_byte(std::uint8_t byte, Into& into) noexcept {
     if (is_data(byte)) {
       switch (receiving_) {
         case receiving::forward:
-          return forward(byte);
+          return forward(byte, into);
         case receiving::discard:
           return route::dropped;
         case receiving::local:
@@ -252,7 +331,7 @@ class link {
     forward_open_ = false;     // any header or end of message ends the message being forwarded
     if (type_of(byte) == 0) {  // end of message
       if (was == receiving::forward) {
-        return forward(forwarded_end_of_message(byte));
+        return forward(decrement_hops(byte), into);
       }
       return was == receiving::discard ? route::dropped : route::local;
     }
@@ -267,26 +346,28 @@ class link {
     forward_open_ = true;
     incoming_ = 0;
     ++counters_.messages_forwarded;
-    return forward(with_hops(byte, static_cast<std::uint8_t>(hops - 1)));
+    return forward(decrement_hops(byte), into);
   }
 
   enum class sending : std::uint8_t { idle, forward, own };
 
-  route forward(std::uint8_t byte) noexcept {
-    if (forward_.push(byte)) {
+  template <class Into>
+  route forward(std::uint8_t byte, Into& into) noexcept {
+    if (into.push(byte)) {
       if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity < 65535: never wraps
       return route::forwarded;
     }
-    return lose();
+    return lose(into);
   }
 
   // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
   // all fits (the same as `receive` for each byte); false, and nothing done, if it does not.
-  bool forward_end(const std::uint8_t* data, const std::uint8_t* end_of_message) noexcept {
+  template <class Into>
+  bool forward_end(const std::uint8_t* data, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - data) + 1;
-    if (n > forward_.free()) return false;
-    (void)forward_.push(data, n);
-    forward_.back() = forwarded_end_of_message(*end_of_message);
+    if (n > into.free()) return false;
+    (void)into.push(data, n);
+    into.back() = decrement_hops(*end_of_message);
     counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
     receiving_ = receiving::local;
     forward_open_ = false;
@@ -295,27 +376,24 @@ class link {
 
   // A whole message to forward, [header, end_of_message] (header A > 1, forwarding on, between messages): in
   // one copy if it all fits (the same as `receive` for each byte); false, and nothing done, if it does not.
-  bool forward_whole(const std::uint8_t* header, const std::uint8_t* end_of_message) noexcept {
+  template <class Into>
+  bool forward_whole(const std::uint8_t* header, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - header) + 1;
-    if (n > forward_.free()) return false;
-    const std::size_t header_at = forward_.size();
-    (void)forward_.push(header, n);
-    forward_.at(header_at) = with_hops(*header, static_cast<std::uint8_t>(hops_of(*header) - 1));
-    forward_.back() = forwarded_end_of_message(*end_of_message);
+    if (n > into.free()) return false;
+    const std::size_t header_at = into.size();
+    (void)into.push(header, n);
+    into.at(header_at) = decrement_hops(*header);
+    into.back() = decrement_hops(*end_of_message);
     counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
     ++counters_.messages_forwarded;
     return true;
   }
 
-  static constexpr std::uint8_t forwarded_end_of_message(std::uint8_t end_of_message) noexcept {
-    const std::uint8_t hops = hops_of(end_of_message);
-    return with_hops(end_of_message, static_cast<std::uint8_t>(hops == 0 ? 0 : hops - 1));
-  }
-
   // The forwarded message being received does not fit: it is lost.
-  route lose() noexcept {
+  template <class Into>
+  route lose(Into& into) noexcept {
     ++counters_.forwards_lost;
-    if (incoming_ <= forward_.size()) forward_.drop_back(incoming_);  // none of it has gone out yet
+    if (incoming_ <= into.size()) into.drop_back(incoming_);  // none of it has gone out yet
     forward_open_ = false;
     receiving_ = receiving::discard;
     return route::lost;

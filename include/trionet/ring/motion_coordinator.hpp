@@ -11,15 +11,16 @@
 //   if (mc.key(3)) { auto k = mc.get(3); ... }   // IF KEY#3 THEN GET #3,k
 //
 // Cost (defaults): RAM = receive buffer 256 + forward buffer 32 + transmit queue 32 + 128 bytes of state and
-// counters = 448 bytes on a 32-bit core (464 on a 64-bit host); the VR table and DEFKEY table are the caller's.
-// Per received byte O(1).
-// `receive`/`transmit` may run in an ISR; see transport.hpp for sharing with the main loop.
+// counters = 448 bytes on a 32-bit core (464 on a 64-bit host); the VR table and DEFKEY table are the
+// caller's. Per received byte O(1). `receive`/`transmit` may run in an ISR; see transport.hpp for sharing
+// with the main loop.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 
+#include "trionet/attributes.hpp"
 #include "trionet/fifo.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
@@ -156,28 +157,7 @@ class motion_coordinator final : public byte_port {
   }
   /// Many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in order, with
   /// runs of message data copied whole. Not virtual, so firmware that does not call it does not link it.
-  void receive(byte_view bytes) noexcept {
-    const std::uint8_t* p = bytes.begin();
-    const std::uint8_t* const end = bytes.end();
-    for (;;) {
-      // Traffic through the node: forwarded (or dropped) whole runs at a time.
-      const auto passed = link_.receive_passing(p, end);
-      if (passed.header) handle(decoder_.interrupt());  // once is enough: the decoder is then between messages
-      if (passed.lost) netstat_ |= netstat_tx_buffer_error;
-      p = passed.stop;
-      if (p == end) return;
-      // Bytes for the node: a control byte, or a run of message data for the decoder.
-      if (!is_data(*p)) {
-        receive(*p++);
-        continue;
-      }
-      const std::uint8_t* const run = find_control(p, end);
-      const auto n = static_cast<std::size_t>(run - p);
-      (void)link_.receive_data(p, n);  // route::local: counted
-      decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
-      p = run;
-    }
-  }
+  void receive(byte_view bytes) noexcept { receive_bytes(bytes); }
   [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept override { return link_.transmit(byte); }
   /// Fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that many calls
   /// of `transmit`, stopping at the first that has none.
@@ -185,6 +165,16 @@ class motion_coordinator final : public byte_port {
     return link_.transmit(out.data(), out.size());
   }
   [[nodiscard]] bool transmit_pending() const noexcept override { return link_.transmit_pending(); }
+
+  /// A DMA-fed node's receive-and-forward in one call: exactly `receive(in)` then `transmit(out)` (returns
+  /// how many bytes of `out` to send). When the forward buffer is empty and the node is between its own
+  /// messages, the bytes it forwards are written straight into `out`: one copy instead of two.
+  [[nodiscard]] std::size_t relay(byte_view in, byte_buffer out) noexcept {
+    if (!link_.straight_through(in.size(), out.size())) return receive_then_transmit(in, out);
+    auto straight = link_type::straight_buffer(out.data());
+    receive_bytes(in, straight);
+    return link_.transmit_after(straight, out.data(), out.size());
+  }
 
   // ---- PRINT# and SEND (BASIC addresses 10..24) ----
 
@@ -292,6 +282,57 @@ class motion_coordinator final : public byte_port {
     return send_result::bad_address;
   }
 
+  // The bulk receive: traffic through the node a run at a time (into the forward buffer, or the stand-in
+  // given), bytes for the node to the decoder (out of line, so that the forwarding loop stays small).
+  template <class... Straight>
+  TRIONET_ALWAYS_INLINE void receive_bytes(byte_view bytes, Straight&... straight) noexcept {
+    const std::uint8_t* p = bytes.begin();
+    const std::uint8_t* const end = bytes.end();
+    for (;;) {
+      const auto passed = link_.receive_passing(p, end, straight...);
+      if (passed.events != 0) passed_events(passed.events);
+      p = passed.stop;
+      if (p == end) return;
+      p = receive_local(p, end);
+    }
+  }
+
+  // `relay` when it cannot go straight through (out of line, so that the straight path stays small).
+  TRIONET_NOINLINE std::size_t receive_then_transmit(byte_view in, byte_buffer out) noexcept {
+    receive(in);
+    return transmit(out);
+  }
+
+  // What happened to traffic through the node: a header (it ends any message the node was receiving, and the
+  // decoder is then between messages) or a lost forwarded message.
+  void passed_events(std::uint8_t events) noexcept {
+    if ((events & link_type::passing::header) != 0) {
+      if (decoder_.in_message()) {
+        end_local_message();
+      } else {
+        decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
+      }
+    }
+    if ((events & link_type::passing::lost) != 0) netstat_ |= netstat_tx_buffer_error;
+  }
+
+  // A header through the node ended the message the node was receiving.
+  TRIONET_NOINLINE void end_local_message() noexcept { handle(decoder_.interrupt()); }
+
+  // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
+  TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p,
+                                                     const std::uint8_t* end) noexcept {
+    if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
+      receive(*p);
+      return p + 1;
+    }
+    const std::uint8_t* const run = find_control(p, end);
+    const auto n = static_cast<std::size_t>(run - p);
+    (void)link_.receive_data(p, n);  // route::local: counted
+    decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
+    return run;
+  }
+
   void handle(const decode_result& r) noexcept {
     switch (r.status) {
       case decode_status::incomplete:
@@ -336,7 +377,8 @@ class motion_coordinator final : public byte_port {
     }
   }
 
-  link<ForwardCapacity, TransmitCapacity, Crc> link_;
+  using link_type = link<ForwardCapacity, TransmitCapacity, Crc>;
+  link_type link_;
   basic_decoder<receive_buffer<ReceiveCapacity>, ReceiveCapacity, Crc> decoder_;
   vr_store* vr_;
   const defkey_table* defkey_;
