@@ -17,7 +17,7 @@
 
 namespace {
 
-using trionet::ring::crc16_ccitt_false;
+using trionet::ring::crc16_ccitt_false_table;
 using trionet::ring::crc16_ccitt_false_bitwise;
 namespace tb = trionet::bench;
 
@@ -27,7 +27,7 @@ constexpr std::size_t long_length = 4096;
 
 struct table_crc {
   static std::uint16_t compute(const std::uint8_t* data, std::size_t size) noexcept {
-    return crc16_ccitt_false::compute(data, size);
+    return crc16_ccitt_false_table::compute(data, size);
   }
 };
 struct sliced_crc {

@@ -122,7 +122,7 @@ extern "C" {
                                                            std::size_t count) noexcept {
   TRIONET_OPAQUE();
   std::uint16_t sum = 0;
-  for (std::size_t m = 0; m < count; ++m) sum ^= ring::crc16_ccitt_false::compute(p + m * length, length);
+  for (std::size_t m = 0; m < count; ++m) sum ^= ring::crc16_ccitt_false_table::compute(p + m * length, length);
   return sum;
 }
 

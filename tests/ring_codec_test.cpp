@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "trionet/ring.hpp"
@@ -121,7 +122,15 @@ TEST(RingGoldenExample, TableFreeCrcGivesTheSameFrame) {
 
 TEST(RingCrc, CheckValueWithTable) {
   const char* check = "123456789";
+  EXPECT_EQ(ring::crc16_ccitt_false_table::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
   EXPECT_EQ(ring::crc16_ccitt_false::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
+}
+
+// The default is sliced on 64-bit cores and one table on 32-bit ones (the firmware build checks the latter).
+TEST(RingCrc, DefaultIsSlicedOnSixtyFourBitCores) {
+  constexpr bool sixty_four_bit = sizeof(void*) == 8;
+  EXPECT_EQ((std::is_same_v<ring::crc16_ccitt_false, ring::crc16_ccitt_false_sliced>), sixty_four_bit);
+  EXPECT_EQ((std::is_same_v<ring::crc16_ccitt_false, ring::crc16_ccitt_false_table>), !sixty_four_bit);
 }
 
 TEST(RingCrc, CheckValueWithoutTable) {
@@ -132,7 +141,8 @@ TEST(RingCrc, CheckValueWithoutTable) {
 
 TEST(RingCrc, CheckValueAtCompileTime) {
   constexpr std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
-  static_assert(ring::crc16_ccitt_false::compute(check, 9) == 0x29B1, "table CRC check value");
+  static_assert(ring::crc16_ccitt_false_table::compute(check, 9) == 0x29B1, "table CRC check value");
+  static_assert(ring::crc16_ccitt_false_sliced::compute(check, 9) == 0x29B1, "sliced CRC check value");
   static_assert(ring::crc16_ccitt_false_bitwise::compute(check, 9) == 0x29B1, "bitwise CRC check value");
   SUCCEED();
 }

@@ -5,8 +5,9 @@
 //   static constexpr std::uint16_t update(std::uint16_t, std::uint8_t); // one byte in
 //   static constexpr std::uint16_t finish(std::uint16_t);               // final xor
 // `crc16<>` makes such a policy for any 16-bit non-reflected polynomial and init: without a table, with a
-// 256-entry table (512 bytes of const data, built at compile time; the default), or sliced (four tables,
-// 2 KiB, four bytes per step). The default is CRC-16/CCITT-FALSE.
+// 256-entry table (512 bytes of const data, built at compile time), or sliced (four tables, 2 KiB, four bytes
+// per step). The default, `crc16_ccitt_false`, is CRC-16/CCITT-FALSE sliced on 64-bit cores (hosts, gateways:
+// the fastest, memory is cheap) and with one table on 32-bit and smaller cores (firmware: 512 bytes).
 // Only bits 14..8 and 6..0 of the result travel on the ring (two 7-bit data bytes).
 // Cost per byte: one table lookup and two shifts (table), about half that (sliced, on runs of 4 bytes), or
 // eight shift/xor steps (table-free).
@@ -122,12 +123,17 @@ constexpr std::uint16_t crc_of(const std::uint8_t* data) noexcept {
   }
 }
 
-/// CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, not reflected, xorout 0), 256-entry table: the default.
-using crc16_ccitt_false = crc16<0x1021, 0xFFFF>;
+/// CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, not reflected, xorout 0) with one 256-entry table (512 B).
+using crc16_ccitt_false_table = crc16<0x1021, 0xFFFF>;
 /// The same CRC without a table, for the smallest firmware.
 using crc16_ccitt_false_bitwise = crc16<0x1021, 0xFFFF, 0, crc_table::none>;
 /// The same CRC four bytes per step with 2 KiB of tables, for hosts and gateways.
 using crc16_ccitt_false_sliced = crc16<0x1021, 0xFFFF, 0, crc_table::sliced>;
+/// The default CRC of the ring (PROTOCOL.md 1.3): sliced where pointers are 64-bit (hosts and gateways, where
+/// 2 KiB of tables cost nothing and it is the fastest), one table elsewhere (32-bit cores: firmware, 512 B).
+/// Every form gives the same CRC; pass another policy to a node or the codec to choose for yourself.
+using crc16_ccitt_false =
+    std::conditional_t<(UINTPTR_MAX > 0xFFFFFFFFu), crc16_ccitt_false_sliced, crc16_ccitt_false_table>;
 
 /// The 14 bits of a CRC that travel on the ring: bits 14..8 and 6..0.
 constexpr std::uint16_t crc_wire_bits(std::uint16_t crc) noexcept {
