@@ -10,6 +10,8 @@
 //   6     pull (op & 31) + 1 bytes from the MC's transmitter
 //   7     clear NETSTAT, KEY#, keypad press/release, pull from the keypad (op & 7)
 // Every received byte goes to both nodes. At the end both transmitters are drained.
+// A twin of the MC gets the same bytes and calls through the bulk forms (receive(byte_view), relay) and must
+// send the same bytes, answer every call the same and end with the same counters, NETSTAT and VRs.
 //
 // Invariants (MC):
 //   - forwarding_counters().bytes[0..3] (local, forwarded, dropped, lost) add up to the bytes fed, and each
@@ -17,10 +19,11 @@
 //   - every result of the node's local decoding is classified and counted exactly once: a reference decoder
 //     fed the same local bytes says what the node must count (frame error, CRC error, message by type; VR
 //     written with the decoded value, refused by the policy, or out of range) and nothing else may change;
-//   - a character message is delivered whole or not at all, in order: when the reference decodes one, the node
+//   - a character message is delivered whole or not at all, in order: when the reference decodes one, the
+//   node
 //     either takes it (all its characters join the expected queue) or drops it whole (receive overflow, only
-//     if it could not fit); GET returns exactly the expected queue, `characters_waiting()` equals its size and
-//     never exceeds the receive capacity; KEY# is true exactly when it is non-empty;
+//     if it could not fit); GET returns exactly the expected queue, `characters_waiting()` equals its size
+//     and never exceeds the receive capacity; KEY# is true exactly when it is non-empty;
 //   - PRINT#/SEND queue the whole frame or nothing; a valid call is refused only for lack of room (NETSTAT
 //     bit 0); NETSTAT bits are set when the matching counters grow;
 //   - the transmitted stream is exactly what the link rules give (PROTOCOL.md 1.5): forwarded bytes with A-1,
@@ -34,6 +37,7 @@
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <type_traits>
 #include <vector>
 
 #include <trionet/ring/decoder.hpp>
@@ -181,19 +185,24 @@ class harness {
         case 5:
           get(op);
           break;
-        case 6:
-          for (unsigned i = 0; i <= (op & 31u); ++i) pull();
+        case 6: {
+          const unsigned pulls = (op & 31u) + 1u;
+          for (unsigned i = 0; i < pulls; ++i) pull();
+          relay_to_twin(pulls, op);
           break;
+        }
         default:
           misc(op, in);
           break;
       }
       check_state();
     }
-    // Drain: the model and the node agree to the end.
+    // Drain: the model and the node agree to the end, and so does the twin.
     for (std::size_t i = 0; i < 4096; ++i) {
       if (!pull()) break;
     }
+    relay_to_twin(4096, 0);
+    check_twin();
     FUZZ_CHECK(!mc_.transmit_pending());
     FUZZ_CHECK(link_.forward.empty());
     FUZZ_CHECK(link_.own.empty() || (link_.state == link_model::sending::forward && link_.open));
@@ -210,6 +219,7 @@ class harness {
 
     mc_.receive(byte);
     ++fed_;
+    twin_pending_.push_back(byte);
 
     // Exactly one route, and the routes add up.
     const link_counters& links = mc_.forwarding_counters();
@@ -296,7 +306,8 @@ class harness {
     keypad_.receive(byte);
     ++keypad_fed_;
     const link_counters& links = keypad_.forwarding_counters();
-    FUZZ_CHECK(std::uint64_t{links.bytes[0]} + links.bytes[1] + links.bytes[2] + links.bytes[3] == keypad_fed_);
+    FUZZ_CHECK(std::uint64_t{links.bytes[0]} + links.bytes[1] + links.bytes[2] + links.bytes[3] ==
+               keypad_fed_);
     FUZZ_CHECK(keypad_.display().cursor() < keypad_display::positions);
     if (!keypad_.network_mode()) {
       FUZZ_CHECK(links.bytes[1] == 0 && links.bytes[3] == 0);  // nothing is forwarded in local mode
@@ -368,7 +379,8 @@ class harness {
       if (text[i] > 127) seven_bit = false;
     }
     free_before_ = mc_.transmit_free();
-    const send_result result = mc_.print(n, trionet::byte_view(text, length));
+    const send_result result =
+        both([&](node_type& node) { return node.print(n, trionet::byte_view(text, length)); });
     const message m = message::characters(static_cast<std::uint8_t>(n - 9), trionet::byte_view(text, length));
     std::vector<send_result> errors;
     if (n > last_basic_address) errors.push_back(send_result::bad_address);
@@ -393,7 +405,8 @@ class harness {
           const std::uint8_t pick = in.byte();
           if ((pick & 4u) != 0) {  // the integer-only form: any Q32.32 value is in range
             const auto raw = static_cast<std::int64_t>(static_cast<std::uint64_t>(in.u32()) << 32 | in.u32());
-            const send_result result = mc_.send_variable_q32(n, vr, raw);
+            const send_result result =
+                both([&](node_type& node) { return node.send_variable_q32(n, vr, raw); });
             if (vr > max_vr) errors.push_back(send_result::vr_out_of_range);
             sent(result, errors, message::variable(hops, vr, raw));
             break;
@@ -401,7 +414,7 @@ class harness {
           value = pick % 3 == 0 ? 1e300 : pick % 3 == 1 ? -2147483648.5 : 2147483647.99999999;
         }
         const q32_result q = q32_from_double(value);
-        const send_result result = mc_.send_variable(n, vr, value);
+        const send_result result = both([&](node_type& node) { return node.send_variable(n, vr, value); });
         if (vr > max_vr) errors.push_back(send_result::vr_out_of_range);
         if (!q) errors.push_back(send_result::value_out_of_range);
         sent(result, errors, message::variable(hops, vr, q.raw));
@@ -409,7 +422,7 @@ class harness {
       }
       case 1: {
         const int offset = 9 + in.byte() % 17;
-        const send_result result = mc_.send_keypad_offset(n, offset);
+        const send_result result = both([&](node_type& node) { return node.send_keypad_offset(n, offset); });
         const bool good_offset = offset >= first_basic_address && offset <= last_basic_address;
         if (!good_offset) errors.push_back(send_result::offset_out_of_range);
         sent(result, errors,
@@ -419,7 +432,7 @@ class harness {
       default: {
         const std::uint8_t pick = in.byte();
         const int mode = pick % 3 == 0 ? 0 : pick % 3 == 1 ? 127 : pick;
-        const send_result result = mc_.send_keypad_mode(n, mode);
+        const send_result result = both([&](node_type& node) { return node.send_keypad_mode(n, mode); });
         const bool good_mode = mode == 0 || mode == 127;
         if (!good_mode) errors.push_back(send_result::mode_out_of_range);
         sent(result, errors, message::keypad_mode(hops, static_cast<std::uint8_t>(good_mode ? mode : 0)));
@@ -434,7 +447,7 @@ class harness {
     for (unsigned i = 0; i < count; ++i) {
       FUZZ_CHECK(mc_.key(channel) == !waiting_.empty());
       const int used = i == 15 ? 2 : channel;
-      const get_result got = mc_.get(used);
+      const get_result got = both([&](node_type& node) { return node.get(used); });
       if (used == 2) {
         FUZZ_CHECK(got.status == get_result::status::bad_channel);
         FUZZ_CHECK(!mc_.key(used));
@@ -463,6 +476,7 @@ class harness {
     if (!got) return false;
     FUZZ_CHECK(byte == want);
     mc_stream_.take(byte);
+    mc_sent_.push_back(byte);
     return true;
   }
 
@@ -479,7 +493,10 @@ class harness {
   void misc(std::uint8_t op, trionet_fuzz::input_reader& in) {
     switch (op & 7u) {
       case 0:
-        mc_.clear_netstat();
+        both([](node_type& node) {
+          node.clear_netstat();
+          return 0;
+        });
         FUZZ_CHECK(mc_.netstat() == 0);
         break;
       case 1:
@@ -508,6 +525,45 @@ class harness {
     }
   }
 
+  // The twin: the same node fed the same bytes through the bulk calls a DMA-fed node uses. The bytes received
+  // since its last call go in at once with receive(byte_view), and when `mc_` is pulled `pulls` times the
+  // last (up to 16) of them go through relay(in, out) with room for `pulls` bytes: the same as receiving them
+  // one by one and pulling that often, so it must send the same bytes and end in the same state.
+  void receive_in_twin() {
+    twin_.receive(trionet::byte_view(twin_pending_.data(), twin_pending_.size()));
+    twin_pending_.clear();
+  }
+  void relay_to_twin(std::size_t pulls, std::uint8_t op) {
+    const std::size_t tail = std::min<std::size_t>(twin_pending_.size(), op & 15u);
+    twin_.receive(trionet::byte_view(twin_pending_.data(), twin_pending_.size() - tail));
+    std::vector<std::uint8_t> out(pulls);
+    const std::size_t got =
+        twin_.relay(trionet::byte_view(twin_pending_.data() + twin_pending_.size() - tail, tail),
+                    trionet::byte_buffer(out.data(), out.size()));
+    FUZZ_CHECK(got <= pulls);
+    twin_sent_.insert(twin_sent_.end(), out.begin(), out.begin() + static_cast<std::ptrdiff_t>(got));
+    twin_pending_.clear();
+    FUZZ_CHECK(twin_sent_ == mc_sent_);
+  }
+  // A program call on both nodes, after the twin has caught up on received bytes: the same answer.
+  template <class Call>
+  std::invoke_result_t<Call, node_type&> both(Call call) {
+    receive_in_twin();
+    const auto mine = call(mc_);
+    const auto twins = call(twin_);
+    FUZZ_CHECK(std::memcmp(&mine, &twins, sizeof mine) == 0);
+    return mine;
+  }
+  void check_twin() {
+    receive_in_twin();
+    FUZZ_CHECK(same(mc_.counters(), twin_.counters()));
+    FUZZ_CHECK(std::memcmp(&mc_.forwarding_counters(), &twin_.forwarding_counters(), sizeof(link_counters)) ==
+               0);
+    FUZZ_CHECK(mc_.netstat() == twin_.netstat());
+    FUZZ_CHECK(mc_.characters_waiting() == twin_.characters_waiting());
+    for (std::size_t v = 0; v < vr_count; ++v) FUZZ_CHECK(vr_[v] == twin_vr_[v]);
+  }
+
   void check_state() {
     FUZZ_CHECK(mc_.characters_waiting() == waiting_.size());
     FUZZ_CHECK(mc_.characters_waiting() <= receive_capacity);
@@ -519,6 +575,10 @@ class harness {
 
   trionet::vr_table<vr_count> vr_;
   node_type mc_;
+  trionet::vr_table<vr_count> twin_vr_{refuse_some};
+  node_type twin_{twin_vr_};
+  std::vector<std::uint8_t> twin_pending_;         // received by mc_, not yet by the twin
+  std::vector<std::uint8_t> mc_sent_, twin_sent_;  // what each has transmitted
   decoder<receive_capacity> reference_;
   link_model link_;
   std::deque<std::uint8_t> waiting_;  // characters GET must return, in order
