@@ -13,7 +13,8 @@
 // If the forward buffer overflows, the forwarded message is lost: removed whole if none of it has gone out,
 // otherwise cut short (the destination then sees it interrupted); the rest of it is dropped.
 //
-// Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Every call O(1); ISR-safe.
+// Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Per byte O(1), the bulk calls with one copy
+// per run of data; ISR-safe.
 #pragma once
 
 #include <cstddef>
