@@ -122,7 +122,8 @@ extern "C" {
                                                            std::size_t count) noexcept {
   TRIONET_OPAQUE();
   std::uint16_t sum = 0;
-  for (std::size_t m = 0; m < count; ++m) sum ^= ring::crc16_ccitt_false_table::compute(p + m * length, length);
+  for (std::size_t m = 0; m < count; ++m)
+    sum ^= ring::crc16_ccitt_false_table::compute(p + m * length, length);
   return sum;
 }
 
@@ -245,33 +246,19 @@ std::uint64_t mc_forward(const std::vector<std::uint8_t>& stream, std::size_t re
   return repeats * stream.size();
 }
 
-std::uint64_t mc_forward_bulk(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
+// A DMA-fed node, through `measured`: the bulk receive + transmit, or relay.
+using dma_measured = void (*)(ring::motion_coordinator<>&, const std::uint8_t*, std::size_t, std::uint8_t*,
+                              std::size_t&) noexcept;
+std::uint64_t mc_forward_dma(const std::vector<std::uint8_t>& stream, std::size_t repeats,
+                             dma_measured measured) {
   trionet::vr_table<256> vr;
   ring::motion_coordinator<> mc(vr);
   std::uint8_t out[tb::dma_chunk * 2];
   std::size_t sent = 0;
-  for (std::size_t r = 0; r < repeats; ++r) {
-    trionet_measured_mc_forward_bulk(mc, stream.data(), stream.size(), out, sent);
-  }
+  for (std::size_t r = 0; r < repeats; ++r) measured(mc, stream.data(), stream.size(), out, sent);
   if (mc.netstat() != 0 || mc.forward_backlog() != 0 || sent != repeats * stream.size() ||
       mc.forwarding_counters().messages_forwarded != repeats * tb::messages_per_stream) {
-    fail("bulk forwarding went wrong");
-  }
-  sink = out[0];
-  return repeats * stream.size();
-}
-
-std::uint64_t mc_relay(const std::vector<std::uint8_t>& stream, std::size_t repeats) {
-  trionet::vr_table<256> vr;
-  ring::motion_coordinator<> mc(vr);
-  std::uint8_t out[tb::dma_chunk * 2];
-  std::size_t sent = 0;
-  for (std::size_t r = 0; r < repeats; ++r) {
-    trionet_measured_mc_relay(mc, stream.data(), stream.size(), out, sent);
-  }
-  if (mc.netstat() != 0 || mc.forward_backlog() != 0 || sent != repeats * stream.size() ||
-      mc.forwarding_counters().messages_forwarded != repeats * tb::messages_per_stream) {
-    fail("relaying went wrong");
+    fail("DMA-fed forwarding went wrong");
   }
   sink = out[0];
   return repeats * stream.size();
@@ -387,11 +374,17 @@ const workload workloads[] = {
     {"mc_forward_characters", "byte", [](std::size_t n) { return mc_forward(tb::character_stream(2), n); }},
     {"mc_forward_variables", "byte", [](std::size_t n) { return mc_forward(tb::variable_stream(2), n); }},
     {"mc_forward_characters_bulk", "byte",
-     [](std::size_t n) { return mc_forward_bulk(tb::character_stream(2), n); }},
+     [](std::size_t n) {
+       return mc_forward_dma(tb::character_stream(2), n, trionet_measured_mc_forward_bulk);
+     }},
     {"mc_forward_variables_bulk", "byte",
-     [](std::size_t n) { return mc_forward_bulk(tb::variable_stream(2), n); }},
-    {"mc_relay_characters", "byte", [](std::size_t n) { return mc_relay(tb::character_stream(2), n); }},
-    {"mc_relay_variables", "byte", [](std::size_t n) { return mc_relay(tb::variable_stream(2), n); }},
+     [](std::size_t n) {
+       return mc_forward_dma(tb::variable_stream(2), n, trionet_measured_mc_forward_bulk);
+     }},
+    {"mc_relay_characters", "byte",
+     [](std::size_t n) { return mc_forward_dma(tb::character_stream(2), n, trionet_measured_mc_relay); }},
+    {"mc_relay_variables", "byte",
+     [](std::size_t n) { return mc_forward_dma(tb::variable_stream(2), n, trionet_measured_mc_relay); }},
     {"mc_deliver_characters", "byte", mc_deliver_characters},
     {"mc_deliver_variables", "byte", mc_deliver_variables},
     {"crc_12_bytes_trionet_table", "byte",

@@ -113,9 +113,11 @@ void mc_forward(benchmark::State& state, const std::vector<std::uint8_t>& stream
                           static_cast<std::int64_t>(stream.size()));
 }
 
-// The same through the bulk calls a DMA-fed node uses: receive(byte_view) of dma_chunk bytes, then
-// transmit(byte_buffer) with room for twice that.
-void mc_forward_bulk(benchmark::State& state, const std::vector<std::uint8_t>& stream) {
+// The same through the calls a DMA-fed node uses, dma_chunk bytes at a time with room for twice that to send:
+// `chunk(mc, in, out)` is receive(byte_view) then transmit(byte_buffer), or relay(in, out), which writes
+// forwarded bytes straight into `out` when the forward buffer is empty.
+template <class Chunk>
+void mc_forward_dma(benchmark::State& state, const std::vector<std::uint8_t>& stream, Chunk chunk) {
   trionet::vr_table<256> vr;
   motion_coordinator<> mc(vr);
   std::uint8_t out[tb::dma_chunk * 2];
@@ -123,8 +125,7 @@ void mc_forward_bulk(benchmark::State& state, const std::vector<std::uint8_t>& s
   for (auto _ : state) {
     for (std::size_t i = 0; i < stream.size(); i += tb::dma_chunk) {
       const std::size_t n = stream.size() - i < tb::dma_chunk ? stream.size() - i : tb::dma_chunk;
-      mc.receive(byte_view(&stream[i], n));
-      sent += mc.transmit(trionet::byte_buffer(out, sizeof out));
+      sent += chunk(mc, byte_view(&stream[i], n), trionet::byte_buffer(out, sizeof out));
     }
     benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
@@ -135,27 +136,16 @@ void mc_forward_bulk(benchmark::State& state, const std::vector<std::uint8_t>& s
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
 }
-
-// The same in one call per chunk: relay(in, out), which writes forwarded bytes straight into `out` when the
-// forward buffer is empty.
+void mc_forward_bulk(benchmark::State& state, const std::vector<std::uint8_t>& stream) {
+  mc_forward_dma(state, stream, [](motion_coordinator<>& mc, byte_view in, trionet::byte_buffer out) {
+    mc.receive(in);
+    return mc.transmit(out);
+  });
+}
 void mc_relay(benchmark::State& state, const std::vector<std::uint8_t>& stream) {
-  trionet::vr_table<256> vr;
-  motion_coordinator<> mc(vr);
-  std::uint8_t out[tb::dma_chunk * 2];
-  std::uint64_t sent = 0;
-  for (auto _ : state) {
-    for (std::size_t i = 0; i < stream.size(); i += tb::dma_chunk) {
-      const std::size_t n = stream.size() - i < tb::dma_chunk ? stream.size() - i : tb::dma_chunk;
-      sent += mc.relay(byte_view(&stream[i], n), trionet::byte_buffer(out, sizeof out));
-    }
-    benchmark::DoNotOptimize(out);
-    benchmark::ClobberMemory();
-  }
-  const auto bytes = static_cast<std::uint64_t>(state.iterations()) * stream.size();
-  if (mc.forwarding_counters().forwards_lost != 0 || mc.netstat() != 0 || sent != bytes) {
-    state.SkipWithError("the node lost, rejected or held back forwarded traffic");
-  }
-  state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
+  mc_forward_dma(state, stream, [](motion_coordinator<>& mc, byte_view in, trionet::byte_buffer out) {
+    return mc.relay(in, out);
+  });
 }
 
 void BM_ring_mc_forward_characters(benchmark::State& state) {
