@@ -8,7 +8,7 @@
 //   4     SEND: variable, keypad offset, keypad mode, or an out-of-range value / a raw Q32.32 (op & 3)
 //   5     GET #3 / GET #4 (op & 16), (op & 15) + 1 times; the 16th is GET on a bad channel
 //   6     pull (op & 31) + 1 bytes from the MC's transmitter
-//   7     clear NETSTAT, KEY#, keypad press/release, pull from the keypad (op & 7)
+//   7     clear NETSTAT, KEY#, keypad press/release, pull from the keypad, idle line (op & 7)
 // Every received byte goes to both nodes. At the end both transmitters are drained.
 // A twin of the MC gets the same bytes and calls through the bulk forms (receive(byte_view), relay) and must
 // send the same bytes, answer every call the same and end with the same counters, NETSTAT and VRs.
@@ -24,12 +24,14 @@
 //     either takes it (all its characters join the expected queue) or drops it whole (receive overflow, only
 //     if it could not fit); GET returns exactly the expected queue, `characters_waiting()` equals its size
 //     and never exceeds the receive capacity; KEY# is true exactly when it is non-empty;
-//   - PRINT#/SEND queue the whole frame or nothing; a valid call is refused only for lack of room (NETSTAT
-//     bit 0); NETSTAT bits are set when the matching counters grow;
+//   - SEND queues the whole frame or nothing; PRINT# queues whole character messages, each as long as fits
+//     (PROTOCOL.md 1.6), and reports how many characters; a valid call is refused only for lack of room
+//     (NETSTAT bit 0); NETSTAT bits are set when the matching counters grow;
 //   - the transmitted stream is exactly what the link rules give (PROTOCOL.md 1.5): forwarded bytes with A-1,
 //     data unchanged, forwarded traffic first between messages, own frames whole, a lost forwarded message
-//     removed whole if none of it went out; and a second decoder reading it sees no stray data, stray end
-//     of message or zero hop count.
+//     removed whole if none of it went out, a forwarded message cut at the first data byte past the longest
+//     legal message of its type, an idle line ending the forwarded message; and a second decoder reading it
+//     sees no stray data, stray end of message or zero hop count.
 // Invariants (keypad): byte routes add up; it never transmits in local mode; its stream is well formed; key
 // results match its mode; the display cursor stays on the display.
 #include <algorithm>
@@ -59,7 +61,8 @@ constexpr std::size_t transmit_capacity = 40;
 constexpr std::size_t vr_count = 32;
 
 using node_type = motion_coordinator<receive_capacity, forward_capacity, transmit_capacity>;
-using keypad_type = keypad<8, 8>;
+using keypad_type = keypad<16, 8>;
+constexpr std::size_t max_own_characters = forward_capacity - framing_length;  // forward 16 < transmit 40
 
 bool refuse_some(void*, std::uint16_t vr, double) noexcept {
   return vr % 7 != 3;
@@ -68,6 +71,11 @@ bool refuse_some(void*, std::uint16_t vr, double) noexcept {
 bool same(const motion_coordinator_counters& a, const motion_coordinator_counters& b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
+
+bool same_answer(int a, int b) { return a == b; }
+bool same_answer(send_result a, send_result b) { return a == b; }
+bool same_answer(const print_result& a, const print_result& b) { return a.status == b.status && a.queued == b.queued; }
+bool same_answer(const get_result& a, const get_result& b) { return a.status == b.status && a.value == b.value; }
 
 /// Checks a transmitted stream with a decoder of its own: a node never sends data outside a message, an end
 /// of message without a header, or a header with A = 0.
@@ -90,11 +98,16 @@ struct link_model {
   std::size_t pushed = 0;            // forwarded bytes ever buffered
   std::size_t popped = 0;            // ... and transmitted
   std::size_t message_start = 0;     // `pushed` when the message being forwarded began
+  std::size_t budget = 0;            // data bytes the message being forwarded may still carry
   bool open = false;                 // a forwarded message has begun and not ended on the receive side
   enum class sending { idle, forward, own } state = sending::idle;
 
   void received(std::uint8_t byte, route r) {
     const bool control = !is_data(byte);
+    if (open && !control) {  // the forwarding bound: a byte past the longest legal message is lost
+      FUZZ_CHECK(budget != 0 || r == route::lost);
+      if (budget != 0) --budget;
+    }
     switch (r) {
       case route::forwarded: {
         std::uint8_t out = byte;
@@ -104,6 +117,8 @@ struct link_model {
           if (classify(byte) == byte_class::header) {
             message_start = pushed;
             open = true;
+            const std::uint8_t type = type_of(byte);
+            budget = type == 2 ? variable_data_length : type == 3 || type == 4 ? 1 : default_max_characters;
           } else {
             open = false;
           }
@@ -371,22 +386,48 @@ class harness {
 
   void print(std::uint8_t op, trionet_fuzz::input_reader& in) {
     const int n = 10 + (op & 15);
-    const std::size_t length = in.byte() % 40u;
-    std::uint8_t text[40] = {};
+    const std::size_t length = in.byte() % 80u;
+    std::uint8_t text[80] = {};
     bool seven_bit = true;
     for (std::size_t i = 0; i < length; ++i) {
       text[i] = (op & 16u) != 0 ? in.byte() : static_cast<std::uint8_t>(in.byte() & 0x7Fu);
       if (text[i] > 127) seven_bit = false;
     }
     free_before_ = mc_.transmit_free();
-    const send_result result =
+    const std::uint8_t netstat_before = mc_.netstat();
+    const print_result result =
         both([&](node_type& node) { return node.print(n, trionet::byte_view(text, length)); });
-    const message m = message::characters(static_cast<std::uint8_t>(n - 9), trionet::byte_view(text, length));
     std::vector<send_result> errors;
     if (n > last_basic_address) errors.push_back(send_result::bad_address);
     if (length == 0) errors.push_back(send_result::empty_text);
     if (!seven_bit) errors.push_back(send_result::character_out_of_range);
-    sent(result, errors, m);
+    if (!errors.empty()) {
+      FUZZ_CHECK(std::find(errors.begin(), errors.end(), result.status) != errors.end());
+      FUZZ_CHECK(result.queued == 0);
+      FUZZ_CHECK(mc_.transmit_free() == free_before_);
+      FUZZ_CHECK(mc_.netstat() == netstat_before);
+      return;
+    }
+    // Consecutive character messages, each as long as fits (PROTOCOL.md 1.6).
+    const auto hops = static_cast<std::uint8_t>(n - 9);
+    std::size_t room = free_before_;
+    std::size_t done = 0;
+    while (done < length && room >= framing_length + 1) {
+      const std::size_t k = std::min({length - done, max_own_characters, room - framing_length});
+      link_.own.push_back(make_header(hops, 1));
+      link_.own.insert(link_.own.end(), text + done, text + done + k);
+      link_.own.push_back(make_end_of_message(hops));
+      room -= k + framing_length;
+      done += k;
+    }
+    FUZZ_CHECK(result.queued == done);
+    FUZZ_CHECK(mc_.transmit_free() == room);
+    if (done == length) {
+      FUZZ_CHECK(result.status == send_result::queued);
+    } else {
+      FUZZ_CHECK(result.status == send_result::queue_full);
+      FUZZ_CHECK((mc_.netstat() & netstat_tx_timeout) != 0);
+    }
   }
 
   void send(std::uint8_t op, trionet_fuzz::input_reader& in) {
@@ -520,9 +561,35 @@ class harness {
       case 4:
         for (int i = 0; i < 8; ++i) (void)pull_keypad();
         break;
+      case 5:
+        line_idle();
+        break;
       default:
         break;
     }
+  }
+
+  // The idle line (PROTOCOL.md 1.10): ends the message being forwarded (counted, NETSTAT bit 1) and the
+  // message open at the node's decoder (a frame error).
+  void line_idle() {
+    const motion_coordinator_counters before = mc_.counters();
+    const std::uint32_t ended = mc_.forwarding_counters().forwards_ended_idle;
+    both([](node_type& node) {
+      node.line_idle();
+      return 0;
+    });
+    FUZZ_CHECK(!mc_.in_message());
+    FUZZ_CHECK(mc_.forwarding_counters().forwards_ended_idle == ended + (link_.open ? 1u : 0u));
+    if (link_.open) FUZZ_CHECK((mc_.netstat() & netstat_tx_buffer_error) != 0);
+    link_.open = false;
+    motion_coordinator_counters want = before;
+    if (reference_.line_idle().status == decode_status::frame_error) {
+      ++want.frame_errors;
+      FUZZ_CHECK((mc_.netstat() & netstat_rx_frame_error) != 0);
+    }
+    FUZZ_CHECK(same(mc_.counters(), want));
+    keypad_.line_idle();
+    FUZZ_CHECK(!keypad_.in_message());
   }
 
   // The twin: the same node fed the same bytes through the bulk calls a DMA-fed node uses. The bytes received
@@ -551,7 +618,7 @@ class harness {
     receive_in_twin();
     const auto mine = call(mc_);
     const auto twins = call(twin_);
-    FUZZ_CHECK(std::memcmp(&mine, &twins, sizeof mine) == 0);
+    FUZZ_CHECK(same_answer(mine, twins));
     return mine;
   }
   void check_twin() {
@@ -579,7 +646,7 @@ class harness {
   node_type twin_{twin_vr_};
   std::vector<std::uint8_t> twin_pending_;         // received by mc_, not yet by the twin
   std::vector<std::uint8_t> mc_sent_, twin_sent_;  // what each has transmitted
-  decoder<receive_capacity> reference_;
+  decoder<default_max_characters> reference_;  // the node's character maximum; its buffer is smaller
   link_model link_;
   std::deque<std::uint8_t> waiting_;  // characters GET must return, in order
   std::size_t waiting_at_header_ = 0;

@@ -127,8 +127,8 @@ template <class Node>
 step print(Node& mc, int n, const std::string& text) {
   if (mc.transmit_free() < text.size() + ring::framing_length) return wait();
   const auto result = mc.print(n, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-  if (result != ring::send_result::queued)
-    std::fprintf(stderr, "basic: PRINT #%d: %s\n", n, ring::to_string(result));
+  if (result.status != ring::send_result::queued)
+    std::fprintf(stderr, "basic: PRINT #%d: %s\n", n, ring::to_string(result.status));
   return next();
 }
 

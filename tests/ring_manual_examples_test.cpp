@@ -36,7 +36,7 @@ TEST(ManualNodeAddressingExample, RingOfFour) {
   } cases[] = {{10, &node10}, {12, &node12}, {13, &sender}, {14, &node10}, {18, &node10}};
   for (const auto& c : cases) {
     const std::string text = "TO " + std::to_string(c.address);
-    ASSERT_EQ(sender.print(c.address, text.c_str()), ring::send_result::queued);
+    ASSERT_EQ(sender.print(c.address, text.c_str()).status, ring::send_result::queued);
     sim.run(200);
     for (mc_node* n : {&sender, &node10, &node11, &node12}) {
       EXPECT_EQ(read_all(*n), n == c.destination ? text : "") << "address " << c.address;
@@ -131,12 +131,12 @@ TEST(ManualWarning, MessageThroughAKeypadInLocalModeIsLost) {
   ASSERT_TRUE(sim.add(a));
   ASSERT_TRUE(sim.add(keypad));
   ASSERT_TRUE(sim.add(b));
-  ASSERT_EQ(a.print(11, "TOO EARLY"), ring::send_result::queued);
+  ASSERT_EQ(a.print(11, "TOO EARLY").status, ring::send_result::queued);
   sim.run(50);
   EXPECT_EQ(read_all(b), "");
   EXPECT_EQ(keypad.forwarding_counters().messages_dropped, 1u);
   ASSERT_EQ(a.send_keypad_offset(10, 11), ring::send_result::queued);
-  ASSERT_EQ(a.print(11, "IN TIME"), ring::send_result::queued);
+  ASSERT_EQ(a.print(11, "IN TIME").status, ring::send_result::queued);
   sim.run(50);
   EXPECT_EQ(read_all(b), "IN TIME");
   EXPECT_EQ(keypad.forwarding_counters().messages_dropped, 1u);

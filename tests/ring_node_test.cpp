@@ -42,6 +42,11 @@ std::vector<std::uint8_t> drain(Node& node) {
   return out;
 }
 
+void expect_same(const ring::print_result& a, const ring::print_result& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.queued, b.queued);
+}
+
 template <class Node>
 std::string read_all(Node& node, int channel) {
   std::string out;
@@ -83,7 +88,7 @@ TEST(RingForwarding, ForwardedTrafficGoesBeforeOwnAtMessageBoundaries) {
   mc_node mc(vr);
   const auto forwarded = chars(2, "FW");
   feed(mc, forwarded);
-  ASSERT_EQ(mc.print(10, "OWN"), ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
   std::vector<std::uint8_t> expected = chars(1, "FW");
   const auto own = chars(1, "OWN");
   expected.insert(expected.end(), own.begin(), own.end());
@@ -93,7 +98,7 @@ TEST(RingForwarding, ForwardedTrafficGoesBeforeOwnAtMessageBoundaries) {
 TEST(RingForwarding, NeverInterleavesTwoMessages) {
   trionet::vr_table<16> vr;
   mc_node mc(vr);
-  ASSERT_EQ(mc.print(10, "OWN MESSAGE"), ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN MESSAGE").status, ring::send_result::queued);
   std::vector<std::uint8_t> sent;
   std::uint8_t b = 0;
   ASSERT_TRUE(mc.transmit(b));  // own message has begun
@@ -113,16 +118,17 @@ TEST(RingForwarding, NeverInterleavesTwoMessages) {
 
 TEST(RingForwarding, ForwardBufferOverflowLosesTheMessageAndSetsNetstatBit1) {
   trionet::vr_table<16> vr;
-  ring::motion_coordinator<256, 8, 48> mc(vr);  // forward buffer of 8
-  ASSERT_EQ(mc.print(10, "A LONG OWN MESSAGE OF THIRTY BYTES"), ring::send_result::queued);
+  ring::motion_coordinator<256, 16, 48> mc(vr);  // forward buffer of 16
+  ASSERT_EQ(mc.print(10, "OWN MESSAGE 14").status, ring::send_result::queued);
   std::uint8_t b = 0;
-  ASSERT_TRUE(mc.transmit(b));                       // own message has begun: forwarding must wait
-  feed(mc, chars(3, "THIS DOES NOT FIT IN EIGHT"));  // arrives while the own message holds the link
+  ASSERT_TRUE(mc.transmit(b));  // own message has begun: forwarding must wait
+  // Faster than the line could bring it (a burst from a host, say): 22 bytes for 16 places.
+  feed(mc, chars(3, "THIS DOES NOT FIT"));
   EXPECT_EQ(mc.netstat() & ring::netstat_tx_buffer_error, ring::netstat_tx_buffer_error);
   EXPECT_EQ(mc.forwarding_counters().forwards_lost, 1u);
   // A message after the lost one is forwarded normally.
   feed(mc, chars(3, "OK"));
-  std::vector<std::uint8_t> expected = chars(1, "A LONG OWN MESSAGE OF THIRTY BYTES");
+  std::vector<std::uint8_t> expected = chars(1, "OWN MESSAGE 14");
   expected.erase(expected.begin());  // the header already went out
   const auto ok = chars(2, "OK");
   expected.insert(expected.end(), ok.begin(), ok.end());
@@ -136,7 +142,7 @@ TEST(RingForwarding, AForwardedMessageCutShortUpstreamDoesNotBlockTheNode) {
   mc.receive('X');
   // The end of message is lost; a message for this node arrives instead.
   feed(mc, chars(1, "ME"));
-  ASSERT_EQ(mc.print(10, "OWN"), ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
   std::vector<std::uint8_t> expected = {ring::make_header(2, 1), 'X'};
   const auto own = chars(1, "OWN");
   expected.insert(expected.end(), own.begin(), own.end());
@@ -248,9 +254,27 @@ TEST(RingMotionCoordinator, ReceiveBufferIsAllOrNothingPerMessage) {
   EXPECT_EQ(read_all(mc, 4), "ABCDEXYZ");
   feed(mc, chars(1, "12345678"));  // a whole buffer, after GET freed it (and wraps round)
   EXPECT_EQ(read_all(mc, 4), "12345678");
-  feed(mc, chars(1, "123456789"));  // longer than the buffer can ever hold: a frame error (bad length)
+  feed(mc, chars(1, "123456789"));  // longer than the buffer can ever hold: dropped whole, counted
+  EXPECT_EQ(mc.counters().receive_overflows, 2u);
+  EXPECT_EQ(mc.counters().frame_errors, 0u);
+  EXPECT_EQ(mc.characters_waiting(), 0u);
+}
+
+// The character maximum (PROTOCOL.md 1.4, default 256) is not the receive buffer's size: a longer message is a
+// frame error (bad length), whatever the buffer.
+TEST(RingMotionCoordinator, LongerThanTheCharacterMaximumIsABadLength) {
+  trionet::vr_table<16> vr;
+  mc_node mc(vr);
+  feed(mc, chars(1, std::string(256, 'a')));
+  EXPECT_EQ(mc.characters_waiting(), 256u);
+  EXPECT_EQ(read_all(mc, 4), std::string(256, 'a'));
+  feed(mc, chars(1, std::string(257, 'b')));
   EXPECT_EQ(mc.counters().frame_errors, 1u);
   EXPECT_EQ(mc.characters_waiting(), 0u);
+  ring::motion_coordinator<256, 32, 32, ring::crc16_ccitt_false, 40> forty(vr);  // a maximum of 40
+  feed(forty, chars(1, std::string(41, 'c')));
+  EXPECT_EQ(forty.counters().frame_errors, 1u);
+  EXPECT_EQ(forty.counters().receive_overflows, 0u);
 }
 
 TEST(RingMotionCoordinator, KeypadMessagesAreIgnoredAndCounted) {
@@ -265,10 +289,10 @@ TEST(RingMotionCoordinator, KeypadMessagesAreIgnoredAndCounted) {
 TEST(RingMotionCoordinator, SendCallsRejectOutOfRangeBeforeQueuingAByte) {
   trionet::vr_table<16> vr;
   mc_node mc(vr);
-  EXPECT_EQ(mc.print(9, "X"), ring::send_result::bad_address);
-  EXPECT_EQ(mc.print(25, "X"), ring::send_result::bad_address);
-  EXPECT_EQ(mc.print(10, ""), ring::send_result::empty_text);
-  EXPECT_EQ(mc.print(10, "caf\xc3\xa9"), ring::send_result::character_out_of_range);
+  EXPECT_EQ(mc.print(9, "X").status, ring::send_result::bad_address);
+  EXPECT_EQ(mc.print(25, "X").status, ring::send_result::bad_address);
+  EXPECT_EQ(mc.print(10, "").status, ring::send_result::empty_text);
+  EXPECT_EQ(mc.print(10, "caf\xc3\xa9").status, ring::send_result::character_out_of_range);
   EXPECT_EQ(mc.send_variable(10, 16384, 1.0), ring::send_result::vr_out_of_range);
   EXPECT_EQ(mc.send_variable(10, 1, 3e9), ring::send_result::value_out_of_range);
   EXPECT_EQ(mc.send_variable(10, 16384, 3e9), ring::send_result::vr_out_of_range);  // address, vr, value
@@ -315,12 +339,12 @@ TEST(RingMotionCoordinator, SendsWithItsOwnCrcPolicy) {
 TEST(RingMotionCoordinator, FullTransmitQueueRefusesWholeAndSetsNetstatBit0) {
   trionet::vr_table<16> vr;
   ring::motion_coordinator<256, 48, 10> mc(vr);                  // 10-byte transmit queue
-  ASSERT_EQ(mc.print(10, "123456"), ring::send_result::queued);  // 8 bytes
-  EXPECT_EQ(mc.print(10, "AB"), ring::send_result::queue_full);  // needs 4, 2 free
+  ASSERT_EQ(mc.print(10, "123456").status, ring::send_result::queued);  // 8 bytes
+  EXPECT_EQ(mc.print(10, "AB").status, ring::send_result::queue_full);  // needs 4, 2 free
   EXPECT_EQ(mc.netstat(), ring::netstat_tx_timeout);
   EXPECT_EQ(mc.counters().sends_refused, 1u);
   EXPECT_EQ(drain(mc), chars(1, "123456"));  // nothing partial was queued
-  EXPECT_EQ(mc.print(10, "12345678"), ring::send_result::queued);
+  EXPECT_EQ(mc.print(10, "12345678").status, ring::send_result::queued);
 }
 
 // ---- keypad ----
@@ -461,19 +485,19 @@ TEST(RingSimulator, DroppedByteAndCutLink) {
   ring::simulator<> sim;
   (void)sim.add(a);
   (void)sim.add(b);
-  ASSERT_EQ(a.print(10, "ABC"), ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "ABC").status, ring::send_result::queued);
   sim.run(2);
   sim.drop_next(0);
   sim.run(10);
   EXPECT_EQ(read_all(b, 4), "AC");  // a lost data byte is not detectable for a character message
   sim.cut(0);
-  ASSERT_EQ(a.print(10, "XYZ"), ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "XYZ").status, ring::send_result::queued);
   int lost = 0;
   sim.run(10, [&](const ring::link_byte& x) { lost += x.delivered ? 0 : 1; });
   EXPECT_EQ(lost, 5);
   EXPECT_FALSE(b.key(4));
   sim.cut(0, false);
-  ASSERT_EQ(a.print(10, "OK"), ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "OK").status, ring::send_result::queued);
   sim.run(10);
   EXPECT_EQ(read_all(b, 4), "OK");
 }
@@ -509,13 +533,13 @@ TEST(RingNodeRam, DefaultCapacities) {
 
 TEST(RingForwarding, EveryReceivedByteIsAccountedFor) {
   trionet::vr_table<16> vr;
-  ring::motion_coordinator<256, 8, 48> mc(vr);
+  ring::motion_coordinator<256, 16, 48> mc(vr);
   std::vector<std::uint8_t> stream = chars(1, "LOCAL");
-  for (auto part : {chars(3, "FORWARDED"), chars(2, "A MESSAGE TOO LONG FOR EIGHT"),
+  for (auto part : {chars(3, "FORWARDED MESSAGE"), chars(2, "A MESSAGE TOO LONG FOR SIXTEEN"),
                     std::vector<std::uint8_t>{1, 2, 0x88}}) {
     stream.insert(stream.end(), part.begin(), part.end());
   }
-  ASSERT_EQ(mc.print(10, "HOLD THE LINK"), ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "HOLD THE LINK").status, ring::send_result::queued);
   std::uint8_t b = 0;
   ASSERT_TRUE(mc.transmit(b));
   feed(mc, stream);
@@ -603,7 +627,7 @@ TEST(RingMotionCoordinator, RelayIsReceiveThenTransmit) {
       const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 24);
       if (rng() % 4 == 0) {  // own traffic now and then
         const int address = 10 + static_cast<int>(rng() % 3);
-        ASSERT_EQ(two.print(address, "OWN"), relayed.print(address, "OWN"));
+        expect_same(two.print(address, "OWN"), relayed.print(address, "OWN"));
       }
       const std::size_t pull = rng() % 40;
       if (two.forward_backlog() == 0 && n <= 16 && n <= pull) ++straight_candidates;
@@ -673,7 +697,7 @@ TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
       at += n;
       if (++step % 3 == 0) {  // own traffic now and then
         const int address = 10 + static_cast<int>(rng() % 2);
-        ASSERT_EQ(one.print(address, "OWN"), bulk.print(address, "OWN"));
+        expect_same(one.print(address, "OWN"), bulk.print(address, "OWN"));
       }
       const std::size_t pull = rng() % 64;
       std::uint8_t b = 0;

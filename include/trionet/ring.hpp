@@ -11,5 +11,6 @@
 #include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/motion_coordinator.hpp"
+#include "trionet/ring/node.hpp"
 #include "trionet/ring/q32.hpp"
 #include "trionet/ring/simulator.hpp"

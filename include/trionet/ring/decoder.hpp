@@ -10,6 +10,7 @@
 //   data         outside          `stray_data` once per run of such bytes
 //   end of msg   in a message     the message, a frame error, or a CRC error
 //   end of msg   outside          `stray_eom` (none when it closes a skipped A=0 message)
+//   line idle    in a message     `idle_line` (PROTOCOL.md 1.10: the rest of the message is lost)
 //
 // At an end of message the checks run in this order: end-of-message A equals header A (`eom_mismatch`),
 // type 1..4 (`unknown_type`), data length for the type (`bad_length`), for type 2 the CRC (a CRC error),
@@ -51,6 +52,7 @@ enum class frame_error : std::uint8_t {
   bad_field,     ///< a field out of range: offset, mode, or X9 bits 6..1
   unknown_type,  ///< message type 5..7
   zero_hops,     ///< header with A = 0
+  idle_line,     ///< the line went idle before the open message's end of message (PROTOCOL.md 1.10)
 };
 
 constexpr const char* to_string(frame_error error) noexcept {
@@ -73,6 +75,8 @@ constexpr const char* to_string(frame_error error) noexcept {
       return "unknown_type";
     case frame_error::zero_hops:
       return "zero_hops";
+    case frame_error::idle_line:
+      return "idle_line";
   }
   return "unknown";
 }
@@ -219,11 +223,23 @@ class basic_decoder {
     return error(frame_error::interrupted);
   }
 
+  /// The line has been idle (PROTOCOL.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
+  /// else incomplete. Either way the decoder is then between messages (a skipped A = 0 message is over too).
+  [[nodiscard]] decode_result line_idle() noexcept {
+    const bool was_open = state_ == state::in_message;
+    state_ = state::idle;
+    if (!was_open) return {};
+    if (type_ == 1) store_.abort();
+    return error(frame_error::idle_line);
+  }
+
   /// Forgets any open message (e.g. after a link reset), silently.
   void reset() noexcept { (void)interrupt(); }
 
   /// True while a message has begun and not ended.
   bool in_message() const noexcept { return state_ == state::in_message; }
+  /// True while a message, or a skipped A = 0 message, has begun and not ended.
+  bool open() const noexcept { return state_ == state::in_message || state_ == state::skipping; }
 
   Store& store() noexcept { return store_; }
   const Store& store() const noexcept { return store_; }

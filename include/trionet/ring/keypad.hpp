@@ -7,9 +7,11 @@
 //     else to or through it           - character messages drive the 2 x 20 display
 //   - never transmits                 - direct variable transfers are ignored (counted)
 //
+// The link, the idle line, NETSTAT and the bulk paths are the ring-node core's (node.hpp).
 // Cost (defaults): RAM = forward buffer 16 + transmit queue 16 + decoder 256 + display 45 + state and counters
-// = 452 bytes on a 32-bit core (472 on a 64-bit host).
-// `receive`/`transmit` may run in an ISR; `press`/`release` from the key-scan context (see transport.hpp).
+// = about 460 bytes on a 32-bit core.
+// `receive`/`transmit`/`line_idle` may run in an ISR; `press`/`release` from the key-scan context (see
+// transport.hpp).
 #pragma once
 
 #include <cstddef>
@@ -22,7 +24,7 @@
 #include "trionet/ring/keypad_display.hpp"
 #include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
-#include "trionet/transport.hpp"
+#include "trionet/ring/node.hpp"
 
 namespace trionet::ring {
 
@@ -42,42 +44,31 @@ struct keypad_config {
 
 /// Counters of a keypad; they only ever grow (and wrap at 2^32).
 struct keypad_counters {
+  std::uint32_t frame_errors = 0;           ///< frame errors of PROTOCOL.md 1.4 and 1.10 (NETSTAT bit 3)
+  std::uint32_t crc_errors = 0;             ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
   std::uint32_t dropped_in_local_mode = 0;  ///< messages to this keypad dropped before its offset arrived
   std::uint32_t display_messages = 0;       ///< character transfers shown on the display
   std::uint32_t variables_ignored = 0;      ///< direct variable transfers (ignored by keypads)
-  std::uint32_t frame_errors = 0;           ///< frame errors of PROTOCOL.md 1.4
-  std::uint32_t crc_errors = 0;             ///< direct variable transfers that failed their CRC
   std::uint32_t keys_sent = 0;              ///< key characters queued
   std::uint32_t keys_lost = 0;              ///< key presses not sent: local mode or queue full
 };
 
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
           std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class keypad final : public byte_port {
+class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>, keypad_counters,
+                                 decoder<MaxCharacters, Crc>,
+                                 detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
+  using core = node<keypad, keypad_counters, decoder<MaxCharacters, Crc>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
+  friend core;
+
  public:
   explicit keypad(const keypad_config& config = keypad_config{}) noexcept : config_(config) {
-    link_.set_forwarding(false);
+    this->link_.set_forwarding(false);
   }
 
-  // ---- the link (byte_port) ----
-
-  using byte_port::receive;  // the bulk forms, one byte at a time
-  using byte_port::transmit;
-
-  void receive(std::uint8_t byte) noexcept override {
-    const route r = link_.receive(byte);
-    if (r == route::local) {
-      handle(decoder_.push(byte));
-    } else if (classify(byte) == byte_class::header) {
-      handle(decoder_.interrupt());
-    }
-  }
-  [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept override {
-    return network_mode() && link_.transmit(byte);
-  }
-  [[nodiscard]] bool transmit_pending() const noexcept override {
-    return network_mode() && link_.transmit_pending();
-  }
+  using core::receive;
+  using core::transmit;
 
   // ---- keys ----
 
@@ -96,55 +87,43 @@ class keypad final : public byte_port {
   std::uint8_t offset() const noexcept { return offset_; }
   std::uint8_t mode() const noexcept { return mode_; }
   const keypad_display& display() const noexcept { return display_; }
-  const keypad_counters& counters() const noexcept { return counters_; }
-  const link_counters& forwarding_counters() const noexcept { return link_.counters(); }
 
  private:
   key_result send_key(std::uint8_t character) noexcept {
     if (!network_mode()) {
-      ++counters_.keys_lost;
+      ++this->counters_.keys_lost;
       return key_result::local_mode;
     }
     const std::uint8_t text[1] = {character};
-    if (!link_.queue(message::characters(offset_, byte_view(text, 1)))) {
-      ++counters_.keys_lost;
+    if (!this->link_.queue(message::characters(offset_, byte_view(text, 1)))) {
+      ++this->counters_.keys_lost;
+      this->netstat_.raise_tx_timeout();
       return key_result::queue_full;
     }
-    ++counters_.keys_sent;
+    ++this->counters_.keys_sent;
     return key_result::sent;
   }
 
-  void handle(const decode_result& r) noexcept {
-    switch (r.status) {
-      case decode_status::incomplete:
-        return;
-      case decode_status::frame_error:
-        ++counters_.frame_errors;
-        return;
-      case decode_status::crc_error:
-        ++counters_.crc_errors;
-        return;
-      case decode_status::no_room:
-        return;  // cannot happen: the store holds MaxCharacters
-      case decode_status::message:
-        break;
-    }
+  // A message for this keypad (the core has counted errors already). In local mode the link forwards nothing
+  // and the keypad never transmits: the transmit queue stays empty because keys are refused.
+  void deliver(const decode_result& r) noexcept {
+    if (r.status != decode_status::message) return;  // no_room cannot happen: the store holds MaxCharacters
     if (!network_mode()) {
       if (r.msg.type == message_type::keypad_offset) {
         offset_ = r.msg.offset;
-        link_.set_forwarding(true);
+        this->link_.set_forwarding(true);
       } else {
-        ++counters_.dropped_in_local_mode;
+        ++this->counters_.dropped_in_local_mode;
       }
       return;
     }
     switch (r.msg.type) {
       case message_type::character:
         display_.write(r.msg.text);
-        ++counters_.display_messages;
+        ++this->counters_.display_messages;
         return;
       case message_type::variable:
-        ++counters_.variables_ignored;
+        ++this->counters_.variables_ignored;
         return;
       case message_type::keypad_offset:
         offset_ = r.msg.offset;
@@ -156,10 +135,7 @@ class keypad final : public byte_port {
   }
 
   keypad_config config_;
-  link<ForwardCapacity, TransmitCapacity, Crc> link_;
-  decoder<MaxCharacters, Crc> decoder_;
   keypad_display display_;
-  keypad_counters counters_;
   std::uint8_t offset_ = 0;
   std::uint8_t mode_ = keypad_mode_key_on;
 };

@@ -1,5 +1,6 @@
-// What every ring node does with its link (PROTOCOL.md 1.5): decrement and forward, one message at a time,
-// forwarded traffic before the node's own.
+// What every ring node does with its link (PROTOCOL.md 1.5, 1.10): decrement and forward, one message at a
+// time, forwarded traffic before the node's own, and the liveness rules that stop a damaged message from
+// holding a node or the ring.
 //
 //   receive side                          transmit side
 //   header A>1 -> header A-1 ---\         between messages: forward buffer first, then the transmit queue;
@@ -9,10 +10,22 @@
 //   own frames (PRINT#, SEND) ---------> transmit queue
 //
 // Forwarding is cut-through: a forwarded header goes out as soon as the transmitter is between messages,
-// each data byte as soon as it arrives. Forwarders do not validate; the destination does.
-// If the forward buffer overflows, the forwarded message is lost: removed whole if none of it has gone out,
-// otherwise cut short (the destination then sees it interrupted); the rest of it is dropped.
+// each data byte as soon as it arrives. Forwarders do not validate; the destination does. A forwarded message
+// is lost (counted, NETSTAT bit 1) when
+//   - the forward buffer overflows (`forwards_lost`),
+//   - it carries more data than the longest legal message of its type (`forwards_cut`; type 1 and the
+//     reserved types 5..7: the character maximum, type 2: 14, types 3 and 4: 1), or
+//   - the line goes idle before its end of message (`forwards_ended_idle`, `line_idle`).
+// A lost message is removed whole if none of it has gone out, otherwise cut short (the destination then sees
+// a frame error); the rest of it is dropped.
 //
+// Capacity rule: bytes arrive at most one per byte-time, so while the node sends an own frame of L bytes at
+// most L forwarded bytes arrive. The forward buffer therefore holds at least a direct variable transfer
+// (16 bytes, checked at compile time) and the node never queues an own frame longer than the forward buffer
+// (`max_own_frame`: long PRINT# text is split into several character messages): forwarded traffic is never
+// lost to the node's own sending.
+//
+// This is the nodes' plumbing (`motion_coordinator` and `keypad` use it through `ring::node`), not an API.
 // Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Per byte O(1), the bulk calls with one copy
 // per run of data; ISR-safe.
 #pragma once
@@ -30,39 +43,106 @@
 
 namespace trionet::ring {
 
-/// Where `link::receive` sent a byte.
+/// Where a node's link sent a received byte.
 enum class route : std::uint8_t {
   local,      ///< for this node's own decoder (A = 1 or A = 0 messages, and bytes outside any message)
   forwarded,  ///< into the forward buffer
   dropped,    ///< discarded: forwarding is off, or the rest of a lost message
-  lost,       ///< the forward buffer overflowed on this byte: the forwarded message is lost
+  lost,       ///< the byte on which a forwarded message was lost (buffer full, or longer than legal)
 };
 
-/// Counters of a link; they only ever grow (and wrap at 2^32).
+constexpr const char* to_string(route r) noexcept {
+  switch (r) {
+    case route::local:
+      return "local";
+    case route::forwarded:
+      return "forwarded";
+    case route::dropped:
+      return "dropped";
+    case route::lost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+/// Counters of a node's link; they only ever grow (and wrap at 2^32).
 struct link_counters {
   /// Received bytes by where they went, indexed by `route`: their sum is every byte received.
   std::uint32_t bytes[4] = {};
-  std::uint32_t messages_forwarded = 0;  ///< headers of messages passed on (A decremented)
-  std::uint32_t forwards_lost = 0;       ///< forwarded messages lost to a full forward buffer
-  std::uint32_t messages_dropped = 0;    ///< messages through this node dropped while forwarding was off
-  std::uint32_t messages_sent = 0;       ///< own messages whose end of message has gone out
+  std::uint32_t messages_forwarded = 0;   ///< headers of messages passed on (A decremented)
+  std::uint32_t forwards_lost = 0;        ///< forwarded messages lost to a full forward buffer
+  std::uint32_t forwards_cut = 0;         ///< ... longer than the longest legal message of their type
+  std::uint32_t forwards_ended_idle = 0;  ///< ... whose end of message never came: the line went idle
+  std::uint32_t messages_dropped = 0;     ///< messages through this node dropped while forwarding was off
+  std::uint32_t messages_sent = 0;        ///< own messages whose end of message has gone out
+
+  /// Forwarded messages lost for any reason (each sets NETSTAT bit 1).
+  constexpr std::uint32_t forwards_failed() const noexcept {
+    return forwards_lost + forwards_cut + forwards_ended_idle;
+  }
 };
 
-/// `Crc` is the CRC policy the node's own direct variable transfers are sent with.
-template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, class Crc = crc16_ccitt_false>
+namespace detail {
+
+/// The longest legal data of a message of wire type `type` (header type field 1..7), for the forwarding
+/// bound of PROTOCOL.md 1.5.
+constexpr std::uint16_t longest_data(std::uint8_t type, std::uint16_t max_characters) noexcept {
+  switch (type) {
+    case 2:
+      return static_cast<std::uint16_t>(variable_data_length);
+    case 3:
+    case 4:
+      return 1;
+    default:  // 1, and the reserved types 5..7
+      return max_characters;
+  }
+}
+
+/// `Crc` is the CRC policy the node's own direct variable transfers are sent with; `MaxCharacters` the
+/// character maximum of PROTOCOL.md 1.4 (the forwarding bound of type 1 and the reserved types).
+template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
+          class Crc = crc16_ccitt_false>
 class link {
-  static_assert(ForwardCapacity < 65535, "the forward buffer holds up to 65534 bytes");
+  static_assert(ForwardCapacity >= framing_length + variable_data_length && ForwardCapacity < 65535,
+                "the forward buffer must hold a whole direct variable transfer (16 bytes): while a node sends "
+                "an own frame, as many forwarded bytes arrive as the frame has, and they must not be lost");
+  static_assert(TransmitCapacity >= framing_length + 1 && TransmitCapacity < 65535,
+                "the transmit queue must hold at least a one-character message (3 bytes)");
+  static_assert(MaxCharacters >= 1 && MaxCharacters < 65535, "a character transfer holds 1..65534 characters");
 
  public:
+  /// The longest own frame the node queues: it fits in the transmit queue, and the forward buffer can absorb
+  /// everything that arrives while it is sent.
+  static constexpr std::size_t max_own_frame =
+      ForwardCapacity < TransmitCapacity ? ForwardCapacity : TransmitCapacity;
+  /// The most characters one own character message carries.
+  static constexpr std::size_t max_own_characters =
+      max_own_frame - framing_length < MaxCharacters ? max_own_frame - framing_length : MaxCharacters;
+
   /// Takes one received byte and says where it went.
   [[nodiscard]] route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
 
   /// A run of data bytes (no header or end of message among them): the same as `receive` for each, with one
-  /// copy. Returns where they went; if a forwarded message overflows part-way, the byte that did not fit is
+  /// copy. Returns where they went; if a forwarded message is lost part-way, the byte it was lost on is
   /// `lost`, the rest `dropped`, and the result is `lost`.
   [[nodiscard]] route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
     return receive_data(data, n, forward_);
   }
+
+  /// The line has been idle (PROTOCOL.md 1.10): a message being forwarded has lost the rest of its bytes. It
+  /// is ended and counted (`forwards_ended_idle`; true is returned) and any later byte of it is stray data;
+  /// the transmitter then goes on to the node's own messages. The rest of a lost message, if being dropped,
+  /// is over too.
+  bool line_idle() noexcept {
+    const receiving was = receiving_;
+    receiving_ = receiving::local;
+    if (was != receiving::forward) return false;
+    ++counters_.forwards_ended_idle;
+    return true;
+  }
+
+  /// True while a message through the node has begun and not ended (forwarded, or being dropped).
+  bool passing_message() const noexcept { return receiving_ != receiving::local; }
 
   /// What `receive_passing` took.
   struct passing {
@@ -144,7 +224,7 @@ class link {
         continue;
       }
       if (queue_.empty()) {  // and the forward buffer too: nothing to send (as `transmit` would find)
-        if (sending_ == sending::forward && !forward_open_) sending_ = sending::idle;
+        if (sending_ == sending::forward && receiving_ != receiving::forward) sending_ = sending::idle;
         break;
       }
       if (sending_ == sending::own) {  // a run of own message data up to its next control byte
@@ -173,7 +253,7 @@ class link {
         if (classify(byte) == byte_class::end_of_message) sending_ = sending::idle;
         return true;
       }
-      if (forward_open_) return false;  // cut-through: the next byte has not arrived yet
+      if (receiving_ == receiving::forward) return false;  // cut-through: the next byte has not arrived yet
       sending_ = sending::idle;         // the message was cut short upstream or here
     } else if (sending_ == sending::own) {
       if (!queue_.pop(byte)) {  // cannot happen: own frames are queued whole
@@ -201,26 +281,45 @@ class link {
   bool transmit_pending() const noexcept {
     if (!forward_.empty()) return true;
     if (queue_.empty()) return false;
-    return !(sending_ == sending::forward && forward_open_);
+    return !(sending_ == sending::forward && receiving_ == receiving::forward);
   }
 
   /// Queues one of the node's own messages whole. `encode_error::buffer_too_small` if the transmit queue has
-  /// no room for all of it (nothing is queued), or the message's own field error.
+  /// no room for all of it or the frame is longer than `max_own_frame` (nothing is queued), or the message's
+  /// own field error.
   [[nodiscard]] encode_result queue(const message& m) noexcept {
     const encode_error error = check(m);
     if (error != encode_error::none) return {0, error};
     const std::size_t length = frame_length(m);
-    if (length > queue_.free()) return {0, encode_error::buffer_too_small};
+    if (length > queue_.free() || length > max_own_frame) return {0, encode_error::buffer_too_small};
     if (m.type == message_type::character) {  // straight into the queue: no staging copy of the text
       (void)queue_.push(make_header(m.hops, static_cast<std::uint8_t>(m.type)));
-      for (std::uint8_t c : m.text) (void)queue_.push(c);
+      (void)queue_.push(m.text.data(), m.text.size());
       (void)queue_.push(make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
       const encode_result encoded = encode<Crc>(frame, m);
-      for (std::size_t i = 0; i < encoded.length; ++i) (void)queue_.push(frame[i]);
+      (void)queue_.push(frame, encoded.length);
     }
     return {length, encode_error::none};
+  }
+
+  /// Queues `text` (checked: 1..127 each, not empty) as consecutive character messages to `hops`, each as
+  /// long as fits (PROTOCOL.md 1.6), whole messages only. Returns how many characters were queued.
+  std::size_t queue_text(std::uint8_t hops, byte_view text) noexcept {
+    std::size_t done = 0;
+    while (done < text.size()) {
+      const std::size_t room = queue_.free();
+      if (room < framing_length + 1) break;
+      std::size_t n = text.size() - done;
+      if (n > max_own_characters) n = max_own_characters;
+      if (n > room - framing_length) n = room - framing_length;
+      (void)queue_.push(make_header(hops, static_cast<std::uint8_t>(message_type::character)));
+      (void)queue_.push(text.data() + done, n);
+      (void)queue_.push(make_end_of_message(hops));
+      done += n;
+    }
+    return done;
   }
 
   /// Free bytes in the transmit queue (a frame is its message plus header and end of message).
@@ -263,12 +362,18 @@ class link {
       case receiving::forward:
         break;
     }
-    const std::size_t pushed = into.push(data, n);
+    const std::size_t allowed = n < budget_ ? n : budget_;
+    const std::size_t pushed = into.push(data, allowed);
     count(route::forwarded, pushed);
+    budget_ = static_cast<std::uint16_t>(budget_ - pushed);
     const std::size_t incoming = incoming_ + pushed;
     incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
     if (pushed == n) return route::forwarded;
-    count(lose(into), 1);
+    if (pushed == allowed) {
+      count(cut(into), 1);  // the first byte past the longest legal message
+    } else {
+      count(lose(into), 1);
+    }
     count(route::dropped, n - pushed - 1);
     return route::lost;
   }
@@ -319,6 +424,8 @@ class link {
     if (is_data(byte)) {
       switch (receiving_) {
         case receiving::forward:
+          if (budget_ == 0) return cut(into);
+          --budget_;
           return forward(byte, into);
         case receiving::discard:
           return route::dropped;
@@ -328,8 +435,7 @@ class link {
       return route::local;
     }
     const receiving was = receiving_;
-    receiving_ = receiving::local;
-    forward_open_ = false;     // any header or end of message ends the message being forwarded
+    receiving_ = receiving::local;  // any header or end of message ends the message being forwarded
     if (type_of(byte) == 0) {  // end of message
       if (was == receiving::forward) {
         return forward(decrement_hops(byte), into);
@@ -344,8 +450,8 @@ class link {
       return route::dropped;
     }
     receiving_ = receiving::forward;
-    forward_open_ = true;
     incoming_ = 0;
+    budget_ = longest_data(type_of(byte), MaxCharacters);
     ++counters_.messages_forwarded;
     return forward(decrement_hops(byte), into);
   }
@@ -362,25 +468,26 @@ class link {
   }
 
   // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
-  // all fits (the same as `receive` for each byte); false, and nothing done, if it does not.
+  // all fits and is not longer than legal (the same as `receive` for each byte); false, and nothing done, if
+  // not.
   template <class Into>
   bool forward_end(const std::uint8_t* data, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - data) + 1;
-    if (n > into.free()) return false;
+    if (n > into.free() || n - 1 > budget_) return false;
     (void)into.push(data, n);
     into.back() = decrement_hops(*end_of_message);
     counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
     receiving_ = receiving::local;
-    forward_open_ = false;
     return true;
   }
 
   // A whole message to forward, [header, end_of_message] (header A > 1, forwarding on, between messages): in
-  // one copy if it all fits (the same as `receive` for each byte); false, and nothing done, if it does not.
+  // one copy if it all fits and is not longer than legal (the same as `receive` for each byte); false, and
+  // nothing done, if not.
   template <class Into>
   bool forward_whole(const std::uint8_t* header, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - header) + 1;
-    if (n > into.free()) return false;
+    if (n > into.free() || n - framing_length > longest_data(type_of(*header), MaxCharacters)) return false;
     const std::size_t header_at = into.size();
     (void)into.push(header, n);
     into.at(header_at) = decrement_hops(*header);
@@ -394,8 +501,19 @@ class link {
   template <class Into>
   route lose(Into& into) noexcept {
     ++counters_.forwards_lost;
+    return end_forward(into);
+  }
+
+  // The forwarded message being received is longer than any legal message of its type: it is lost.
+  template <class Into>
+  TRIONET_NOINLINE route cut(Into& into) noexcept {
+    ++counters_.forwards_cut;
+    return end_forward(into);
+  }
+
+  template <class Into>
+  route end_forward(Into& into) noexcept {
     if (incoming_ <= into.size()) into.drop_back(incoming_);  // none of it has gone out yet
-    forward_open_ = false;
     receiving_ = receiving::discard;
     return route::lost;
   }
@@ -404,10 +522,11 @@ class link {
   byte_fifo<TransmitCapacity> queue_;
   link_counters counters_;
   std::uint16_t incoming_ = 0;  // bytes of the message being forwarded now in the buffer (saturates)
-  receiving receiving_ = receiving::local;
+  std::uint16_t budget_ = 0;    // data bytes the message being forwarded may still carry
+  receiving receiving_ = receiving::local;  // `forward`: a forwarded message has begun and not yet ended
   sending sending_ = sending::idle;
-  bool forward_open_ = false;  // a forwarded message has begun and not ended on the receive side
   bool forwarding_ = true;
 };
 
+}  // namespace detail
 }  // namespace trionet::ring

@@ -1,12 +1,13 @@
-// A Motion Coordinator on the fibre ring (PROTOCOL.md 1.5-1.6): forwards what is not for it, keeps the
+// A Motion Coordinator on the fibre ring (PROTOCOL.md 1.5-1.6, 1.10): forwards what is not for it, keeps the
 // characters sent to it in its receive buffer for KEY# and GET#, writes direct variable transfers into VR()
-// through the write policy, and sends PRINT# and SEND messages.
+// through the write policy, and sends PRINT# and SEND messages. The link, the idle line, NETSTAT and the bulk
+// paths are the ring-node core's (node.hpp).
 //
 // Wire it to a UART (see transport.hpp) and call the program-level API from the main loop:
 //
 //   trionet::vr_table<256> vr;
 //   trionet::ring::motion_coordinator<> mc(vr);
-//   mc.print(11, "HELLO");              // PRINT #11,"HELLO"
+//   mc.print(11, "HELLO");              // PRINT #11,"HELLO" (text of any length: split into messages)
 //   mc.send_variable(10, 200, 99.0);    // SEND(10,1,200,99)
 //   if (mc.key(3)) { auto k = mc.get(3); ... }   // IF KEY#3 THEN GET #3,k
 //
@@ -20,7 +21,6 @@
 #include <cstdint>
 #include <cstring>
 
-#include "trionet/attributes.hpp"
 #include "trionet/fifo.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
@@ -28,23 +28,15 @@
 #include "trionet/ring/keypad_codes.hpp"
 #include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/node.hpp"
 #include "trionet/ring/q32.hpp"
 #include "trionet/span.hpp"
-#include "trionet/transport.hpp"
 #include "trionet/vr.hpp"
 
 namespace trionet::ring {
 
-/// NETSTAT bits (PROTOCOL.md 1.6).
-enum netstat_bit : std::uint8_t {
-  netstat_tx_timeout = 1,       ///< an own message could not be put into the transmit queue
-  netstat_tx_buffer_error = 2,  ///< a forwarded message was lost (forward buffer overflow)
-  netstat_rx_crc_error = 4,     ///< a direct variable transfer failed its CRC
-  netstat_rx_frame_error = 8,   ///< an incomplete or corrupt message was received
-  netstat_rx_overflow = 16,     ///< a character transfer did not fit in the receive buffer (extension)
-};
-
-/// What became of a PRINT# or SEND call. Anything but `queued` means nothing was queued.
+/// What became of a PRINT# or SEND call. Anything but `queued` means nothing was queued (but for PRINT#, see
+/// `print_result`).
 enum class send_result : std::uint8_t {
   queued,
   bad_address,             ///< BASIC address not 10..24
@@ -81,6 +73,15 @@ constexpr const char* to_string(send_result result) noexcept {
   return "unknown";
 }
 
+/// What became of a PRINT#: `status` as for SEND, and how many characters were queued. A text longer than
+/// one message carries is sent as several (PROTOCOL.md 1.6); whole messages only, so with `queue_full`
+/// `queued` says where to go on from.
+struct print_result {
+  send_result status;
+  std::size_t queued;
+  constexpr explicit operator bool() const noexcept { return status == send_result::queued; }
+};
+
 /// GET#: a character, or nothing yet (the non-blocking form; a blocking wrapper may wait on `key`).
 struct get_result {
   enum class status : std::uint8_t { ok, nothing_yet, bad_channel } status;
@@ -91,13 +92,13 @@ struct get_result {
 /// Counters of a Motion Coordinator; they only ever grow (and wrap at 2^32).
 /// (The forwarding counters are the link's: `forwarding_counters()`.)
 struct motion_coordinator_counters {
+  std::uint32_t frame_errors = 0;  ///< frame errors of PROTOCOL.md 1.4 and 1.10 (NETSTAT bit 3)
+  std::uint32_t crc_errors = 0;    ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
   std::uint32_t character_messages = 0;      ///< character transfers taken into the receive buffer
   std::uint32_t receive_overflows = 0;       ///< character transfers dropped whole: no room (NETSTAT bit 4)
   std::uint32_t variables_written = 0;       ///< direct variable transfers applied to VR()
   std::uint32_t variables_refused = 0;       ///< ... refused by the write policy
   std::uint32_t variables_out_of_range = 0;  ///< ... to a vr past the VR table
-  std::uint32_t crc_errors = 0;    ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
-  std::uint32_t frame_errors = 0;  ///< frame errors of PROTOCOL.md 1.4 (NETSTAT bit 3)
   std::uint32_t keypad_messages_ignored = 0;  ///< keypad offset / mode messages sent to this MC
   std::uint32_t sends_refused = 0;            ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
 };
@@ -136,56 +137,67 @@ class receive_buffer {
   std::uint16_t staged_ = 0;
 };
 
+/// `MaxCharacters` is the character maximum of PROTOCOL.md 1.4: the longest character transfer the node
+/// accepts, and the bound on messages it forwards. The receive buffer (`ReceiveCapacity`) may be smaller: a
+/// message that does not fit is dropped whole (NETSTAT bit 4).
 template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
-          std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false>
-class motion_coordinator final : public byte_port {
+          std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false,
+          std::size_t MaxCharacters = default_max_characters>
+class motion_coordinator final
+    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters>,
+                  motion_coordinator_counters,
+                  basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
+                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
+  using core = node<motion_coordinator, motion_coordinator_counters,
+                    basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
+  friend core;
+
  public:
   /// `vr` receives direct variable transfers (through its write policy); `defkey` translates GET#3.
   explicit motion_coordinator(vr_store& vr, const defkey_table& defkey = default_defkey) noexcept
       : vr_(&vr), defkey_(&defkey) {}
 
-  // ---- the link (byte_port) ----
-
-  void receive(std::uint8_t byte) noexcept override {
-    const route r = link_.receive(byte);
-    if (r == route::local) {
-      handle(decoder_.push(byte));
-      return;
-    }
-    if (r == route::lost) netstat_ |= netstat_tx_buffer_error;
-    if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
-  }
-  /// Many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in order, with
-  /// runs of message data copied whole. Not virtual, so firmware that does not call it does not link it.
-  void receive(byte_view bytes) noexcept { receive_bytes(bytes); }
-  [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept override { return link_.transmit(byte); }
-  /// Fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that many calls
-  /// of `transmit`, stopping at the first that has none.
-  [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept {
-    return link_.transmit(out.data(), out.size());
-  }
-  [[nodiscard]] bool transmit_pending() const noexcept override { return link_.transmit_pending(); }
-
-  /// A DMA-fed node's receive-and-forward in one call: exactly `receive(in)` then `transmit(out)` (returns
-  /// how many bytes of `out` to send). When the forward buffer is empty and the node is between its own
-  /// messages, the bytes it forwards are written straight into `out`: one copy instead of two.
-  [[nodiscard]] std::size_t relay(byte_view in, byte_buffer out) noexcept {
-    if (!link_.straight_through(in.size(), out.size())) return receive_then_transmit(in, out);
-    auto straight = link_type::straight_buffer(out.data());
-    receive_bytes(in, straight);
-    return link_.transmit_after(straight, out.data(), out.size());
-  }
+  using core::receive;
+  using core::transmit;
 
   // ---- PRINT# and SEND (BASIC addresses 10..24) ----
 
-  /// PRINT #n,text: a character transfer of `text` (each character 0..127).
-  [[nodiscard]] send_result print(int n, byte_view text) noexcept {
-    const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
-    return queue(message::characters(*hops, text));
+  /// PRINT #n,text, without waiting: `text` (each character 0..127) as consecutive character messages, each
+  /// as long as fits, as many whole messages as the transmit queue has room for (PROTOCOL.md 1.6). If not
+  /// all of it fits, the result is `queue_full` with the number of characters queued, and NETSTAT bit 0 is
+  /// set; nothing is queued unless every character is valid.
+  [[nodiscard]] print_result print(int n, byte_view text) noexcept {
+    const send_result checked = check_print(n, text);
+    if (checked != send_result::queued) return {checked, 0};
+    const std::size_t queued = this->link_.queue_text(hops_of_address(n), text);
+    if (queued == text.size()) return {send_result::queued, queued};
+    refuse();
+    return {send_result::queue_full, queued};
   }
-  [[nodiscard]] send_result print(int n, const char* text) noexcept {
-    return print(n, byte_view(reinterpret_cast<const std::uint8_t*>(text), std::strlen(text)));
+  [[nodiscard]] print_result print(int n, const char* text) noexcept { return print(n, c_text(text)); }
+
+  /// BASIC's PRINT #n,text: waits for room until all of `text` is queued. `wait()` is called whenever the
+  /// transmit queue is full; it lets the link run (returns once some bytes may have gone out) and returns
+  /// false to give up, which sets NETSTAT bit 0 (PROTOCOL.md 1.6). Not for an ISR.
+  template <class Wait>
+  [[nodiscard]] print_result print_all(int n, byte_view text, Wait&& wait) noexcept(noexcept(wait())) {
+    const send_result checked = check_print(n, text);
+    if (checked != send_result::queued) return {checked, 0};
+    const std::uint8_t hops = hops_of_address(n);
+    std::size_t done = 0;
+    for (;;) {
+      done += this->link_.queue_text(hops, byte_view(text.data() + done, text.size() - done));
+      if (done == text.size()) return {send_result::queued, done};
+      if (!wait()) {
+        refuse();
+        return {send_result::queue_full, done};
+      }
+    }
+  }
+  template <class Wait>
+  [[nodiscard]] print_result print_all(int n, const char* text, Wait&& wait) noexcept(noexcept(wait())) {
+    return print_all(n, c_text(text), wait);
   }
 
   /// SEND(n,1,vr,value): a direct variable transfer; `value` is rounded to Q32.32.
@@ -224,46 +236,51 @@ class motion_coordinator final : public byte_port {
     return queue(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
   }
 
-  /// Room left in the transmit queue, in bytes (a message takes its data + 2).
-  std::size_t transmit_free() const noexcept { return link_.transmit_free(); }
-
   // ---- KEY# and GET# ----
 
   /// KEY#3 / KEY#4: true if at least one character is waiting; nothing is consumed.
   bool key(int channel) const noexcept {
-    return (channel == 3 || channel == 4) && decoder_.store().waiting() != 0;
+    return (channel == 3 || channel == 4) && this->decoder_.store().waiting() != 0;
   }
 
   /// GET#4: the next character raw; GET#3: translated through DEFKEY.
   [[nodiscard]] get_result get(int channel) noexcept {
     if (channel != 3 && channel != 4) return {get_result::status::bad_channel, 0};
     std::uint8_t c = 0;
-    if (!decoder_.store().take(c)) return {get_result::status::nothing_yet, 0};
+    if (!this->decoder_.store().take(c)) return {get_result::status::nothing_yet, 0};
     return {get_result::status::ok, channel == 3 ? (*defkey_)[c] : c};
   }
 
   /// Characters waiting in the receive buffer.
-  std::size_t characters_waiting() const noexcept { return decoder_.store().waiting(); }
-
-  // ---- NETSTAT and counters ----
-
-  std::uint8_t netstat() const noexcept { return netstat_; }
-  void clear_netstat() noexcept { netstat_ = 0; }
-
-  const motion_coordinator_counters& counters() const noexcept { return counters_; }
-  const link_counters& forwarding_counters() const noexcept { return link_.counters(); }
-
-  std::size_t forward_backlog() const noexcept { return link_.forward_backlog(); }
+  std::size_t characters_waiting() const noexcept { return this->decoder_.store().waiting(); }
 
  private:
+  static byte_view c_text(const char* text) noexcept {
+    return byte_view(reinterpret_cast<const std::uint8_t*>(text), std::strlen(text));
+  }
+  // Precondition: a valid BASIC address.
+  static std::uint8_t hops_of_address(int n) noexcept { return static_cast<std::uint8_t>(n - 9); }
+
+  static send_result check_print(int n, byte_view text) noexcept {
+    if (!hops_from_basic_address(n)) return send_result::bad_address;
+    if (text.empty()) return send_result::empty_text;
+    if (find_control(text.begin(), text.end()) != text.end()) return send_result::character_out_of_range;
+    return send_result::queued;
+  }
+
+  // An own message could not be put into the transmit queue: NETSTAT bit 0.
+  void refuse() noexcept {
+    ++this->counters_.sends_refused;
+    this->netstat_.raise_tx_timeout();
+  }
+
   send_result queue(const message& m) noexcept {
-    const encode_result queued = link_.queue(m);
+    const encode_result queued = this->link_.queue(m);
     switch (queued.error) {
       case encode_error::none:
         return send_result::queued;
       case encode_error::buffer_too_small:
-        netstat_ |= netstat_tx_timeout;
-        ++counters_.sends_refused;
+        refuse();
         return send_result::queue_full;
       case encode_error::empty_text:
         return send_result::empty_text;
@@ -282,108 +299,40 @@ class motion_coordinator final : public byte_port {
     return send_result::bad_address;
   }
 
-  // The bulk receive: traffic through the node a run at a time (into the forward buffer, or the stand-in
-  // given), bytes for the node to the decoder (out of line, so that the forwarding loop stays small).
-  template <class... Straight>
-  TRIONET_ALWAYS_INLINE void receive_bytes(byte_view bytes, Straight&... straight) noexcept {
-    const std::uint8_t* p = bytes.begin();
-    const std::uint8_t* const end = bytes.end();
-    for (;;) {
-      const auto passed = link_.receive_passing(p, end, straight...);
-      if (passed.events != 0) passed_events(passed.events);
-      p = passed.stop;
-      if (p == end) return;
-      p = receive_local(p, end);
-    }
-  }
-
-  // `relay` when it cannot go straight through (out of line, so that the straight path stays small).
-  TRIONET_NOINLINE std::size_t receive_then_transmit(byte_view in, byte_buffer out) noexcept {
-    receive(in);
-    return transmit(out);
-  }
-
-  // What happened to traffic through the node: a header (it ends any message the node was receiving, and the
-  // decoder is then between messages) or a lost forwarded message.
-  void passed_events(std::uint8_t events) noexcept {
-    if ((events & link_type::passing::header) != 0) {
-      if (decoder_.in_message()) {
-        end_local_message();
-      } else {
-        decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
-      }
-    }
-    if ((events & link_type::passing::lost) != 0) netstat_ |= netstat_tx_buffer_error;
-  }
-
-  // A header through the node ended the message the node was receiving.
-  TRIONET_NOINLINE void end_local_message() noexcept { handle(decoder_.interrupt()); }
-
-  // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
-  TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p,
-                                                     const std::uint8_t* end) noexcept {
-    if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
-      receive(*p);
-      return p + 1;
-    }
-    const std::uint8_t* const run = find_control(p, end);
-    const auto n = static_cast<std::size_t>(run - p);
-    (void)link_.receive_data(p, n);  // route::local: counted
-    decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
-    return run;
-  }
-
-  void handle(const decode_result& r) noexcept {
-    switch (r.status) {
-      case decode_status::incomplete:
-        return;
-      case decode_status::frame_error:
-        ++counters_.frame_errors;
-        netstat_ |= netstat_rx_frame_error;
-        return;
-      case decode_status::crc_error:
-        ++counters_.crc_errors;
-        netstat_ |= netstat_rx_crc_error;
-        return;
-      case decode_status::no_room:
-        ++counters_.receive_overflows;
-        netstat_ |= netstat_rx_overflow;
-        return;
-      case decode_status::message:
-        break;
+  // A message for this node (the core has counted errors already).
+  void deliver(const decode_result& r) noexcept {
+    if (r.status == decode_status::no_room) {
+      ++this->counters_.receive_overflows;
+      this->netstat_.raise(netstat_rx_overflow);
+      return;
     }
     switch (r.msg.type) {
       case message_type::character:
-        ++counters_.character_messages;
+        ++this->counters_.character_messages;
         return;
       case message_type::variable:
         switch (vr_->write(r.msg.vr, network_value::from_q32(r.msg.value))) {
           case vr_write::written:
-            ++counters_.variables_written;
+            ++this->counters_.variables_written;
             return;
           case vr_write::refused:
-            ++counters_.variables_refused;
+            ++this->counters_.variables_refused;
             return;
           case vr_write::out_of_range:
           case vr_write::value_out_of_range:
-            ++counters_.variables_out_of_range;
+            ++this->counters_.variables_out_of_range;
             return;
         }
         return;
       case message_type::keypad_offset:
       case message_type::keypad_mode:
-        ++counters_.keypad_messages_ignored;
+        ++this->counters_.keypad_messages_ignored;
         return;
     }
   }
 
-  using link_type = link<ForwardCapacity, TransmitCapacity, Crc>;
-  link_type link_;
-  basic_decoder<receive_buffer<ReceiveCapacity>, ReceiveCapacity, Crc> decoder_;
   vr_store* vr_;
   const defkey_table* defkey_;
-  motion_coordinator_counters counters_;
-  std::uint8_t netstat_ = 0;
 };
 
 }  // namespace trionet::ring
