@@ -408,12 +408,13 @@ class harness {
       FUZZ_CHECK(mc_.netstat() == netstat_before);
       return;
     }
-    // Consecutive character messages, each as long as fits (PROTOCOL.md 1.6).
+    // Consecutive character messages of the longest own size, the last one shorter (PROTOCOL.md 1.6).
     const auto hops = static_cast<std::uint8_t>(n - 9);
     std::size_t room = free_before_;
     std::size_t done = 0;
-    while (done < length && room >= framing_length + 1) {
-      const std::size_t k = std::min({length - done, max_own_characters, room - framing_length});
+    while (done < length) {
+      const std::size_t k = std::min(length - done, max_own_characters);
+      if (k + framing_length > room) break;
       link_.own.push_back(make_header(hops, 1));
       link_.own.insert(link_.own.end(), text + done, text + done + k);
       link_.own.push_back(make_end_of_message(hops));

@@ -420,12 +420,14 @@ TEST(RingDecodeErrors, CrcErrorReportsHopsAndVrAndChecksLengthFirst) {
   events = decode_all(frame);
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
-  // CRC before fields: X9 bits set and CRC wrong is a CRC error.
+  // Regression: a CRC error is a message that is otherwise well formed (docs/protocol.md 1.4). X9 bits 6..1
+  // set and a wrong CRC is a frame error (bad field), not a CRC error.
   frame = golden;
   frame[12] = 0x7E;
   events = decode_all(frame);
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
+  EXPECT_EQ(events[0].status, ring::decode_status::frame_error);
+  EXPECT_EQ(events[0].error, ring::frame_error::bad_field);
 }
 
 TEST(RingDecodeErrors, LongCharacterMessageIsConsumedNotOverflowed) {

@@ -13,8 +13,8 @@
 //   line idle    in a message     `idle_line` (PROTOCOL.md 1.10: the rest of the message is lost)
 //
 // At an end of message the checks run in this order: end-of-message A equals header A (`eom_mismatch`),
-// type 1..4 (`unknown_type`), data length for the type (`bad_length`), for type 2 the CRC (a CRC error),
-// then the fields (`bad_field`). Whatever the input, the decoder re-synchronises at the next header.
+// type 1..4 (`unknown_type`), data length for the type (`bad_length`), the fields (`bad_field`), then for
+// type 2 the CRC: a CRC error is a message that is otherwise well formed (PROTOCOL.md 1.4). Whatever the input, the decoder re-synchronises at the next header.
 //
 // Cost: RAM = the character store (MaxCharacters bytes by default) + 14 bytes + 3 words; per byte O(1),
 // no allocation. `push` may be called from an ISR. A decoded message's `text` points into the decoder and is
@@ -338,8 +338,9 @@ class basic_decoder {
     return find_control(p + 1, p + 15) == p + 15;
   }
 
-  // The checks of a direct variable transfer whose 14 data bytes are well framed: CRC, then X9.
+  // The checks of a direct variable transfer whose 14 data bytes are well framed: X9, then the CRC.
   static decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) noexcept {
+    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
     decode_result result;
     result.status = decode_status::message;
     result.msg.type = message_type::variable;
@@ -348,9 +349,7 @@ class basic_decoder {
     const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
     if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
       result.status = decode_status::crc_error;
-      return result;
     }
-    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
     return result;
   }
 

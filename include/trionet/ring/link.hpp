@@ -304,16 +304,16 @@ class link {
     return {length, encode_error::none};
   }
 
-  /// Queues `text` (checked: 1..127 each, not empty) as consecutive character messages to `hops`, each as
-  /// long as fits (PROTOCOL.md 1.6), whole messages only. Returns how many characters were queued.
+  /// Queues `text` (checked: 0..127 each) as consecutive character messages to `hops`, each as long as an own
+  /// message may be (PROTOCOL.md 1.6: `max_own_characters`, the last one shorter), as many whole messages as
+  /// the transmit queue has room for. Returns how many characters were queued. The split depends on the text
+  /// only, so a caller that goes on with the rest later sends the same messages.
   std::size_t queue_text(std::uint8_t hops, byte_view text) noexcept {
     std::size_t done = 0;
     while (done < text.size()) {
-      const std::size_t room = queue_.free();
-      if (room < framing_length + 1) break;
       std::size_t n = text.size() - done;
       if (n > max_own_characters) n = max_own_characters;
-      if (n > room - framing_length) n = room - framing_length;
+      if (n + framing_length > queue_.free()) break;
       (void)queue_.push(make_header(hops, static_cast<std::uint8_t>(message_type::character)));
       (void)queue_.push(text.data() + done, n);
       (void)queue_.push(make_end_of_message(hops));

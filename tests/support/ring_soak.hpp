@@ -1,0 +1,645 @@
+// A fault-injection soak of the fibre ring (docs/protocol.md 1.5, 1.10): rings of Motion Coordinators and
+// keypads in network mode carry a mix of PRINT#, SEND and lapping messages while the links flip bits, drop
+// bytes or are cut; then the faults stop and every node sends probes. Every message is followed through the
+// ring, so that each one's fate is known:
+//
+//   delivered intact      at its destination, exactly as sent
+//   delivered corrupted   at its destination, changed on the way (a character transfer has no CRC)
+//   misdelivered          at another node, or read as another type (the header is not covered by the CRC)
+//   lost, counted         some node counted it (frame error, CRC error, forwarded message lost, ...)
+//   lost, uncounted       no node could see it: every byte of it vanished on a link, or its header was lost
+//                         and its data merged into a neighbouring damaged message (no boundary left to see)
+//   lost, unexplained     none of the above: a defect
+//
+// How a message is followed: each link's transmitted bytes are cut into segments at headers (a node only
+// ever transmits whole or cut-short messages). A segment is a node's own message (its header came from the
+// transmit queue: the forward buffer was empty) or the next forwarded one (headers are forwarded in the
+// order they arrived). Each counter a node increments while it takes a byte is the doing of the message
+// that byte belongs to, or of the message the node had open before it (an interrupted, idle or bad message).
+//
+// Episodes are wedged when the probes are not all delivered (and the ring quiet) within `recovery_limit`
+// byte-times of the last fault; livelocked if the links were still busy then.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "trionet/ring.hpp"
+#include "trionet/vr.hpp"
+
+namespace trionet::soak {
+
+enum class fault_kind { flip, drop, cut };
+
+inline const char* to_string(fault_kind kind) {
+  switch (kind) {
+    case fault_kind::flip:
+      return "flip";
+    case fault_kind::drop:
+      return "drop";
+    case fault_kind::cut:
+      return "cut";
+  }
+  return "?";
+}
+
+struct config {
+  std::size_t nodes = 5;                  ///< ring size, 2..15
+  std::size_t keypads = 1;                ///< how many of them are keypads (at least one MC remains)
+  fault_kind kind = fault_kind::cut;      ///< what goes wrong on the links
+  double rate = 1e-3;                     ///< flip, drop: chance per byte on every link
+  std::uint32_t cut_length = 100;         ///< cut: byte-times a random link is cut, once per episode
+  std::uint32_t episodes = 20;            ///< fault phase + recovery phase each
+  std::uint32_t fault_byte_times = 1500;  ///< length of the fault phase
+  std::uint32_t recovery_limit = 200000;  ///< byte-times after the last fault before an episode is wedged
+  double load = 1.0 / 150;                ///< chance per byte-time that an MC sends a message
+  double key_rate = 1.0 / 400;            ///< chance per byte-time that a keypad key is pressed
+  std::uint64_t seed = 1;
+};
+
+struct report {
+  std::uint64_t sent = 0, delivered_intact = 0, delivered_corrupted = 0, misdelivered = 0;
+  std::uint64_t lost_counted = 0, lost_vanished = 0, lost_merged = 0, lost_unexplained = 0;
+  std::uint64_t wrong_vr_writes = 0, wedged = 0, livelocked = 0, episodes = 0;
+  std::uint64_t probes = 0, probes_delivered = 0;
+  std::uint64_t faults = 0;  ///< bytes flipped, dropped or cut
+  /// Per episode, byte-times from the last fault until every node that had a message open then was out of
+  /// it (0: none had).
+  std::vector<std::uint64_t> open_closed;
+  /// Per episode, byte-times from the last fault to the last error any node counted (0: none after it): when
+  /// the last damaged message, wherever it was then, had been seen and ended.
+  std::vector<std::uint64_t> damage_cleared;
+  /// Per episode, byte-times from the end of the fault phase (when the probes are sent) until every probe was
+  /// delivered and the ring was quiet.
+  std::vector<std::uint64_t> probes_done;
+  std::string first_problem;  ///< what the first wedge, livelock, wrong write or unexplained loss was
+
+  std::uint64_t lost() const { return lost_counted + lost_vanished + lost_merged + lost_unexplained; }
+};
+
+inline std::uint64_t median(std::vector<std::uint64_t> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+inline std::uint64_t maximum(const std::vector<std::uint64_t>& v) {
+  return v.empty() ? 0 : *std::max_element(v.begin(), v.end());
+}
+
+/// The liveness bound of docs/protocol.md 1.10: idle time + one longest message + one lap, in byte-times.
+inline std::uint64_t recovery_bound(std::size_t nodes) {
+  return ring::default_idle_byte_times + ring::default_max_characters + ring::framing_length + nodes;
+}
+
+namespace detail {
+
+using mc_type = ring::motion_coordinator<>;
+using keypad_type = ring::keypad<>;
+constexpr std::size_t no_id = static_cast<std::size_t>(-1);
+
+/// VR() of a soak node: accepts every write and remembers the last one.
+class recording_store final : public vr_store {
+ public:
+  vr_write write(std::uint16_t vr, const network_value& value) noexcept override {
+    last_vr = vr;
+    last_value = value.q32;
+    return vr_write::written;
+  }
+  std::uint16_t last_vr = 0;
+  std::int64_t last_value = 0;
+};
+
+enum class kind { character, variable, key };
+
+struct message_record {
+  std::size_t sender = 0, destination = 0;
+  kind type = kind::character;
+  std::string text;        // character, key: what must arrive
+  std::uint16_t vr = 0;    // variable
+  std::int64_t value = 0;  // variable (Q32.32)
+  bool probe = false;
+  bool delivered = false, corrupted = false, misdelivered = false;
+  bool counted = false;      // some node counted an error or a loss for it
+  bool vanished = false;     // on some link none of its bytes arrived
+  bool header_lost = false;  // on some link its header did not arrive as a header
+};
+
+/// What the harness reads off a node between steps.
+struct snapshot {
+  ring::link_counters link{};
+  std::uint32_t frame_errors = 0, crc_errors = 0, overflows = 0, ignored = 0, characters = 0, variables = 0,
+                displayed = 0;
+  std::size_t backlog = 0;
+};
+
+struct node_state {
+  bool keypad = false;
+  std::unique_ptr<recording_store> store;
+  std::unique_ptr<mc_type> mc;
+  std::unique_ptr<keypad_type> pad;
+  std::deque<std::size_t> own;                                 // own wire messages, in queue order
+  std::deque<std::pair<std::uint64_t, std::size_t>> forwards;  // (serial, id) of headers to forward
+  std::uint64_t serial = 0;                                    // of the message being forwarded now
+  std::size_t forward_id = no_id;                              // the message being forwarded now
+  bool local_open = false;                                     // a message for this node is open
+  std::size_t local_id = no_id;
+  snapshot before;
+  // The segment on this node's outgoing link.
+  std::size_t tx_id = no_id;
+  std::size_t tx_sent = 0, tx_delivered = 0;
+  bool tx_header_ok = true;
+
+  byte_port& port() { return keypad ? static_cast<byte_port&>(*pad) : static_cast<byte_port&>(*mc); }
+
+  snapshot take() const {
+    snapshot s;
+    if (keypad) {
+      s.link = pad->forwarding_counters();
+      const auto& c = pad->counters();
+      s.frame_errors = c.frame_errors;
+      s.crc_errors = c.crc_errors;
+      s.ignored = c.variables_ignored + c.dropped_in_local_mode;
+      s.displayed = c.display_messages;
+      s.backlog = pad->forward_backlog();
+    } else {
+      s.link = mc->forwarding_counters();
+      const auto& c = mc->counters();
+      s.frame_errors = c.frame_errors;
+      s.crc_errors = c.crc_errors;
+      s.overflows = c.receive_overflows;
+      s.ignored = c.keypad_messages_ignored + c.variables_refused + c.variables_out_of_range;
+      s.characters = c.character_messages;
+      s.variables = c.variables_written;
+      s.backlog = mc->forward_backlog();
+    }
+    return s;
+  }
+};
+
+class harness {
+ public:
+  explicit harness(const config& cfg) : cfg_(cfg), rng_(cfg.seed), sim_(ring::default_idle_byte_times) {
+    build();
+  }
+
+  report run() {
+    setup_keypads();
+    for (std::uint32_t e = 0; e < cfg_.episodes; ++e) episode();
+    return report_;
+  }
+
+ private:
+  // ---- the ring ----
+
+  void build() {
+    std::vector<bool> is_keypad(cfg_.nodes, false);
+    std::size_t placed = 0;
+    while (placed < cfg_.keypads && placed + 1 < cfg_.nodes) {
+      const std::size_t at = 1 + rng_() % (cfg_.nodes - 1);  // node 0 stays an MC
+      if (!is_keypad[at]) {
+        is_keypad[at] = true;
+        ++placed;
+      }
+    }
+    nodes_.resize(cfg_.nodes);
+    for (std::size_t i = 0; i < cfg_.nodes; ++i) {
+      node_state& n = nodes_[i];
+      n.keypad = is_keypad[i];
+      if (n.keypad) {
+        n.pad = std::make_unique<keypad_type>();
+      } else {
+        n.store = std::make_unique<recording_store>();
+        n.mc = std::make_unique<mc_type>(*n.store);
+        mcs_.push_back(i);
+      }
+      (void)sim_.add(n.port());
+    }
+    sim_.set_fault_hook(&harness::fault_for, this);
+  }
+
+  std::size_t next_mc_after(std::size_t at) const {
+    for (std::size_t k = 1; k <= cfg_.nodes; ++k) {
+      const std::size_t j = (at + k) % cfg_.nodes;
+      if (!nodes_[j].keypad) return j;
+    }
+    return at;
+  }
+
+  // Fault-free: node 0 sends every keypad its offset (keys go to the next MC along the ring) and waits until
+  // all are in network mode.
+  void setup_keypads() {
+    for (std::size_t i = 0; i < cfg_.nodes; ++i) {
+      if (!nodes_[i].keypad) continue;
+      const auto hops_to_keypad = static_cast<int>(i);  // node 0 -> node i
+      const std::size_t target = next_mc_after(i);
+      const int offset_hops = static_cast<int>((target + cfg_.nodes - i) % cfg_.nodes);
+      const std::size_t id = new_message(0, i, kind::character);  // tracked as a message like any other
+      records_[id].text.clear();
+      nodes_[0].own.push_back(id);
+      while (nodes_[0].mc->send_keypad_offset(hops_to_keypad + 9, offset_hops + 9) != ring::send_result::queued)
+        step();
+    }
+    for (int t = 0; t < 20000; ++t) {
+      step();
+      bool all = true;
+      for (auto& n : nodes_) all = all && (!n.keypad || n.pad->network_mode());
+      if (all && sim_.quiet()) break;
+    }
+    for (auto& n : nodes_) {
+      if (n.keypad && !n.pad->network_mode()) report_.first_problem = "a keypad never entered network mode";
+    }
+  }
+
+  std::size_t new_message(std::size_t sender, std::size_t destination, kind type) {
+    message_record r;
+    r.sender = sender;
+    r.destination = destination;
+    r.type = type;
+    records_.push_back(r);
+    return records_.size() - 1;
+  }
+
+  // ---- traffic ----
+
+  // One message from MC `i`, if its transmit queue has room for it whole: PRINT# (sometimes lapping the
+  // ring), or SEND to an MC.
+  bool send_from(std::size_t i, bool probe) {
+    node_state& n = nodes_[i];
+    const std::uint64_t pick = rng_() % 100;
+    if (pick < 40 || probe) {  // PRINT# to any node, 1..15 hops (lapping when hops >= ring size)
+      const auto hops = static_cast<int>(1 + rng_() % (pick < 15 ? 15 : cfg_.nodes));
+      const std::size_t destination = (i + static_cast<std::size_t>(hops)) % cfg_.nodes;
+      const std::size_t id = new_message(i, destination, kind::character);
+      std::string text = "#" + std::to_string(id) + ":";
+      const std::size_t length = 4 + rng_() % 21;
+      while (text.size() < length) text += static_cast<char>('A' + rng_() % 26);
+      if (n.mc->transmit_free() < text.size() + ring::framing_length) {
+        records_.pop_back();
+        return false;
+      }
+      const ring::print_result r = n.mc->print(hops + 9, text.c_str());
+      if (r.status != ring::send_result::queued) {
+        records_.pop_back();
+        return false;
+      }
+      records_[id].text = text;
+      records_[id].probe = probe;
+      n.own.push_back(id);
+      return true;
+    }
+    // SEND(n,1,vr,value) to an MC: vr = the sender, value = the message number.
+    const std::size_t destination = mcs_[rng_() % mcs_.size()];
+    std::size_t hops = (destination + cfg_.nodes - i) % cfg_.nodes;
+    if (hops == 0) hops = cfg_.nodes;
+    if (rng_() % 4 == 0 && hops + cfg_.nodes <= 15) hops += cfg_.nodes;  // once round the ring first
+    const std::size_t id = new_message(i, destination, kind::variable);
+    records_[id].vr = static_cast<std::uint16_t>(i);
+    records_[id].value = ring::q32_from_integer(static_cast<std::int32_t>(id));
+    if (n.mc->send_variable_q32(static_cast<int>(hops) + 9, records_[id].vr, records_[id].value) !=
+        ring::send_result::queued) {
+      records_.pop_back();
+      return false;
+    }
+    records_[id].probe = probe;
+    n.own.push_back(id);
+    return true;
+  }
+
+  bool press_on(std::size_t i, bool probe) {
+    node_state& n = nodes_[i];
+    static constexpr ring::key keys[] = {ring::key::digit_1, ring::key::digit_7, ring::key::up, ring::key::yes,
+                                         ring::key::start};
+    const ring::key k = keys[rng_() % 5];
+    const std::size_t destination = (i + n.pad->offset()) % cfg_.nodes;
+    const std::size_t id = new_message(i, destination, kind::key);
+    if (n.pad->press(k) != ring::key_result::sent) {
+      records_.pop_back();
+      return false;
+    }
+    records_[id].text = std::string(1, static_cast<char>(ring::default_keypad_codes[k]));
+    records_[id].probe = probe;
+    n.own.push_back(id);
+    return true;
+  }
+
+  void traffic() {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (std::size_t i = 0; i < cfg_.nodes; ++i) {
+      if (nodes_[i].keypad) {
+        if (u(rng_) < cfg_.key_rate) (void)press_on(i, false);
+      } else if (u(rng_) < cfg_.load) {
+        (void)send_from(i, false);
+      }
+    }
+  }
+
+  // ---- faults ----
+
+  static ring::byte_fault fault_for(void* context, std::size_t link, std::uint64_t time, std::uint8_t) {
+    auto* self = static_cast<harness*>(context);
+    ring::byte_fault f;
+    if (!self->faulting_ || self->cfg_.kind == fault_kind::cut) return f;
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    if (u(self->fault_rng_) >= self->cfg_.rate) return f;
+    if (self->cfg_.kind == fault_kind::flip) {
+      f.flip_mask = static_cast<std::uint8_t>(1u << (self->fault_rng_() % 8));
+    } else {
+      f.drop = true;
+    }
+    (void)link;
+    self->last_fault_ = time;
+    ++self->report_.faults;
+    return f;
+  }
+
+  // ---- following messages ----
+
+  void step() {
+    for (auto& n : nodes_) n.before = n.take();
+    const std::uint64_t faults = report_.faults;
+    sim_.step(tracer{this});
+    if (report_.faults != faults) {  // a fault in this step: which nodes does it find inside a message?
+      open_at_fault_.assign(nodes_.size(), false);
+      for (std::size_t i = 0; i < nodes_.size(); ++i) open_at_fault_[i] = nodes_[i].port().in_message();
+      open_closed_at_ = sim_.now();
+    } else {
+      for (std::size_t i = 0; i < open_at_fault_.size(); ++i) {
+        if (open_at_fault_[i] && !nodes_[i].port().in_message()) {
+          open_at_fault_[i] = false;
+          open_closed_at_ = sim_.now();
+        }
+      }
+    }
+  }
+
+  struct tracer {
+    harness* h;
+    void operator()(const ring::link_byte& b) const { h->on_byte(b); }
+    void operator()(const ring::line_idle_event& e) const { h->on_idle(e); }
+  };
+
+  void on_byte(const ring::link_byte& b) {
+    node_state& tx = nodes_[b.link];
+    if (ring::classify(b.sent) == ring::byte_class::header) {
+      close_segment(tx);
+      // Between messages the forward buffer goes first: a header sent while it held bytes came from it.
+      tx.tx_id = no_id;
+      if (tx.before.backlog > 0) {
+        if (!tx.forwards.empty()) {
+          tx.tx_id = tx.forwards.front().second;
+          tx.forwards.pop_front();
+        }
+      } else if (!tx.own.empty()) {
+        tx.tx_id = tx.own.front();
+        tx.own.pop_front();
+      }
+      if (tx.tx_id == no_id) problem("a header left node " + std::to_string(b.link) + " with no message");
+      tx.tx_sent = tx.tx_delivered = 0;
+      tx.tx_header_ok = b.delivered && ring::classify(b.received) == ring::byte_class::header &&
+                        ring::type_of(b.received) == ring::type_of(b.sent);
+    }
+    const std::size_t id = tx.tx_id;
+    ++tx.tx_sent;
+    if (b.delivered) ++tx.tx_delivered;
+    if (!b.delivered || b.sent != b.received) {
+      last_fault_ = b.time;
+      if (cfg_.kind == fault_kind::cut) ++report_.faults;
+    }
+    if (b.delivered) received(nodes_[(b.link + 1) % cfg_.nodes], b.received, id, b.time);
+  }
+
+  void close_segment(node_state& tx) {
+    if (tx.tx_id == no_id) return;
+    message_record& m = records_[tx.tx_id];
+    if (tx.tx_sent > 0 && tx.tx_delivered == 0) m.vanished = true;
+    if (!tx.tx_header_ok) m.header_lost = true;
+    tx.tx_id = no_id;
+  }
+
+  void count_for(std::size_t id, std::uint64_t time) {
+    if (id != no_id) records_[id].counted = true;
+    last_error_ = time;
+  }
+
+  // Node `n` took byte `byte`, which belongs to message `id` on the way in.
+  void received(node_state& n, std::uint8_t byte, std::size_t id, std::uint64_t time) {
+    const snapshot now = n.take();
+    const snapshot& was = n.before;
+    const bool header = ring::classify(byte) == ring::byte_class::header;
+    const bool local = now.link.bytes[0] != was.link.bytes[0];
+    // Forwarding: a forwarded header joins the forward queue; a lost one leaves it if none of it went out.
+    if (now.link.messages_forwarded != was.link.messages_forwarded) {
+      n.forwards.emplace_back(++n.serial, id);
+      n.forward_id = id;
+    }
+    if (now.link.forwards_lost != was.link.forwards_lost || now.link.forwards_cut != was.link.forwards_cut) {
+      count_for(n.forward_id, time);
+      if (!n.forwards.empty() && n.forwards.back().first == n.serial) n.forwards.pop_back();
+    }
+    if (now.link.messages_dropped != was.link.messages_dropped) count_for(id, time);
+    // The node's own decoder: errors and deliveries belong to the message it had open, or to this one.
+    const bool was_open = n.local_open;
+    const std::size_t open_id = was_open ? n.local_id : id;
+    if (local && header && ring::hops_of(byte) != 0) {
+      n.local_open = true;
+      n.local_id = id;
+    } else if (header || (local && ring::classify(byte) == ring::byte_class::end_of_message)) {
+      n.local_open = false;
+    }
+    if (now.frame_errors != was.frame_errors || now.crc_errors != was.crc_errors ||
+        now.overflows != was.overflows || now.ignored != was.ignored) {
+      count_for(open_id, time);
+    }
+    if (now.characters != was.characters) deliver_characters(n, open_id);
+    if (now.variables != was.variables) deliver_variable(n, open_id);
+    if (now.displayed != was.displayed) deliver_display(n, open_id);
+  }
+
+  void on_idle(const ring::line_idle_event& e) {
+    node_state& n = nodes_[(e.link + 1) % cfg_.nodes];
+    const snapshot now = n.take();
+    if (now.link.forwards_ended_idle != n.before.link.forwards_ended_idle) count_for(n.forward_id, e.time);
+    if (now.frame_errors != n.before.frame_errors) count_for(n.local_open ? n.local_id : no_id, e.time);
+    n.local_open = false;
+    ++idle_events_;
+  }
+
+  std::size_t index_of(const node_state& n) const { return static_cast<std::size_t>(&n - nodes_.data()); }
+
+  void deliver_characters(node_state& n, std::size_t id) {
+    std::string got;
+    while (auto c = n.mc->get(4)) got += static_cast<char>(c.value);
+    if (id == no_id) return;
+    message_record& m = records_[id];
+    if (m.delivered) return;
+    m.delivered = true;
+    m.misdelivered = m.destination != index_of(n) || m.type == kind::variable;
+    m.corrupted = !m.misdelivered && got != m.text;
+  }
+
+  void deliver_variable(node_state& n, std::size_t id) {
+    const bool right = id != no_id && records_[id].type == kind::variable &&
+                       records_[id].destination == index_of(n) && records_[id].vr == n.store->last_vr &&
+                       records_[id].value == n.store->last_value;
+    if (!right) {
+      ++report_.wrong_vr_writes;
+      problem("wrong VR write at node " + std::to_string(index_of(n)) + ": VR(" +
+              std::to_string(n.store->last_vr) + ") = " + std::to_string(n.store->last_value >> 32) +
+              (id == no_id ? std::string(" from no message") : " from message " + std::to_string(id)));
+    }
+    if (id == no_id) return;
+    message_record& m = records_[id];
+    if (m.delivered) return;
+    m.delivered = true;
+    m.misdelivered = !right;
+  }
+
+  void deliver_display(node_state& n, std::size_t id) {
+    if (id == no_id) return;
+    message_record& m = records_[id];
+    if (m.delivered) return;
+    m.delivered = true;
+    m.misdelivered = m.destination != index_of(n) || m.type != kind::character;
+    m.corrupted = false;  // a display's text cannot be read back exactly; counted as intact if it arrived
+  }
+
+  void problem(const std::string& what) {
+    if (report_.first_problem.empty())
+      report_.first_problem = "seed " + std::to_string(cfg_.seed) + ", episode " +
+                              std::to_string(report_.episodes) + ": " + what;
+  }
+
+  // ---- episodes ----
+
+  bool settled() {
+    if (!sim_.quiet()) return false;
+    for (auto& n : nodes_) {
+      if (n.port().in_message() || !n.own.empty() || !n.forwards.empty()) return false;
+    }
+    for (std::size_t id = first_of_episode_; id < records_.size(); ++id) {
+      if (records_[id].probe && !records_[id].delivered) return false;
+    }
+    return true;
+  }
+
+  void episode() {
+    first_of_episode_ = records_.size();
+    last_fault_ = sim_.now();
+    open_at_fault_.clear();
+    open_closed_at_ = sim_.now();
+    last_error_ = 0;
+    // Fault phase: traffic, and the faults.
+    faulting_ = true;
+    fault_rng_.seed(rng_());
+    const std::uint64_t cut_at = cfg_.fault_byte_times > cfg_.cut_length
+                                     ? rng_() % (cfg_.fault_byte_times - cfg_.cut_length)
+                                     : 0;
+    const std::size_t cut_link = rng_() % cfg_.nodes;
+    for (std::uint32_t t = 0; t < cfg_.fault_byte_times; ++t) {
+      if (cfg_.kind == fault_kind::cut) {
+        if (t == cut_at) sim_.cut(cut_link, true);
+        if (t == cut_at + cfg_.cut_length) sim_.cut(cut_link, false);
+      }
+      traffic();
+      step();
+    }
+    if (cfg_.kind == fault_kind::cut) sim_.cut(cut_link, false);
+    faulting_ = false;
+    const std::uint64_t faults_end = last_fault_;
+    // Recovery: every node sends a probe (waiting for room as BASIC's PRINT# does) until all are delivered.
+    std::vector<bool> probed(cfg_.nodes, false);
+    std::uint64_t done_at = 0;
+    bool done = false;
+    std::uint64_t busy_bytes = 0;
+    const std::uint64_t probes_sent = sim_.now();
+    while (sim_.now() - faults_end < cfg_.recovery_limit) {
+      for (std::size_t i = 0; i < cfg_.nodes; ++i) {
+        if (probed[i]) continue;
+        probed[i] = nodes_[i].keypad ? press_on(i, true) : send_from(i, true);
+        if (probed[i]) ++report_.probes;
+      }
+      const std::uint64_t delivered = sim_.bytes_delivered();
+      step();
+      if (sim_.now() - faults_end > cfg_.recovery_limit - 1000) busy_bytes += sim_.bytes_delivered() - delivered;
+      if (std::all_of(probed.begin(), probed.end(), [](bool p) { return p; }) && settled()) {
+        done = true;
+        done_at = sim_.now();
+        break;
+      }
+    }
+    ++report_.episodes;
+    if (!done) {
+      if (busy_bytes > 500) {
+        ++report_.livelocked;
+        problem("livelock: probes not delivered and the links still busy");
+      } else {
+        ++report_.wedged;
+        problem("wedged: probes not delivered");
+      }
+    } else {
+      report_.probes_done.push_back(done_at - probes_sent);
+      report_.damage_cleared.push_back(last_error_ > faults_end ? last_error_ - faults_end : 0);
+      // (the step of the last fault ends at faults_end + 1)
+      report_.open_closed.push_back(open_closed_at_ > faults_end + 1 ? open_closed_at_ - faults_end - 1 : 0);
+    }
+    for (auto& n : nodes_) close_segment(n);
+    tally();
+  }
+
+  void tally() {
+    for (std::size_t id = first_of_episode_; id < records_.size(); ++id) {
+      const message_record& m = records_[id];
+      ++report_.sent;
+      if (m.probe && m.delivered && !m.corrupted && !m.misdelivered) ++report_.probes_delivered;
+      if (m.delivered) {
+        if (m.misdelivered) {
+          ++report_.misdelivered;
+        } else if (m.corrupted) {
+          ++report_.delivered_corrupted;
+        } else {
+          ++report_.delivered_intact;
+        }
+      } else if (m.counted) {
+        ++report_.lost_counted;
+      } else if (m.vanished) {
+        ++report_.lost_vanished;
+      } else if (m.header_lost) {
+        ++report_.lost_merged;
+      } else {
+        ++report_.lost_unexplained;
+        problem("message " + std::to_string(id) + " from node " + std::to_string(m.sender) + " to node " +
+                std::to_string(m.destination) + " lost and not counted");
+      }
+    }
+  }
+
+  config cfg_;
+  std::mt19937_64 rng_;
+  std::mt19937_64 fault_rng_;
+  ring::simulator<15> sim_;
+  std::vector<node_state> nodes_;
+  std::vector<std::size_t> mcs_;
+  std::vector<bool> open_at_fault_;   // nodes inside a message at the last fault, not yet out of it
+  std::uint64_t open_closed_at_ = 0;  // when the last of them got out
+  std::vector<message_record> records_;
+  std::size_t first_of_episode_ = 0;
+  bool faulting_ = false;
+  std::uint64_t last_fault_ = 0, last_error_ = 0, idle_events_ = 0;
+  report report_;
+};
+
+}  // namespace detail
+
+inline report run(const config& cfg) {
+  detail::harness h(cfg);
+  return h.run();
+}
+
+}  // namespace trionet::soak
