@@ -21,6 +21,13 @@ pump_result fd_link::pump(int timeout_ms) {
     if (errno != EINTR) result.error = errno;
     return result;
   }
+  if (ready == 0) {  // nothing for timeout_ms: the line is idle (docs/protocol.md 1.10)
+    if (node_->in_message()) {
+      node_->line_idle();
+      result.line_idle = true;
+    }
+    return result;
+  }
   if ((p.revents & POLLIN) != 0) {
     std::uint8_t in[256];
     const ssize_t got = ::read(fd_, in, sizeof in);

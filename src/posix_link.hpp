@@ -5,7 +5,8 @@
 //
 // The node itself never blocks; `pump` waits at most `timeout_ms` in poll(). Bytes the node has handed over
 // but the descriptor did not yet take are kept here and written first next time: nothing is lost on a
-// short write.
+// short write. A pump that waits the whole `timeout_ms` without a byte tells the node its line is idle
+// (docs/protocol.md 1.10): choose a timeout of a few character times at the link's bit rate.
 #pragma once
 
 #include <cstddef>
@@ -20,6 +21,7 @@ struct pump_result {
   std::size_t received = 0;  ///< bytes read and handed to the node
   std::size_t sent = 0;      ///< bytes written
   bool closed = false;       ///< the other end closed (read returned 0 or POLLHUP)
+  bool line_idle = false;    ///< nothing arrived for the whole timeout while a message was open
   int error = 0;             ///< errno of a failed read/write/poll, else 0
 };
 

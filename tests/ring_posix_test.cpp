@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <string>
 
 #include "posix_link.hpp"
@@ -77,4 +78,31 @@ TEST(RingPosixLink, SerialPortOnAPty) {
   EXPECT_NE(error.find("unsupported baud rate"), std::string::npos);
   EXPECT_EQ(trionet::host::open_serial("/dev/null", 9600, error), -1);
   EXPECT_NE(error.find("not a serial port"), std::string::npos);
+}
+
+// A message whose rest never comes: the pump's read timeout is the idle line (docs/protocol.md 1.10), so
+// the node ends it (counted) and sends its own message.
+TEST(RingPosixLink, ReadTimeoutIsTheIdleLine) {
+  int sv[2];
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_STREAM, 0, sv), 0);
+  for (int fd : sv) ASSERT_EQ(::fcntl(fd, F_SETFL, O_NONBLOCK), 0);
+  trionet::vr_table<16> vr;
+  ring::motion_coordinator<> mc(vr);
+  trionet::host::fd_link link(sv[0], mc);
+  const std::uint8_t partial[] = {ring::make_header(3, 1), 'A', 'B'};  // forwarded; no end of message
+  ASSERT_EQ(::write(sv[1], partial, sizeof partial), static_cast<ssize_t>(sizeof partial));
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
+  bool idle = false;
+  for (int i = 0; i < 20 && !idle; ++i) idle = link.pump(5).line_idle;
+  EXPECT_TRUE(idle);
+  EXPECT_EQ(mc.forwarding_counters().forwards_ended_idle, 1u);
+  for (int i = 0; i < 5; ++i) (void)link.pump(5);
+  std::uint8_t got[16] = {};
+  const ssize_t n = ::read(sv[1], got, sizeof got);
+  const std::uint8_t expected[] = {ring::make_header(2, 1), 'A', 'B', ring::make_header(1, 1), 'O', 'W', 'N',
+                                   ring::make_end_of_message(1)};
+  ASSERT_EQ(n, static_cast<ssize_t>(sizeof expected));
+  EXPECT_EQ(std::memcmp(got, expected, sizeof expected), 0);
+  ::close(sv[0]);
+  ::close(sv[1]);
 }

@@ -84,20 +84,6 @@ struct link_counters {
 
 namespace detail {
 
-/// The longest legal data of a message of wire type `type` (header type field 1..7), for the forwarding
-/// bound of PROTOCOL.md 1.5.
-constexpr std::uint16_t longest_data(std::uint8_t type, std::uint16_t max_characters) noexcept {
-  switch (type) {
-    case 2:
-      return static_cast<std::uint16_t>(variable_data_length);
-    case 3:
-    case 4:
-      return 1;
-    default:  // 1, and the reserved types 5..7
-      return max_characters;
-  }
-}
-
 /// `Crc` is the CRC policy the node's own direct variable transfers are sent with; `MaxCharacters` the
 /// character maximum of PROTOCOL.md 1.4 (the forwarding bound of type 1 and the reserved types).
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
@@ -115,6 +101,16 @@ class link {
   /// everything that arrives while it is sent.
   static constexpr std::size_t max_own_frame =
       ForwardCapacity < TransmitCapacity ? ForwardCapacity : TransmitCapacity;
+  /// The longest legal data of a message by its header's type field (PROTOCOL.md 1.5): the forwarding bound.
+  /// Type 1 and the reserved types 5..7: the character maximum; 2: a direct variable transfer; 3, 4: one.
+  static constexpr std::uint16_t longest_data[8] = {0,
+                                                    MaxCharacters,
+                                                    variable_data_length,
+                                                    1,
+                                                    1,
+                                                    MaxCharacters,
+                                                    MaxCharacters,
+                                                    MaxCharacters};
   /// The most characters one own character message carries.
   static constexpr std::size_t max_own_characters =
       max_own_frame - framing_length < MaxCharacters ? max_own_frame - framing_length : MaxCharacters;
@@ -451,7 +447,7 @@ class link {
     }
     receiving_ = receiving::forward;
     incoming_ = 0;
-    budget_ = longest_data(type_of(byte), MaxCharacters);
+    budget_ = longest_data[type_of(byte)];
     ++counters_.messages_forwarded;
     return forward(decrement_hops(byte), into);
   }
@@ -487,7 +483,7 @@ class link {
   template <class Into>
   bool forward_whole(const std::uint8_t* header, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - header) + 1;
-    if (n > into.free() || n - framing_length > longest_data(type_of(*header), MaxCharacters)) return false;
+    if (n > into.free() || n - framing_length > longest_data[type_of(*header)]) return false;
     const std::size_t header_at = into.size();
     (void)into.push(header, n);
     into.at(header_at) = decrement_hops(*header);
