@@ -40,7 +40,8 @@ std::string describe(const ring::decode_result& r) {
     case ring::message_type::character:
       return hops + "PRINT   \"" + readable(r.msg.text) + "\"";
     case ring::message_type::variable:
-      return hops + "VR(" + std::to_string(r.msg.vr) + ") = " + format_real(ring::q32_to_double(r.msg.value));
+      return hops + "VR(" + std::to_string(r.msg.vr) +
+             ") = " + format_real(trionet::q32_to_double(r.msg.value));
     case ring::message_type::keypad_offset:
       return hops + "keypad offset " + std::to_string(r.msg.offset);
     case ring::message_type::keypad_mode:
