@@ -1,4 +1,4 @@
-// A membrane keypad on the fibre ring (PROTOCOL.md 1.7-1.9).
+// A membrane keypad on the fibre ring (docs/protocol.md 1.7-1.9).
 //
 //   local mode (at power-up)          network mode
 //   - handles only a keypad offset    - forwards like any node
@@ -7,9 +7,9 @@
 //     else to or through it           - character messages drive the 2 x 20 display
 //   - never transmits                 - direct variable transfers are ignored (counted)
 //
-// Cost (defaults): RAM = forward buffer 16 + transmit queue 16 + decoder 256 + display 45 + state and counters
-// = 452 bytes on a 32-bit core (472 on a 64-bit host).
-// `receive`/`transmit` may run in an ISR; `press`/`release` from the key-scan context (see transport.hpp).
+// Cost (defaults): RAM = forward buffer 16 + transmit queue 16 + decoder 256 + display 45 + state and
+// counters = 452 bytes on a 32-bit core (472 on a 64-bit host). `receive`/`transmit` may run in an ISR;
+// `press`/`release` from the key-scan context (see transport.hpp).
 #pragma once
 
 #include <cstddef>
@@ -27,14 +27,28 @@
 namespace trionet::ring {
 
 /// What became of a key press or release.
-enum class key_result : std::uint8_t {
-  sent,        ///< queued for the node `offset` hops along
-  not_sent,    ///< a key OFF in keypad mode 0: nothing to send
-  local_mode,  ///< the keypad has no offset yet: nothing is sent (counted)
-  queue_full,  ///< no room in the transmit queue (counted)
+enum class key_status : std::uint8_t {
+  ok,               ///< queued for the node `offset` hops along
+  nothing_to_send,  ///< a key OFF in keypad mode 0: nothing to send
+  local_mode,       ///< the keypad has no offset yet: nothing is sent (counted)
+  queue_full,       ///< no room in the transmit queue (counted)
 };
 
-/// The keypad's configurable behaviour (PROTOCOL.md 1.7-1.8 defaults).
+constexpr const char* to_string(key_status status) noexcept {
+  switch (status) {
+    case key_status::ok:
+      return "ok";
+    case key_status::nothing_to_send:
+      return "nothing_to_send";
+    case key_status::local_mode:
+      return "local_mode";
+    case key_status::queue_full:
+      return "queue_full";
+  }
+  return "unknown";
+}
+
+/// The keypad's configurable behaviour (docs/protocol.md 1.7-1.8 defaults).
 struct keypad_config {
   const keypad_codes* codes = &default_keypad_codes;
   std::uint8_t (*key_off_code)(std::uint8_t on) noexcept = default_key_off_code;
@@ -45,7 +59,7 @@ struct keypad_counters {
   std::uint32_t dropped_in_local_mode = 0;  ///< messages to this keypad dropped before its offset arrived
   std::uint32_t display_messages = 0;       ///< character transfers shown on the display
   std::uint32_t variables_ignored = 0;      ///< direct variable transfers (ignored by keypads)
-  std::uint32_t frame_errors = 0;           ///< frame errors of PROTOCOL.md 1.4
+  std::uint32_t frame_errors = 0;           ///< frame errors of docs/protocol.md 1.4
   std::uint32_t crc_errors = 0;             ///< direct variable transfers that failed their CRC
   std::uint32_t keys_sent = 0;              ///< key characters queued
   std::uint32_t keys_lost = 0;              ///< key presses not sent: local mode or queue full
@@ -65,8 +79,8 @@ class keypad final : public byte_port {
   using byte_port::transmit;
 
   void receive(std::uint8_t byte) noexcept override {
-    const route r = link_.receive(byte);
-    if (r == route::local) {
+    const byte_route r = link_.receive(byte);
+    if (r == byte_route::local) {
       handle(decoder_.push(byte));
     } else if (classify(byte) == byte_class::header) {
       handle(decoder_.interrupt());
@@ -81,11 +95,11 @@ class keypad final : public byte_port {
 
   // ---- keys ----
 
-  [[nodiscard]] key_result press(key k) noexcept { return send_key((*config_.codes)[k]); }
+  [[nodiscard]] key_status press(key k) noexcept { return send_key((*config_.codes)[k]); }
 
-  [[nodiscard]] key_result release(key k) noexcept {
+  [[nodiscard]] key_status release(key k) noexcept {
     if (mode_ != keypad_mode_key_on_off)
-      return network_mode() ? key_result::not_sent : key_result::local_mode;
+      return network_mode() ? key_status::nothing_to_send : key_status::local_mode;
     return send_key(config_.key_off_code((*config_.codes)[k]));
   }
 
@@ -100,18 +114,18 @@ class keypad final : public byte_port {
   const link_counters& forwarding_counters() const noexcept { return link_.counters(); }
 
  private:
-  key_result send_key(std::uint8_t character) noexcept {
+  key_status send_key(std::uint8_t character) noexcept {
     if (!network_mode()) {
       ++counters_.keys_lost;
-      return key_result::local_mode;
+      return key_status::local_mode;
     }
     const std::uint8_t text[1] = {character};
     if (!link_.queue(message::characters(offset_, byte_view(text, 1)))) {
       ++counters_.keys_lost;
-      return key_result::queue_full;
+      return key_status::queue_full;
     }
     ++counters_.keys_sent;
-    return key_result::sent;
+    return key_status::ok;
   }
 
   void handle(const decode_result& r) noexcept {
@@ -126,7 +140,7 @@ class keypad final : public byte_port {
         return;
       case decode_status::no_room:
         return;  // cannot happen: the store holds MaxCharacters
-      case decode_status::message:
+      case decode_status::ok:
         break;
     }
     if (!network_mode()) {

@@ -1,5 +1,5 @@
-// What every ring node does with its link (PROTOCOL.md 1.5): decrement and forward, one message at a time,
-// forwarded traffic before the node's own.
+// What every ring node does with its link (docs/protocol.md 1.5): decrement and forward, one message at a
+// time, forwarded traffic before the node's own.
 //
 //   receive side                          transmit side
 //   header A>1 -> header A-1 ---\         between messages: forward buffer first, then the transmit queue;
@@ -13,8 +13,8 @@
 // If the forward buffer overflows, the forwarded message is lost: removed whole if none of it has gone out,
 // otherwise cut short (the destination then sees it interrupted); the rest of it is dropped.
 //
-// Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Per byte O(1), the bulk calls with one copy
-// per run of data; ISR-safe.
+// Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Per byte O(1), the bulk calls with one
+// copy per run of data; ISR-safe.
 #pragma once
 
 #include <cstddef>
@@ -31,16 +31,30 @@
 namespace trionet::ring {
 
 /// Where `link::receive` sent a byte.
-enum class route : std::uint8_t {
+enum class byte_route : std::uint8_t {
   local,      ///< for this node's own decoder (A = 1 or A = 0 messages, and bytes outside any message)
   forwarded,  ///< into the forward buffer
   dropped,    ///< discarded: forwarding is off, or the rest of a lost message
   lost,       ///< the forward buffer overflowed on this byte: the forwarded message is lost
 };
 
+constexpr const char* to_string(byte_route value) noexcept {
+  switch (value) {
+    case byte_route::local:
+      return "local";
+    case byte_route::forwarded:
+      return "forwarded";
+    case byte_route::dropped:
+      return "dropped";
+    case byte_route::lost:
+      return "lost";
+  }
+  return "unknown";
+}
+
 /// Counters of a link; they only ever grow (and wrap at 2^32).
 struct link_counters {
-  /// Received bytes by where they went, indexed by `route`: their sum is every byte received.
+  /// Received bytes by where they went, indexed by `byte_route`: their sum is every byte received.
   std::uint32_t bytes[4] = {};
   std::uint32_t messages_forwarded = 0;  ///< headers of messages passed on (A decremented)
   std::uint32_t forwards_lost = 0;       ///< forwarded messages lost to a full forward buffer
@@ -55,12 +69,12 @@ class link {
 
  public:
   /// Takes one received byte and says where it went.
-  [[nodiscard]] route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
+  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
 
   /// A run of data bytes (no header or end of message among them): the same as `receive` for each, with one
   /// copy. Returns where they went; if a forwarded message overflows part-way, the byte that did not fit is
   /// `lost`, the rest `dropped`, and the result is `lost`.
-  [[nodiscard]] route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
+  [[nodiscard]] byte_route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
     return receive_data(data, n, forward_);
   }
 
@@ -204,13 +218,13 @@ class link {
     return !(sending_ == sending::forward && forward_open_);
   }
 
-  /// Queues one of the node's own messages whole. `encode_error::buffer_too_small` if the transmit queue has
-  /// no room for all of it (nothing is queued), or the message's own field error.
+  /// Queues one of the node's own messages whole. `encode_status::buffer_too_small` if the transmit queue
+  /// has no room for all of it (nothing is queued), or the message's own field error.
   [[nodiscard]] encode_result queue(const message& m) noexcept {
-    const encode_error error = check(m);
-    if (error != encode_error::none) return {0, error};
+    const encode_status status = check(m);
+    if (status != encode_status::ok) return {status, 0};
     const std::size_t length = frame_length(m);
-    if (length > queue_.free()) return {0, encode_error::buffer_too_small};
+    if (length > queue_.free()) return {encode_status::buffer_too_small, 0};
     if (m.type == message_type::character) {  // straight into the queue: no staging copy of the text
       (void)queue_.push(make_header(m.hops, static_cast<std::uint8_t>(m.type)));
       for (std::uint8_t c : m.text) (void)queue_.push(c);
@@ -220,7 +234,7 @@ class link {
       const encode_result encoded = encode<Crc>(frame, m);
       for (std::size_t i = 0; i < encoded.length; ++i) (void)queue_.push(frame[i]);
     }
-    return {length, encode_error::none};
+    return {encode_status::ok, length};
   }
 
   /// Free bytes in the transmit queue (a frame is its message plus header and end of message).
@@ -242,35 +256,35 @@ class link {
 
   // The receive side, forwarding `into` the forward buffer or a `straight_out`.
   template <class Into>
-  route receive(std::uint8_t byte, Into& into) noexcept {
-    const route r = route_byte(byte, into);
+  byte_route receive(std::uint8_t byte, Into& into) noexcept {
+    const byte_route r = route_byte(byte, into);
     ++counters_.bytes[static_cast<std::size_t>(r)];
     return r;
   }
 
   template <class Into>
-  route receive_data(const std::uint8_t* data, std::size_t n, Into& into) noexcept {
-    const auto count = [this](route r, std::size_t k) {
+  byte_route receive_data(const std::uint8_t* data, std::size_t n, Into& into) noexcept {
+    const auto count = [this](byte_route r, std::size_t k) {
       counters_.bytes[static_cast<std::size_t>(r)] += static_cast<std::uint32_t>(k);
     };
     switch (receiving_) {
       case receiving::local:
-        count(route::local, n);
-        return route::local;
+        count(byte_route::local, n);
+        return byte_route::local;
       case receiving::discard:
-        count(route::dropped, n);
-        return route::dropped;
+        count(byte_route::dropped, n);
+        return byte_route::dropped;
       case receiving::forward:
         break;
     }
     const std::size_t pushed = into.push(data, n);
-    count(route::forwarded, pushed);
+    count(byte_route::forwarded, pushed);
     const std::size_t incoming = incoming_ + pushed;
     incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
-    if (pushed == n) return route::forwarded;
+    if (pushed == n) return byte_route::forwarded;
     count(lose(into), 1);
-    count(route::dropped, n - pushed - 1);
-    return route::lost;
+    count(byte_route::dropped, n - pushed - 1);
+    return byte_route::lost;
   }
 
   template <class Into>
@@ -286,7 +300,7 @@ class link {
           p = run + 1;
           continue;
         }
-        if (run != p && receive_data(p, static_cast<std::size_t>(run - p), into) == route::lost) {
+        if (run != p && receive_data(p, static_cast<std::size_t>(run - p), into) == byte_route::lost) {
           result.events |= passing::lost;
         }
         p = run;
@@ -307,7 +321,7 @@ class link {
           }
         }
       }
-      if (receive(byte, into) == route::lost) result.events |= passing::lost;
+      if (receive(byte, into) == byte_route::lost) result.events |= passing::lost;
       ++p;
     }
     result.stop = p;
@@ -315,17 +329,17 @@ class link {
   }
 
   template <class Into>
-  route route_byte(std::uint8_t byte, Into& into) noexcept {
+  byte_route route_byte(std::uint8_t byte, Into& into) noexcept {
     if (is_data(byte)) {
       switch (receiving_) {
         case receiving::forward:
           return forward(byte, into);
         case receiving::discard:
-          return route::dropped;
+          return byte_route::dropped;
         case receiving::local:
-          return route::local;
+          return byte_route::local;
       }
-      return route::local;
+      return byte_route::local;
     }
     const receiving was = receiving_;
     receiving_ = receiving::local;
@@ -334,14 +348,14 @@ class link {
       if (was == receiving::forward) {
         return forward(decrement_hops(byte), into);
       }
-      return was == receiving::discard ? route::dropped : route::local;
+      return was == receiving::discard ? byte_route::dropped : byte_route::local;
     }
     const std::uint8_t hops = hops_of(byte);
-    if (hops <= 1) return route::local;
+    if (hops <= 1) return byte_route::local;
     if (!forwarding_) {
       receiving_ = receiving::discard;
       ++counters_.messages_dropped;
-      return route::dropped;
+      return byte_route::dropped;
     }
     receiving_ = receiving::forward;
     forward_open_ = true;
@@ -353,10 +367,10 @@ class link {
   enum class sending : std::uint8_t { idle, forward, own };
 
   template <class Into>
-  route forward(std::uint8_t byte, Into& into) noexcept {
+  byte_route forward(std::uint8_t byte, Into& into) noexcept {
     if (into.push(byte)) {
       if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity < 65535: never wraps
-      return route::forwarded;
+      return byte_route::forwarded;
     }
     return lose(into);
   }
@@ -369,7 +383,7 @@ class link {
     if (n > into.free()) return false;
     (void)into.push(data, n);
     into.back() = decrement_hops(*end_of_message);
-    counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
+    counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
     receiving_ = receiving::local;
     forward_open_ = false;
     return true;
@@ -385,19 +399,19 @@ class link {
     (void)into.push(header, n);
     into.at(header_at) = decrement_hops(*header);
     into.back() = decrement_hops(*end_of_message);
-    counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
+    counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
     ++counters_.messages_forwarded;
     return true;
   }
 
   // The forwarded message being received does not fit: it is lost.
   template <class Into>
-  route lose(Into& into) noexcept {
+  byte_route lose(Into& into) noexcept {
     ++counters_.forwards_lost;
     if (incoming_ <= into.size()) into.drop_back(incoming_);  // none of it has gone out yet
     forward_open_ = false;
     receiving_ = receiving::discard;
-    return route::lost;
+    return byte_route::lost;
   }
 
   byte_fifo<ForwardCapacity> forward_;

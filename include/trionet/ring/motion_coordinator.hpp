@@ -1,4 +1,4 @@
-// A Motion Coordinator on the fibre ring (PROTOCOL.md 1.5-1.6): forwards what is not for it, keeps the
+// A Motion Coordinator on the fibre ring (docs/protocol.md 1.5-1.6): forwards what is not for it, keeps the
 // characters sent to it in its receive buffer for KEY# and GET#, writes direct variable transfers into VR()
 // through the write policy, and sends PRINT# and SEND messages.
 //
@@ -10,8 +10,8 @@
 //   mc.send_variable(10, 200, 99.0);    // SEND(10,1,200,99)
 //   if (mc.key(3)) { auto k = mc.get(3); ... }   // IF KEY#3 THEN GET #3,k
 //
-// Cost (defaults): RAM = receive buffer 256 + forward buffer 32 + transmit queue 32 + 128 bytes of state and
-// counters = 448 bytes on a 32-bit core (464 on a 64-bit host); the VR table and DEFKEY table are the
+// Cost (defaults): RAM = receive buffer 256 + forward buffer 32 + transmit queue 32 + 132 bytes of state and
+// counters = 452 bytes on a 32-bit core (472 on a 64-bit host); the VR table and DEFKEY table are the
 // caller's. Per received byte O(1). `receive`/`transmit` may run in an ISR; see transport.hpp for sharing
 // with the main loop.
 #pragma once
@@ -22,20 +22,20 @@
 
 #include "trionet/attributes.hpp"
 #include "trionet/fifo.hpp"
+#include "trionet/q32.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/keypad_codes.hpp"
 #include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
-#include "trionet/ring/q32.hpp"
 #include "trionet/span.hpp"
 #include "trionet/transport.hpp"
 #include "trionet/vr.hpp"
 
 namespace trionet::ring {
 
-/// NETSTAT bits (PROTOCOL.md 1.6).
+/// NETSTAT bits (docs/protocol.md 1.6).
 enum netstat_bit : std::uint8_t {
   netstat_tx_timeout = 1,       ///< an own message could not be put into the transmit queue
   netstat_tx_buffer_error = 2,  ///< a forwarded message was lost (forward buffer overflow)
@@ -44,9 +44,25 @@ enum netstat_bit : std::uint8_t {
   netstat_rx_overflow = 16,     ///< a character transfer did not fit in the receive buffer (extension)
 };
 
-/// What became of a PRINT# or SEND call. Anything but `queued` means nothing was queued.
-enum class send_result : std::uint8_t {
-  queued,
+constexpr const char* to_string(netstat_bit bit) noexcept {
+  switch (bit) {
+    case netstat_tx_timeout:
+      return "netstat_tx_timeout";
+    case netstat_tx_buffer_error:
+      return "netstat_tx_buffer_error";
+    case netstat_rx_crc_error:
+      return "netstat_rx_crc_error";
+    case netstat_rx_frame_error:
+      return "netstat_rx_frame_error";
+    case netstat_rx_overflow:
+      return "netstat_rx_overflow";
+  }
+  return "unknown";
+}
+
+/// What became of a PRINT# or SEND call. Anything but `ok` means nothing was queued.
+enum class send_status : std::uint8_t {
+  ok,                      ///< queued whole
   bad_address,             ///< BASIC address not 10..24
   empty_text,              ///< PRINT# of nothing
   character_out_of_range,  ///< a character above 127
@@ -57,35 +73,55 @@ enum class send_result : std::uint8_t {
   queue_full,              ///< no room in the transmit queue (NETSTAT bit 0 is set)
 };
 
-constexpr const char* to_string(send_result result) noexcept {
-  switch (result) {
-    case send_result::queued:
-      return "queued";
-    case send_result::bad_address:
+constexpr const char* to_string(send_status status) noexcept {
+  switch (status) {
+    case send_status::ok:
+      return "ok";
+    case send_status::bad_address:
       return "bad_address";
-    case send_result::empty_text:
+    case send_status::empty_text:
       return "empty_text";
-    case send_result::character_out_of_range:
+    case send_status::character_out_of_range:
       return "character_out_of_range";
-    case send_result::vr_out_of_range:
+    case send_status::vr_out_of_range:
       return "vr_out_of_range";
-    case send_result::value_out_of_range:
+    case send_status::value_out_of_range:
       return "value_out_of_range";
-    case send_result::offset_out_of_range:
+    case send_status::offset_out_of_range:
       return "offset_out_of_range";
-    case send_result::mode_out_of_range:
+    case send_status::mode_out_of_range:
       return "mode_out_of_range";
-    case send_result::queue_full:
+    case send_status::queue_full:
       return "queue_full";
   }
   return "unknown";
 }
 
-/// GET#: a character, or nothing yet (the non-blocking form; a blocking wrapper may wait on `key`).
-struct get_result {
-  enum class status : std::uint8_t { ok, nothing_yet, bad_channel } status;
+/// What became of a GET#.
+enum class get_status : std::uint8_t {
+  ok,           ///< a character was taken
+  nothing_yet,  ///< the receive buffer holds no character (the non-blocking form; a blocking wrapper may
+                ///< wait)
+  bad_channel,  ///< a channel other than 3 or 4
+};
+
+constexpr const char* to_string(get_status status) noexcept {
+  switch (status) {
+    case get_status::ok:
+      return "ok";
+    case get_status::nothing_yet:
+      return "nothing_yet";
+    case get_status::bad_channel:
+      return "bad_channel";
+  }
+  return "unknown";
+}
+
+/// GET#: a character, or why there is none.
+struct [[nodiscard]] get_result {
+  get_status status;
   std::uint8_t value;
-  constexpr explicit operator bool() const noexcept { return status == status::ok; }
+  constexpr explicit operator bool() const noexcept { return status == get_status::ok; }
 };
 
 /// Counters of a Motion Coordinator; they only ever grow (and wrap at 2^32).
@@ -96,8 +132,9 @@ struct motion_coordinator_counters {
   std::uint32_t variables_written = 0;       ///< direct variable transfers applied to VR()
   std::uint32_t variables_refused = 0;       ///< ... refused by the write policy
   std::uint32_t variables_out_of_range = 0;  ///< ... to a vr past the VR table
+  std::uint32_t variables_value_out_of_range = 0;  ///< ... whose value the VR table's type cannot hold
   std::uint32_t crc_errors = 0;    ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
-  std::uint32_t frame_errors = 0;  ///< frame errors of PROTOCOL.md 1.4 (NETSTAT bit 3)
+  std::uint32_t frame_errors = 0;  ///< frame errors of docs/protocol.md 1.4 (NETSTAT bit 3)
   std::uint32_t keypad_messages_ignored = 0;  ///< keypad offset / mode messages sent to this MC
   std::uint32_t sends_refused = 0;            ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
 };
@@ -147,12 +184,12 @@ class motion_coordinator final : public byte_port {
   // ---- the link (byte_port) ----
 
   void receive(std::uint8_t byte) noexcept override {
-    const route r = link_.receive(byte);
-    if (r == route::local) {
+    const byte_route r = link_.receive(byte);
+    if (r == byte_route::local) {
       handle(decoder_.push(byte));
       return;
     }
-    if (r == route::lost) netstat_ |= netstat_tx_buffer_error;
+    if (r == byte_route::lost) netstat_ |= netstat_tx_buffer_error;
     if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
   }
   /// Many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in order, with
@@ -179,48 +216,48 @@ class motion_coordinator final : public byte_port {
   // ---- PRINT# and SEND (BASIC addresses 10..24) ----
 
   /// PRINT #n,text: a character transfer of `text` (each character 0..127).
-  [[nodiscard]] send_result print(int n, byte_view text) noexcept {
+  [[nodiscard]] send_status print(int n, byte_view text) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
+    if (!hops) return send_status::bad_address;
     return queue(message::characters(*hops, text));
   }
-  [[nodiscard]] send_result print(int n, const char* text) noexcept {
+  [[nodiscard]] send_status print(int n, const char* text) noexcept {
     return print(n, byte_view(reinterpret_cast<const std::uint8_t*>(text), std::strlen(text)));
   }
 
   /// SEND(n,1,vr,value): a direct variable transfer; `value` is rounded to Q32.32.
-  [[nodiscard]] send_result send_variable(int n, std::uint16_t vr, double value) noexcept {
+  [[nodiscard]] send_status send_variable(int n, std::uint16_t vr, double value) noexcept {
     const q32_result q = q32_from_double(value);
     if (!q) {  // the same order of checks as send_variable_q32: address, vr, then value
-      if (!hops_from_basic_address(n)) return send_result::bad_address;
-      return vr > max_vr ? send_result::vr_out_of_range : send_result::value_out_of_range;
+      if (!hops_from_basic_address(n)) return send_status::bad_address;
+      return vr > max_vr ? send_status::vr_out_of_range : send_status::value_out_of_range;
     }
     return send_variable_q32(n, vr, q.raw);
   }
 
   /// SEND(n,1,vr,value) with the value already in Q32.32 (value * 2^32): no floating point.
-  [[nodiscard]] send_result send_variable_q32(int n, std::uint16_t vr, std::int64_t value) noexcept {
+  [[nodiscard]] send_status send_variable_q32(int n, std::uint16_t vr, std::int64_t value) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
-    if (vr > max_vr) return send_result::vr_out_of_range;
+    if (!hops) return send_status::bad_address;
+    if (vr > max_vr) return send_status::vr_out_of_range;
     return queue(message::variable(*hops, vr, value));
   }
 
   /// SEND(n,2,offset): tells the keypad n where to send its key presses (offset: BASIC address 10..24,
   /// counted from the keypad).
-  [[nodiscard]] send_result send_keypad_offset(int n, int offset) noexcept {
+  [[nodiscard]] send_status send_keypad_offset(int n, int offset) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
+    if (!hops) return send_status::bad_address;
     const auto offset_hops = hops_from_basic_address(offset);
-    if (!offset_hops) return send_result::offset_out_of_range;
+    if (!offset_hops) return send_status::offset_out_of_range;
     return queue(message::keypad_offset(*hops, *offset_hops));
   }
 
   /// Keypad mode: 0 = key ON only, 127 = key ON and key OFF.
-  [[nodiscard]] send_result send_keypad_mode(int n, int mode) noexcept {
+  [[nodiscard]] send_status send_keypad_mode(int n, int mode) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
-    if (mode != keypad_mode_key_on && mode != keypad_mode_key_on_off) return send_result::mode_out_of_range;
+    if (!hops) return send_status::bad_address;
+    if (mode != keypad_mode_key_on && mode != keypad_mode_key_on_off) return send_status::mode_out_of_range;
     return queue(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
   }
 
@@ -236,10 +273,10 @@ class motion_coordinator final : public byte_port {
 
   /// GET#4: the next character raw; GET#3: translated through DEFKEY.
   [[nodiscard]] get_result get(int channel) noexcept {
-    if (channel != 3 && channel != 4) return {get_result::status::bad_channel, 0};
+    if (channel != 3 && channel != 4) return {get_status::bad_channel, 0};
     std::uint8_t c = 0;
-    if (!decoder_.store().take(c)) return {get_result::status::nothing_yet, 0};
-    return {get_result::status::ok, channel == 3 ? (*defkey_)[c] : c};
+    if (!decoder_.store().take(c)) return {get_status::nothing_yet, 0};
+    return {get_status::ok, channel == 3 ? (*defkey_)[c] : c};
   }
 
   /// Characters waiting in the receive buffer.
@@ -256,30 +293,30 @@ class motion_coordinator final : public byte_port {
   std::size_t forward_backlog() const noexcept { return link_.forward_backlog(); }
 
  private:
-  send_result queue(const message& m) noexcept {
+  send_status queue(const message& m) noexcept {
     const encode_result queued = link_.queue(m);
-    switch (queued.error) {
-      case encode_error::none:
-        return send_result::queued;
-      case encode_error::buffer_too_small:
+    switch (queued.status) {
+      case encode_status::ok:
+        return send_status::ok;
+      case encode_status::buffer_too_small:
         netstat_ |= netstat_tx_timeout;
         ++counters_.sends_refused;
-        return send_result::queue_full;
-      case encode_error::empty_text:
-        return send_result::empty_text;
-      case encode_error::character_out_of_range:
-        return send_result::character_out_of_range;
-      case encode_error::vr_out_of_range:
-        return send_result::vr_out_of_range;
-      case encode_error::offset_out_of_range:
-        return send_result::offset_out_of_range;
-      case encode_error::mode_out_of_range:
-        return send_result::mode_out_of_range;
-      case encode_error::hops_out_of_range:
-      case encode_error::unknown_type:
+        return send_status::queue_full;
+      case encode_status::empty_text:
+        return send_status::empty_text;
+      case encode_status::character_out_of_range:
+        return send_status::character_out_of_range;
+      case encode_status::vr_out_of_range:
+        return send_status::vr_out_of_range;
+      case encode_status::offset_out_of_range:
+        return send_status::offset_out_of_range;
+      case encode_status::mode_out_of_range:
+        return send_status::mode_out_of_range;
+      case encode_status::hops_out_of_range:
+      case encode_status::unknown_type:
         break;
     }
-    return send_result::bad_address;
+    return send_status::bad_address;
   }
 
   // The bulk receive: traffic through the node a run at a time (into the forward buffer, or the stand-in
@@ -328,7 +365,7 @@ class motion_coordinator final : public byte_port {
     }
     const std::uint8_t* const run = find_control(p, end);
     const auto n = static_cast<std::size_t>(run - p);
-    (void)link_.receive_data(p, n);  // route::local: counted
+    (void)link_.receive_data(p, n);  // byte_route::local: counted
     decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
     return run;
   }
@@ -349,7 +386,7 @@ class motion_coordinator final : public byte_port {
         ++counters_.receive_overflows;
         netstat_ |= netstat_rx_overflow;
         return;
-      case decode_status::message:
+      case decode_status::ok:
         break;
     }
     switch (r.msg.type) {
@@ -358,15 +395,17 @@ class motion_coordinator final : public byte_port {
         return;
       case message_type::variable:
         switch (vr_->write(r.msg.vr, network_value::from_q32(r.msg.value))) {
-          case vr_write::written:
+          case vr_write_status::ok:
             ++counters_.variables_written;
             return;
-          case vr_write::refused:
+          case vr_write_status::refused:
             ++counters_.variables_refused;
             return;
-          case vr_write::out_of_range:
-          case vr_write::value_out_of_range:
+          case vr_write_status::out_of_range:
             ++counters_.variables_out_of_range;
+            return;
+          case vr_write_status::value_out_of_range:
+            ++counters_.variables_value_out_of_range;
             return;
         }
         return;
