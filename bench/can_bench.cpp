@@ -38,7 +38,7 @@ void BM_can_encode_parts(benchmark::State& state) {
   frame out;
   for (auto _ : state) {
     for (const vr_message& m : messages) {
-      const encode_error error = encode_vr_message(m, out.data);
+      const encode_status error = encode_vr_message(m, out.data);
       benchmark::DoNotOptimize(error);
       benchmark::DoNotOptimize(out);
     }
@@ -54,7 +54,7 @@ void BM_can_encode_double(benchmark::State& state) {
   frame out;
   for (auto _ : state) {
     for (std::size_t i = 0; i < values.size(); ++i) {
-      const encode_error error = encode_vr(static_cast<std::uint16_t>(i), values[i], out.data);
+      const encode_status error = encode_vr(static_cast<std::uint16_t>(i), values[i], out.data);
       benchmark::DoNotOptimize(error);
       benchmark::DoNotOptimize(out);
     }
@@ -77,7 +77,7 @@ BENCHMARK(BM_can_decode);
 
 void BM_can_node_receive(benchmark::State& state) {
   struct null_port final : port {
-    transmit_status send(const frame&) noexcept override { return transmit_status::queued; }
+    transmit_status send(const frame&) noexcept override { return transmit_status::ok; }
   } bus;
   trionet::vr_table<256> vr;
   vr_exchange_node node(make_node_address(5, 1).address, bus, vr);

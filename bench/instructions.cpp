@@ -42,7 +42,7 @@ struct tally {
   std::uint64_t other = 0;
 
   void operator()(const ring::decode_result& r) noexcept {
-    if (r.status == ring::decode_status::message) {
+    if (r.status == ring::decode_status::ok) {
       ++messages;
       characters += r.msg.text.size();
       fields += r.msg.vr ^ static_cast<std::uint64_t>(r.msg.value);
@@ -172,7 +172,7 @@ extern "C" {
   std::uint32_t sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const can::decode_result r = can::decode_vr_frame(frames[i]);
-    sum += r.message.value.integer_part + static_cast<std::uint32_t>(r.error);
+    sum += r.message.value.integer_part + static_cast<std::uint32_t>(r.status);
   }
   return sum;
 }
@@ -322,7 +322,8 @@ std::uint64_t can_encode_parts(std::size_t repeats) {
 std::uint64_t can_encode_double(std::size_t repeats) {
   const std::vector<can::frame> frames = tb::vr_frames(frames_per_repeat);
   std::vector<double> values;
-  for (const can::frame& f : frames) values.push_back(can::to_double(can::decode_vr_frame(f).message.value));
+  for (const can::frame& f : frames)
+    values.push_back(trionet::to_double(can::decode_vr_frame(f).message.value));
   can::frame out;
   for (std::size_t r = 0; r < repeats; ++r)
     trionet_measured_can_encode_double(values.data(), values.size(), out);
@@ -340,7 +341,7 @@ std::uint64_t can_decode(std::size_t repeats) {
 
 std::uint64_t can_node_receive(std::size_t repeats) {
   struct null_port final : can::port {
-    can::transmit_status send(const can::frame&) noexcept override { return can::transmit_status::queued; }
+    can::transmit_status send(const can::frame&) noexcept override { return can::transmit_status::ok; }
   } bus;
   trionet::vr_table<256> vr;
   can::vr_exchange_node node(can::make_node_address(5, 1).address, bus, vr);

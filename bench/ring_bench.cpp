@@ -26,7 +26,7 @@ struct tally {
   std::uint64_t other = 0;
 
   void operator()(const decode_result& r) noexcept {
-    if (r.status == decode_status::message) {
+    if (r.status == decode_status::ok) {
       ++messages;
       characters += r.msg.text.size();
       fields += r.msg.vr ^ static_cast<std::uint64_t>(r.msg.value);

@@ -51,7 +51,7 @@ class simulated_ring {
     if (node.transmit_free() < variable_frame) return;
     const int address = (sent_[i] & 1U) == 0 ? 10 : 11;
     const auto vr = static_cast<std::uint16_t>(sent_[i] % 200U);
-    if (node.send_variable(address, vr, static_cast<double>(sent_[i]) * 0.25) == ring::send_result::queued) {
+    if (node.send_variable(address, vr, static_cast<double>(sent_[i]) * 0.25) == ring::send_status::ok) {
       ++sent_[i];
     }
   }

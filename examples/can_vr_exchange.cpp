@@ -24,11 +24,11 @@ class exchange final : public bus_listener {
     for (std::size_t i = 0; i < node_count; ++i) {
       if (i == delivery.station) continue;
       const receive_result r = nodes_[i].receive(delivery.sent);
-      if (r.status != receive_status::written) continue;
+      if (r.status != receive_status::ok) continue;
       std::printf("%8.3f ms  node %u -> node %u  Rx #%u  id %3u  VR(%3u) = %-10.4f latency %6.1f us\n",
                   milliseconds(delivery.delivered_at), unsigned{r.sender}, static_cast<unsigned>(i + 1),
                   unsigned{r.receive_channel}, delivery.sent.identifier(), unsigned{r.message.vr},
-                  trionet::can::to_double(r.message.value), milliseconds(delivery.latency()) * 1000.0);
+                  trionet::to_double(r.message.value), milliseconds(delivery.latency()) * 1000.0);
       if (delivery.latency() > worst_latency_) worst_latency_ = delivery.latency();
     }
   }
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
       const double position = k * 100.0 + round * 0.125 + k / 10000.0;
       const send_status sent =
           net.node(k).send_on_channel(channel, static_cast<std::uint16_t>(10 + k), position);
-      if (sent != send_status::sent) std::printf("node %u: send failed (%d)\n", k, static_cast<int>(sent));
+      if (sent != send_status::ok) std::printf("node %u: send failed (%d)\n", k, static_cast<int>(sent));
     }
   }
   net.bus().run_until_idle(net);

@@ -23,8 +23,8 @@ int main() {
   for (int idle = 0; idle < 5; ++idle) (void)receiver.push(true);
   for (std::size_t i = 0; i < encoded.length; ++i) {
     for (unsigned bit = 0; bit < genius::character_bits; ++bit) {
-      const genius::receive_result r = receiver.push(((static_cast<unsigned>(words[i]) >> bit) & 1u) != 0);
-      if (r.bit == genius::bit_status::character && r.parse == genius::parse_status::complete) {
+      const genius::bit_result r = receiver.push(((static_cast<unsigned>(words[i]) >> bit) & 1u) != 0);
+      if (r.status == genius::bit_status::ok && r.parse == genius::parse_status::ok) {
         const genius::transmission& got = receiver.parser().received();
         std::printf("received from SBA %u to SBA %u, %zu segments\n", unsigned{got.sender},
                     unsigned{got.destination}, got.segments.size());

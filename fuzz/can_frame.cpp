@@ -1,4 +1,4 @@
-// Fuzz harness: the TN20-17 VR codec and a VR-exchange node (PROTOCOL.md 2.1-2.2) on arbitrary frames.
+// Fuzz harness: the TN20-17 VR codec and a VR-exchange node (docs/protocol.md 2.1-2.2) on arbitrary frames.
 //
 // Input: byte 0 picks the node (node count 2..11, node number) and its port's behaviour; then a sequence of
 // operations, each an operation byte and its arguments:
@@ -17,8 +17,8 @@
 //     frame exactly once (the receive counters add up to the frames fed), and a written VR holds the value;
 //   - a send either fails for the stated reason with no frame handed to the port, or hands the port one
 //     frame on the exchange identifier from this node to the destination that decodes to the rounded value;
-//     the send counters add up to the frames handed to the port; a failed encode writes nothing; a decimal tie rounds away from zero
-//     (PROTOCOL.md 2.2: 2.34565 -> 2.3457), checked with integer arithmetic.
+//     the send counters add up to the frames handed to the port; a failed encode writes nothing; a decimal
+//     tie rounds away from zero (docs/protocol.md 2.2: 2.34565 -> 2.3457), checked with integer arithmetic.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -46,7 +46,7 @@ bool refuse_some(void*, std::uint16_t vr, double) noexcept {
 /// A port that records the frame it is handed and answers as the input says.
 class recording_port final : public port {
  public:
-  transmit_status answer = transmit_status::queued;
+  transmit_status answer = transmit_status::ok;
   frame last{};
   std::uint32_t calls = 0;
 
@@ -62,26 +62,26 @@ bool same(const vr_value& a, const vr_value& b) {
 }
 
 /// The wire rules, written out independently of the codec.
-decode_error classify(const frame& f) {
-  if ((f.id & frame::remote_flag) != 0 || f.dlc != 8) return decode_error::dlc;
-  if (f.data[1] > 1) return decode_error::sign;
-  if ((f.data[6] << 8 | f.data[7]) > 9999) return decode_error::fraction;
-  return decode_error::none;
+decode_status classify(const frame& f) {
+  if ((f.id & frame::remote_flag) != 0 || f.dlc != 8) return decode_status::bad_dlc;
+  if (f.data[1] > 1) return decode_status::bad_sign;
+  if ((f.data[6] << 8 | f.data[7]) > 9999) return decode_status::bad_fraction;
+  return decode_status::ok;
 }
 
 void check_codec(const frame& f) {
   const decode_result decoded = decode_vr_frame(f);
-  FUZZ_CHECK(decoded.error == classify(f));
-  if (decoded.error != decode_error::none) return;
+  FUZZ_CHECK(decoded.status == classify(f));
+  if (decoded.status != decode_status::ok) return;
 
   const vr_message& m = decoded.message;
   FUZZ_CHECK(m.vr == f.data[0]);
-  FUZZ_CHECK(m.value.fraction <= max_fraction);
+  FUZZ_CHECK(m.value.fraction <= vr_value::max_fraction);
   const bool zero = m.value.integer_part == 0 && m.value.fraction == 0;
 
   // decode -> encode: the same 8 bytes (negative zero goes out with sign 0).
   std::uint8_t again[vr_message_size] = {};
-  FUZZ_CHECK(encode_vr_message(m, again) == encode_error::none);
+  FUZZ_CHECK(encode_vr_message(m, again) == encode_status::ok);
   std::uint8_t wire[vr_message_size];
   std::memcpy(wire, f.data, sizeof wire);
   if (zero) wire[1] = 0;
@@ -89,7 +89,7 @@ void check_codec(const frame& f) {
 
   // encode -> decode: the same message.
   const decode_result redecoded = decode_vr_message(trionet::byte_view(again, vr_message_size));
-  FUZZ_CHECK(redecoded.error == decode_error::none);
+  FUZZ_CHECK(redecoded.status == decode_status::ok);
   FUZZ_CHECK(redecoded.message.vr == m.vr);
   vr_value normal = m.value;
   if (zero) normal.negative = false;
@@ -100,7 +100,7 @@ void check_codec(const frame& f) {
   FUZZ_CHECK(std::isfinite(value));
   FUZZ_CHECK(std::signbit(value) == m.value.negative);
   std::uint8_t rounded[vr_message_size] = {};
-  FUZZ_CHECK(encode_vr(m.vr, value, rounded) == encode_error::none);
+  FUZZ_CHECK(encode_vr(m.vr, value, rounded) == encode_status::ok);
   FUZZ_CHECK(std::memcmp(rounded, wire, sizeof wire) == 0);
 }
 
@@ -122,30 +122,33 @@ class harness {
       FUZZ_CHECK(r.receive_channel == channel);
       FUZZ_CHECK(r.sender == (channel < self_ ? channel : channel + 1));
       const identifier_result back = exchange_identifier(count_, r.sender, self_);
-      FUZZ_CHECK(back.error == scheme_error::none && back.identifier == f.id);
+      FUZZ_CHECK(back.status == scheme_status::ok && back.identifier == f.id);
     }
-    const decode_error verdict = classify(f);
+    const decode_status verdict = classify(f);
     node_counters want = before;
     switch (r.status) {
       case receive_status::foreign:
         ++want.foreign;
         break;
       case receive_status::bad_dlc:
-        FUZZ_CHECK(verdict == decode_error::dlc);
+        FUZZ_CHECK(verdict == decode_status::bad_dlc);
         ++want.bad_dlc;
         break;
       case receive_status::bad_sign:
-        FUZZ_CHECK(verdict == decode_error::sign);
+        FUZZ_CHECK(verdict == decode_status::bad_sign);
         ++want.bad_sign;
         break;
       case receive_status::bad_fraction:
-        FUZZ_CHECK(verdict == decode_error::fraction);
+        FUZZ_CHECK(verdict == decode_status::bad_fraction);
         ++want.bad_fraction;
         break;
-      case receive_status::written:
+      case receive_status::value_out_of_range:  // a double table holds every decimal the wire carries
+        FUZZ_CHECK(false);
+        break;
+      case receive_status::ok:
       case receive_status::refused:
       case receive_status::out_of_range: {
-        FUZZ_CHECK(verdict == decode_error::none);
+        FUZZ_CHECK(verdict == decode_status::ok);
         const std::uint8_t vr = f.data[0];
         FUZZ_CHECK(r.message.vr == vr);
         const double value = to_double(r.message.value);
@@ -156,11 +159,11 @@ class harness {
           FUZZ_CHECK(r.status == receive_status::refused);
           ++want.refused;
         } else {
-          FUZZ_CHECK(r.status == receive_status::written);
+          FUZZ_CHECK(r.status == receive_status::ok);
           // The double written stands for exactly the wire value: rounded to 4 decimals it gives the same
           // bytes (negative zero as sign 0).
           std::uint8_t back[vr_message_size] = {};
-          FUZZ_CHECK(encode_vr(vr, table_[vr], back) == encode_error::none);
+          FUZZ_CHECK(encode_vr(vr, table_[vr], back) == encode_status::ok);
           std::uint8_t wire[vr_message_size];
           std::memcpy(wire, f.data, sizeof wire);
           if (r.message.value.integer_part == 0 && r.message.value.fraction == 0) wire[1] = 0;
@@ -172,15 +175,16 @@ class harness {
     }
     const node_counters& now = node_.counters();
     FUZZ_CHECK(std::memcmp(&now, &want, sizeof want) == 0);
-    FUZZ_CHECK(std::uint64_t{now.foreign} + now.malformed() + now.written + now.refused + now.out_of_range ==
+    FUZZ_CHECK(std::uint64_t{now.foreign} + now.malformed() + now.written + now.refused + now.out_of_range +
+                   now.value_out_of_range ==
                fed_);
   }
 
   void send(trionet_fuzz::input_reader& in) {
     const std::uint8_t how = in.byte();
-    port_.answer = how % 8 == 6 ? transmit_status::busy
+    port_.answer = how % 8 == 6   ? transmit_status::busy
                    : how % 8 == 7 ? transmit_status::failed
-                                  : transmit_status::queued;
+                                  : transmit_status::ok;
     const auto destination = static_cast<std::uint8_t>(in.byte() % 13);  // 0 and 12 are never nodes
     const std::uint16_t vr = in.u16() % 512;
     const std::uint32_t calls_before = port_.calls;
@@ -206,11 +210,11 @@ class harness {
       // The encoder itself: on any error nothing is written.
       std::uint8_t out[vr_message_size];
       std::memset(out, 0xEE, sizeof out);
-      if (encode_vr(vr, value, out) != encode_error::none) {
+      if (encode_vr(vr, value, out) != encode_status::ok) {
         for (std::uint8_t b : out) FUZZ_CHECK(b == 0xEE);
       }
       if (tie) {  // independent of the codec's arithmetic: exact decimal rounding
-        FUZZ_CHECK(expected_value.error == encode_error::none);
+        FUZZ_CHECK(expected_value.status == encode_status::ok);
         FUZZ_CHECK(expected_value.value.negative == ((how & 32u) != 0));
         FUZZ_CHECK(expected_value.value.integer_part == (ten_thousandths + 1u) / 10000u);
         FUZZ_CHECK(expected_value.value.fraction == (ten_thousandths + 1u) % 10000u);
@@ -222,25 +226,25 @@ class harness {
       m.value.integer_part = in.u32();
       m.value.fraction = static_cast<std::uint16_t>(in.u16() % 10016);  // a few past 9999
       status = node_.send_to_node(destination, m);
-      expected_value.error = m.value.fraction > max_fraction ? encode_error::fraction_out_of_range
-                                                             : encode_error::none;
+      expected_value.status = m.value.fraction > vr_value::max_fraction ? encode_status::fraction_out_of_range
+                                                                        : encode_status::ok;
       expected_value.value = m.value;
       if (m.value.integer_part == 0 && m.value.fraction == 0) expected_value.value.negative = false;
     }
 
     // Why it must fail, in the node's order: destination, vr (double form only), value.
-    send_status want = send_status::sent;
+    send_status want = send_status::ok;
     if (destination < 1 || destination > count_) {
       want = send_status::no_such_node;
     } else if (destination == self_) {
       want = send_status::own_node;
     } else if ((how & 8u) == 0 && vr > max_message_vr) {
       want = send_status::vr_out_of_range;
-    } else if (expected_value.error == encode_error::not_a_number) {
+    } else if (expected_value.status == encode_status::not_a_number) {
       want = send_status::not_a_number;
-    } else if (expected_value.error == encode_error::too_large) {
+    } else if (expected_value.status == encode_status::too_large) {
       want = send_status::too_large;
-    } else if (expected_value.error == encode_error::fraction_out_of_range) {
+    } else if (expected_value.status == encode_status::fraction_out_of_range) {
       want = send_status::fraction_out_of_range;
     } else if (port_.answer == transmit_status::busy) {
       want = send_status::port_busy;
@@ -249,21 +253,21 @@ class harness {
     }
     FUZZ_CHECK(status == want);
 
-    const bool handed = want == send_status::sent || want == send_status::port_busy ||
-                        want == send_status::port_failed;
+    const bool handed =
+        want == send_status::ok || want == send_status::port_busy || want == send_status::port_failed;
     FUZZ_CHECK(port_.calls == calls_before + (handed ? 1u : 0u));
     const node_counters& now = node_.counters();
     FUZZ_CHECK(now.sent + now.send_busy + now.send_failed == port_.calls);
-    FUZZ_CHECK(now.sent == before.sent + (want == send_status::sent ? 1u : 0u));
+    FUZZ_CHECK(now.sent == before.sent + (want == send_status::ok ? 1u : 0u));
     if (!handed) return;
 
     const frame& out = port_.last;
     FUZZ_CHECK(out.dlc == vr_message_size && !out.extended() && !out.remote());
     const route_result routed = route_of(count_, out.id);
-    FUZZ_CHECK(routed.error == scheme_error::none);
+    FUZZ_CHECK(routed.status == scheme_status::ok);
     FUZZ_CHECK(routed.value.sender == self_ && routed.value.receiver == destination);
     const decode_result decoded = decode_vr_frame(out);
-    FUZZ_CHECK(decoded.error == decode_error::none);
+    FUZZ_CHECK(decoded.status == decode_status::ok);
     FUZZ_CHECK(decoded.message.vr == static_cast<std::uint8_t>(vr));
     FUZZ_CHECK(same(decoded.message.value, expected_value.value));
     check_codec(out);
@@ -288,9 +292,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto count = static_cast<std::uint8_t>(2 + setup % 10);
   const auto node = static_cast<std::uint8_t>(1 + (setup >> 4) % count);
   const address_result address = make_node_address(count, node);
-  FUZZ_CHECK(address.error == scheme_error::none);
-  FUZZ_CHECK(make_node_address(1, 1).error != scheme_error::none);
-  FUZZ_CHECK(make_node_address(count, static_cast<std::uint8_t>(count + 1)).error != scheme_error::none);
+  FUZZ_CHECK(address.status == scheme_status::ok);
+  FUZZ_CHECK(make_node_address(1, 1).status != scheme_status::ok);
+  FUZZ_CHECK(make_node_address(count, static_cast<std::uint8_t>(count + 1)).status != scheme_status::ok);
 
   trionet::vr_table<vr_count> table(refuse_some);
   harness h(address.address, table);

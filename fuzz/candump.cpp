@@ -43,8 +43,8 @@ void check_frame(const frame& f) {
 
 void check_line(std::string_view line) {
   const candump_result parsed = parse_candump_line(line);
-  if (parsed.error != candump_error::none) {
-    FUZZ_CHECK(to_string(parsed.error) != nullptr);
+  if (parsed.status != candump_status::ok) {
+    FUZZ_CHECK(to_string(parsed.status) != nullptr);
     return;
   }
   const candump_record& record = parsed.record;
@@ -54,13 +54,13 @@ void check_line(std::string_view line) {
 
   const std::string text = format_candump_line(record);
   const candump_result again = parse_candump_line(text);
-  FUZZ_CHECK(again.error == candump_error::none);
+  FUZZ_CHECK(again.status == candump_status::ok);
   FUZZ_CHECK(same(again.record, record));
   FUZZ_CHECK(format_candump_line(again.record) == text);
 
   const std::string compact = format_candump_frame(record.frame);
   const candump_result bare = parse_candump_line(compact);
-  FUZZ_CHECK(bare.error == candump_error::none);
+  FUZZ_CHECK(bare.status == candump_status::ok);
   FUZZ_CHECK(!bare.record.has_timestamp && bare.record.interface_name.empty());
   FUZZ_CHECK(bare.record.frame == record.frame);
 }
@@ -84,7 +84,7 @@ void check_format(const std::uint8_t* bytes) {
   record.microseconds = bytes[12] * 3907u;
   record.interface_name = (bytes[13] & 2u) != 0 ? "vcan0" : "";
   const candump_result parsed = parse_candump_line(format_candump_line(record));
-  FUZZ_CHECK(parsed.error == candump_error::none);
+  FUZZ_CHECK(parsed.status == candump_status::ok);
   FUZZ_CHECK(parsed.record.frame == wire);
   FUZZ_CHECK(parsed.record.has_timestamp == record.has_timestamp);
   if (record.has_timestamp) {

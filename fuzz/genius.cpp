@@ -1,4 +1,4 @@
-// Fuzz harness: the Genius character codec, bit receiver and transmission parser (PROTOCOL.md 3.1-3.2).
+// Fuzz harness: the Genius character codec, bit receiver and transmission parser (docs/protocol.md 3.1-3.2).
 //
 // Every input is read three ways:
 //   - as 16-bit words for `decode_character`;
@@ -107,7 +107,8 @@ void check_complete(const transmission& t, const std::vector<character>& since_s
   FUZZ_CHECK(length);
   FUZZ_CHECK(length.length == since_start.size());
   std::vector<character> characters(length.length);
-  const encode_result encoded = encode_transmission(trionet::span<character>(characters.data(), characters.size()), t);
+  const encode_result encoded =
+      encode_transmission(trionet::span<character>(characters.data(), characters.size()), t);
   FUZZ_CHECK(encoded && encoded.length == length.length);
   FUZZ_CHECK(characters == since_start);
   // A buffer one short: nothing written.
@@ -123,7 +124,7 @@ void check_complete(const transmission& t, const std::vector<character>& since_s
   parser_type again;
   for (std::size_t i = 0; i < characters.size(); ++i) {
     const parse_status s = again.push(characters[i]);
-    FUZZ_CHECK(s == (i + 1 == characters.size() ? parse_status::complete : parse_status::in_progress));
+    FUZZ_CHECK(s == (i + 1 == characters.size() ? parse_status::ok : parse_status::in_progress));
   }
   FUZZ_CHECK(same(again.received(), t));
 
@@ -131,17 +132,17 @@ void check_complete(const transmission& t, const std::vector<character>& since_s
   std::vector<std::uint16_t> words(length.length);
   FUZZ_CHECK(encode_transmission(trionet::span<std::uint16_t>(words.data(), words.size()), t));
   receiver_type receiver;
-  for (int i = 0; i < 3; ++i) FUZZ_CHECK(receiver.push(true).bit == bit_status::nothing_yet);
+  for (int i = 0; i < 3; ++i) FUZZ_CHECK(receiver.push(true).status == bit_status::nothing_yet);
   std::size_t completed = 0;
   for (std::size_t w = 0; w < words.size(); ++w) {
     FUZZ_CHECK(words[w] == encode_character(characters[w]));
     for (unsigned b = 0; b < character_bits; ++b) {
-      const receive_result r = receiver.push(((static_cast<unsigned>(words[w]) >> b) & 1u) != 0);
+      const bit_result r = receiver.push(((static_cast<unsigned>(words[w]) >> b) & 1u) != 0);
       if (b + 1 < character_bits) {
-        FUZZ_CHECK(r.bit == bit_status::nothing_yet);
+        FUZZ_CHECK(r.status == bit_status::nothing_yet);
       } else {
-        FUZZ_CHECK(r.bit == bit_status::character);
-        if (r.parse == parse_status::complete) ++completed;
+        FUZZ_CHECK(r.status == bit_status::ok);
+        if (r.parse == parse_status::ok) ++completed;
       }
     }
   }
@@ -181,7 +182,7 @@ void run_parser(const std::uint8_t* data, std::size_t size) {
       case parse_status::start_inside_transmission:
         FUZZ_CHECK(parser.in_transmission());
         break;
-      case parse_status::complete:
+      case parse_status::ok:
         FUZZ_CHECK(!parser.in_transmission());
         FUZZ_CHECK(have_start);
         check_complete(parser.received(), since_start);
@@ -206,12 +207,12 @@ void run_bits(const std::uint8_t* data, std::size_t size) {
     for (unsigned b = 0; b < 8; ++b) {
       const bool bit = ((data[i] >> b) & 1u) != 0;
       line = line << 1 | (bit ? 1u : 0u);
-      const receive_result r = receiver.push(bit);
+      const bit_result r = receiver.push(bit);
       parse_status expected = parse_status::in_progress;
-      switch (r.bit) {
+      switch (r.status) {
         case bit_status::nothing_yet:
           continue;
-        case bit_status::character: {
+        case bit_status::ok: {
           const character c = receiver.bits().last();
           // The last 11 bits, oldest first, are the character's word.
           std::uint16_t word = 0;
@@ -243,7 +244,7 @@ void run_bits(const std::uint8_t* data, std::size_t size) {
       const bit_receiver& bits = receiver.bits();
       FUZZ_CHECK(bits.characters() + bits.start_bit_errors() + bits.stop_bit_errors() == reported);
       FUZZ_CHECK(receiver.parser().in_transmission() == shadow.in_transmission());
-      if (r.parse == parse_status::complete) {
+      if (r.parse == parse_status::ok) {
         FUZZ_CHECK(have_start);
         FUZZ_CHECK(same(receiver.parser().received(), shadow.received()));
         check_complete(receiver.parser().received(), since_start);
@@ -261,7 +262,8 @@ void run_bits(const std::uint8_t* data, std::size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (data == nullptr) return 0;
-  for (std::size_t i = 0; i + 1 < size; i += 2) check_word(static_cast<std::uint16_t>(data[i] << 8 | data[i + 1]));
+  for (std::size_t i = 0; i + 1 < size; i += 2)
+    check_word(static_cast<std::uint16_t>(data[i] << 8 | data[i + 1]));
   run_parser(data, size);
   run_bits(data, size);
   return 0;

@@ -1,4 +1,4 @@
-// Fuzz harness: the ring decoder (PROTOCOL.md 1.2-1.4) on arbitrary bytes.
+// Fuzz harness: the ring decoder (docs/protocol.md 1.2-1.4) on arbitrary bytes.
 //
 // The whole input is the byte stream from the fibre. It goes through the decoder three ways: one byte at a
 // time, in bulk with split points derived from the input, and once more followed by the golden frame.
@@ -45,7 +45,7 @@ bool same(const owned_result& a, const owned_result& b) {
 
 owned_result own(const decode_result& r, std::size_t at) {
   owned_result o{r.status, r.error, r.msg, {}, at};
-  if (r.status == decode_status::message && r.msg.type == message_type::character) {
+  if (r.status == decode_status::ok && r.msg.type == message_type::character) {
     o.text.assign(r.msg.text.begin(), r.msg.text.end());
   }
   o.msg.text = {};
@@ -91,7 +91,7 @@ void check_result(const owned_result& r, const std::uint8_t* data) {
           break;
       }
       break;
-    case decode_status::message: {
+    case decode_status::ok: {
       FUZZ_CHECK(r.error == frame_error::none);
       FUZZ_CHECK(classify(byte) == byte_class::end_of_message);
       FUZZ_CHECK(valid_hops(r.msg.hops) && r.msg.hops == hops_of(byte));
@@ -127,7 +127,7 @@ void check_result(const owned_result& r, const std::uint8_t* data) {
       std::uint8_t short_frame[sizeof frame];
       std::memset(short_frame, 0xEE, sizeof short_frame);
       const encode_result refused = encode(trionet::byte_buffer(short_frame, encoded.length - 1), m);
-      FUZZ_CHECK(!refused && refused.error == encode_error::buffer_too_small && refused.length == 0);
+      FUZZ_CHECK(!refused && refused.status == encode_status::buffer_too_small && refused.length == 0);
       for (std::uint8_t b : short_frame) FUZZ_CHECK(b == 0xEE);
 
       // encode -> decode: a fresh decoder reads the same message, on the last byte only.
@@ -214,7 +214,7 @@ void run(const std::uint8_t* data, std::size_t size) {
       }
       last = r;
     }
-    FUZZ_CHECK(last.status == decode_status::message);
+    FUZZ_CHECK(last.status == decode_status::ok);
     FUZZ_CHECK(last.msg.type == message_type::variable && last.msg.hops == 1 && last.msg.vr == 200);
     FUZZ_CHECK(last.msg.value == std::int64_t{99} * 4294967296LL);
   }

@@ -1,4 +1,4 @@
-// Fuzz harness: a Motion Coordinator node and a keypad node on the ring (PROTOCOL.md 1.5-1.9), driven by
+// Fuzz harness: a Motion Coordinator node and a keypad node on the ring (docs/protocol.md 1.5-1.9), driven by
 // received bytes interleaved with program calls, every choice read from the input.
 //
 // Input: a sequence of operations; the top 3 bits of an operation byte say which:
@@ -25,9 +25,9 @@
 //     if it could not fit); GET returns exactly the expected queue, `characters_waiting()` equals its size
 //     and never exceeds the receive capacity; KEY# is true exactly when it is non-empty;
 //   - SEND queues the whole frame or nothing; PRINT# queues whole character messages, each as long as fits
-//     (PROTOCOL.md 1.6), and reports how many characters; a valid call is refused only for lack of room
+//     (docs/protocol.md 1.6), and reports how many characters; a valid call is refused only for lack of room
 //     (NETSTAT bit 0); NETSTAT bits are set when the matching counters grow;
-//   - the transmitted stream is exactly what the link rules give (PROTOCOL.md 1.5): forwarded bytes with A-1,
+//   - the transmitted stream is exactly what the link rules give (docs/protocol.md 1.5): forwarded bytes with A-1,
 //     data unchanged, forwarded traffic first between messages, own frames whole, a lost forwarded message
 //     removed whole if none of it went out, a forwarded message cut at the first data byte past the longest
 //     legal message of its type, an idle line ending the forwarded message; and a second decoder reading it
@@ -42,11 +42,11 @@
 #include <type_traits>
 #include <vector>
 
+#include <trionet/q32.hpp>
 #include <trionet/ring/decoder.hpp>
 #include <trionet/ring/encode.hpp>
 #include <trionet/ring/keypad.hpp>
 #include <trionet/ring/motion_coordinator.hpp>
-#include <trionet/ring/q32.hpp>
 #include <trionet/vr.hpp>
 
 #include "fuzz_check.hpp"
@@ -54,6 +54,9 @@
 namespace {
 
 using namespace trionet::ring;
+using trionet::q32_from_double;
+using trionet::q32_result;
+using trionet::q32_to_double;
 
 constexpr std::size_t receive_capacity = 64;
 constexpr std::size_t forward_capacity = 16;
@@ -73,7 +76,7 @@ bool same(const motion_coordinator_counters& a, const motion_coordinator_counter
 }
 
 bool same_answer(int a, int b) { return a == b; }
-bool same_answer(send_result a, send_result b) { return a == b; }
+bool same_answer(send_status a, send_status b) { return a == b; }
 bool same_answer(const print_result& a, const print_result& b) { return a.status == b.status && a.queued == b.queued; }
 bool same_answer(const get_result& a, const get_result& b) { return a.status == b.status && a.value == b.value; }
 
@@ -91,7 +94,7 @@ struct stream_checker {
   }
 };
 
-/// What the MC's link must transmit, from where each received byte went (PROTOCOL.md 1.5).
+/// What the MC's link must transmit, from where each received byte went (docs/protocol.md 1.5).
 struct link_model {
   std::deque<std::uint8_t> forward;  // forwarded bytes not yet transmitted (A already decremented)
   std::deque<std::uint8_t> own;      // own frames not yet transmitted
@@ -102,14 +105,14 @@ struct link_model {
   bool open = false;                 // a forwarded message has begun and not ended on the receive side
   enum class sending { idle, forward, own } state = sending::idle;
 
-  void received(std::uint8_t byte, route r) {
+  void received(std::uint8_t byte, byte_route r) {
     const bool control = !is_data(byte);
     if (open && !control) {  // the forwarding bound: a byte past the longest legal message is lost
-      FUZZ_CHECK(budget != 0 || r == route::lost);
+      FUZZ_CHECK(budget != 0 || r == byte_route::lost);
       if (budget != 0) --budget;
     }
     switch (r) {
-      case route::forwarded: {
+      case byte_route::forwarded: {
         std::uint8_t out = byte;
         if (control) {
           const std::uint8_t hops = hops_of(byte);
@@ -127,7 +130,7 @@ struct link_model {
         ++pushed;
         break;
       }
-      case route::lost:
+      case byte_route::lost:
         if (classify(byte) == byte_class::header) message_start = pushed;
         open = false;
         if (popped <= message_start) {  // none of it went out: the message is removed whole
@@ -137,8 +140,8 @@ struct link_model {
           pushed = message_start;
         }
         break;
-      case route::local:
-      case route::dropped:
+      case byte_route::local:
+      case byte_route::dropped:
         if (control) open = false;
         break;
     }
@@ -240,23 +243,23 @@ class harness {
     const link_counters& links = mc_.forwarding_counters();
     std::uint64_t total = 0;
     int routes = 0;
-    route r = route::local;
+    byte_route r = byte_route::local;
     for (std::size_t i = 0; i < 4; ++i) {
       total += links.bytes[i];
       if (links.bytes[i] != links_before.bytes[i]) {
         FUZZ_CHECK(links.bytes[i] == links_before.bytes[i] + 1);
-        r = static_cast<route>(i);
+        r = static_cast<byte_route>(i);
         ++routes;
       }
     }
     FUZZ_CHECK(routes == 1);
     FUZZ_CHECK(total == fed_);
     link_.received(byte, r);
-    if (r == route::lost) FUZZ_CHECK((mc_.netstat() & netstat_tx_buffer_error) != 0);
+    if (r == byte_route::lost) FUZZ_CHECK((mc_.netstat() & netstat_tx_buffer_error) != 0);
 
     // What the node must have counted, from the reference decoder.
     decode_result expected{};
-    if (r == route::local) {
+    if (r == byte_route::local) {
       if (classify(byte) == byte_class::header && hops_of(byte) != 0) waiting_at_header_ = waiting_before;
       expected = reference_.push(byte);
     } else if (classify(byte) == byte_class::header) {
@@ -277,7 +280,7 @@ class harness {
         ++want.crc_errors;
         FUZZ_CHECK((mc_.netstat() & netstat_rx_crc_error) != 0);
         break;
-      case decode_status::message:
+      case decode_status::ok:
         switch (expected.msg.type) {
           case message_type::character: {
             const std::size_t length = expected.msg.text.size();
@@ -363,7 +366,7 @@ class harness {
   // Checks a PRINT#/SEND outcome: the whole frame is queued, or nothing and the right reason.
   // `errors` lists every field error that applies (empty: the call is valid); which of several the node
   // reports first is its own business, but it must be one of them.
-  void sent(send_result result, const std::vector<send_result>& errors, const message& m) {
+  void sent(send_status result, const std::vector<send_status>& errors, const message& m) {
     const bool fits = frame_length(m) <= free_before_;
     if (!errors.empty()) {
       FUZZ_CHECK(std::find(errors.begin(), errors.end(), result) != errors.end());
@@ -371,12 +374,12 @@ class harness {
       return;
     }
     if (!fits) {
-      FUZZ_CHECK(result == send_result::queue_full);
+      FUZZ_CHECK(result == send_status::queue_full);
       FUZZ_CHECK(mc_.transmit_free() == free_before_);
       FUZZ_CHECK((mc_.netstat() & netstat_tx_timeout) != 0);
       return;
     }
-    FUZZ_CHECK(result == send_result::queued);
+    FUZZ_CHECK(result == send_status::ok);
     FUZZ_CHECK(mc_.transmit_free() + frame_length(m) == free_before_);
     std::uint8_t frame[framing_length + 64] = {};
     const encode_result encoded = encode(frame, m);
@@ -397,10 +400,10 @@ class harness {
     const std::uint8_t netstat_before = mc_.netstat();
     const print_result result =
         both([&](node_type& node) { return node.print(n, trionet::byte_view(text, length)); });
-    std::vector<send_result> errors;
-    if (n > last_basic_address) errors.push_back(send_result::bad_address);
-    if (length == 0) errors.push_back(send_result::empty_text);
-    if (!seven_bit) errors.push_back(send_result::character_out_of_range);
+    std::vector<send_status> errors;
+    if (n > last_basic_address) errors.push_back(send_status::bad_address);
+    if (length == 0) errors.push_back(send_status::empty_text);
+    if (!seven_bit) errors.push_back(send_status::character_out_of_range);
     if (!errors.empty()) {
       FUZZ_CHECK(std::find(errors.begin(), errors.end(), result.status) != errors.end());
       FUZZ_CHECK(result.queued == 0);
@@ -408,7 +411,7 @@ class harness {
       FUZZ_CHECK(mc_.netstat() == netstat_before);
       return;
     }
-    // Consecutive character messages of the longest own size, the last one shorter (PROTOCOL.md 1.6).
+    // Consecutive character messages of the longest own size, the last one shorter (docs/protocol.md 1.6).
     const auto hops = static_cast<std::uint8_t>(n - 9);
     std::size_t room = free_before_;
     std::size_t done = 0;
@@ -424,9 +427,9 @@ class harness {
     FUZZ_CHECK(result.queued == done);
     FUZZ_CHECK(mc_.transmit_free() == room);
     if (done == length) {
-      FUZZ_CHECK(result.status == send_result::queued);
+      FUZZ_CHECK(result.status == send_status::ok);
     } else {
-      FUZZ_CHECK(result.status == send_result::queue_full);
+      FUZZ_CHECK(result.status == send_status::queue_full);
       FUZZ_CHECK((mc_.netstat() & netstat_tx_timeout) != 0);
     }
   }
@@ -435,8 +438,8 @@ class harness {
     const int n = 9 + in.byte() % 17;  // 9 and 25 are not BASIC addresses
     const bool good_address = n >= first_basic_address && n <= last_basic_address;
     const auto hops = static_cast<std::uint8_t>(good_address ? n - 9 : 1);
-    std::vector<send_result> errors;
-    if (!good_address) errors.push_back(send_result::bad_address);
+    std::vector<send_status> errors;
+    if (!good_address) errors.push_back(send_status::bad_address);
     free_before_ = mc_.transmit_free();
     switch (op & 3u) {
       case 0:
@@ -447,26 +450,26 @@ class harness {
           const std::uint8_t pick = in.byte();
           if ((pick & 4u) != 0) {  // the integer-only form: any Q32.32 value is in range
             const auto raw = static_cast<std::int64_t>(static_cast<std::uint64_t>(in.u32()) << 32 | in.u32());
-            const send_result result =
+            const send_status result =
                 both([&](node_type& node) { return node.send_variable_q32(n, vr, raw); });
-            if (vr > max_vr) errors.push_back(send_result::vr_out_of_range);
+            if (vr > max_vr) errors.push_back(send_status::vr_out_of_range);
             sent(result, errors, message::variable(hops, vr, raw));
             break;
           }
           value = pick % 3 == 0 ? 1e300 : pick % 3 == 1 ? -2147483648.5 : 2147483647.99999999;
         }
         const q32_result q = q32_from_double(value);
-        const send_result result = both([&](node_type& node) { return node.send_variable(n, vr, value); });
-        if (vr > max_vr) errors.push_back(send_result::vr_out_of_range);
-        if (!q) errors.push_back(send_result::value_out_of_range);
+        const send_status result = both([&](node_type& node) { return node.send_variable(n, vr, value); });
+        if (vr > max_vr) errors.push_back(send_status::vr_out_of_range);
+        if (!q) errors.push_back(send_status::value_out_of_range);
         sent(result, errors, message::variable(hops, vr, q.raw));
         break;
       }
       case 1: {
         const int offset = 9 + in.byte() % 17;
-        const send_result result = both([&](node_type& node) { return node.send_keypad_offset(n, offset); });
+        const send_status result = both([&](node_type& node) { return node.send_keypad_offset(n, offset); });
         const bool good_offset = offset >= first_basic_address && offset <= last_basic_address;
-        if (!good_offset) errors.push_back(send_result::offset_out_of_range);
+        if (!good_offset) errors.push_back(send_status::offset_out_of_range);
         sent(result, errors,
              message::keypad_offset(hops, static_cast<std::uint8_t>(good_offset ? offset - 9 : 1)));
         break;
@@ -474,9 +477,9 @@ class harness {
       default: {
         const std::uint8_t pick = in.byte();
         const int mode = pick % 3 == 0 ? 0 : pick % 3 == 1 ? 127 : pick;
-        const send_result result = both([&](node_type& node) { return node.send_keypad_mode(n, mode); });
+        const send_status result = both([&](node_type& node) { return node.send_keypad_mode(n, mode); });
         const bool good_mode = mode == 0 || mode == 127;
-        if (!good_mode) errors.push_back(send_result::mode_out_of_range);
+        if (!good_mode) errors.push_back(send_status::mode_out_of_range);
         sent(result, errors, message::keypad_mode(hops, static_cast<std::uint8_t>(good_mode ? mode : 0)));
         break;
       }
@@ -491,15 +494,15 @@ class harness {
       const int used = i == 15 ? 2 : channel;
       const get_result got = both([&](node_type& node) { return node.get(used); });
       if (used == 2) {
-        FUZZ_CHECK(got.status == get_result::status::bad_channel);
+        FUZZ_CHECK(got.status == get_status::bad_channel);
         FUZZ_CHECK(!mc_.key(used));
         continue;
       }
       if (waiting_.empty()) {
-        FUZZ_CHECK(got.status == get_result::status::nothing_yet);
+        FUZZ_CHECK(got.status == get_status::nothing_yet);
         continue;
       }
-      FUZZ_CHECK(got.status == get_result::status::ok);
+      FUZZ_CHECK(got.status == get_status::ok);
       const std::uint8_t raw = waiting_.front();
       waiting_.pop_front();
       FUZZ_CHECK(got.value == (channel == 4 ? raw : default_defkey[raw]));
@@ -549,13 +552,13 @@ class harness {
       case 2:
       case 3: {
         const auto k = static_cast<key>(in.byte() % key_count);
-        const key_result result = (op & 1u) == 0 ? keypad_.press(k) : keypad_.release(k);
+        const key_status result = (op & 1u) == 0 ? keypad_.press(k) : keypad_.release(k);
         if (!keypad_.network_mode()) {
-          FUZZ_CHECK(result == key_result::local_mode);
+          FUZZ_CHECK(result == key_status::local_mode);
         } else if ((op & 1u) != 0 && keypad_.mode() != keypad_mode_key_on_off) {
-          FUZZ_CHECK(result == key_result::not_sent);
+          FUZZ_CHECK(result == key_status::nothing_to_send);
         } else {
-          FUZZ_CHECK(result == key_result::sent || result == key_result::queue_full);
+          FUZZ_CHECK(result == key_status::ok || result == key_status::queue_full);
         }
         break;
       }
@@ -570,7 +573,7 @@ class harness {
     }
   }
 
-  // The idle line (PROTOCOL.md 1.10): ends the message being forwarded (counted, NETSTAT bit 1) and the
+  // The idle line (docs/protocol.md 1.10): ends the message being forwarded (counted, NETSTAT bit 1) and the
   // message open at the node's decoder (a frame error).
   void line_idle() {
     const motion_coordinator_counters before = mc_.counters();

@@ -127,7 +127,7 @@ template <class Node>
 step print(Node& mc, int n, const std::string& text) {
   if (mc.transmit_free() < text.size() + ring::framing_length) return wait();
   const auto result = mc.print(n, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-  if (result.status != ring::send_result::queued)
+  if (result.status != ring::send_status::ok)
     std::fprintf(stderr, "basic: PRINT #%d: %s\n", n, ring::to_string(result.status));
   return next();
 }
@@ -137,7 +137,7 @@ template <class Node>
 step send_variable(Node& mc, int n, int vr, double value) {
   if (mc.transmit_free() < ring::framing_length + ring::variable_data_length) return wait();
   const auto result = mc.send_variable(n, static_cast<std::uint16_t>(vr), value);
-  if (result != ring::send_result::queued)
+  if (result != ring::send_status::ok)
     std::fprintf(stderr, "basic: SEND(%d,1,%d): %s\n", n, vr, ring::to_string(result));
   return next();
 }
@@ -147,7 +147,7 @@ template <class Node>
 step send_keypad_offset(Node& mc, int n, int offset) {
   if (mc.transmit_free() < ring::framing_length + 1) return wait();
   const auto result = mc.send_keypad_offset(n, offset);
-  if (result != ring::send_result::queued)
+  if (result != ring::send_status::ok)
     std::fprintf(stderr, "basic: SEND(%d,2,%d): %s\n", n, offset, ring::to_string(result));
   return next();
 }

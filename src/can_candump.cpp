@@ -53,51 +53,51 @@ bool parse_timestamp(std::string_view text, candump_record& out) {
   return true;
 }
 
-candump_error parse_frame(std::string_view text, can::frame& out) {
+candump_status parse_frame(std::string_view text, can::frame& out) {
   const std::size_t hash = text.find('#');
   if (hash == std::string_view::npos) {
     for (char c : text) {
-      if (hex_value(c) < 0) return candump_error::identifier;
+      if (hex_value(c) < 0) return candump_status::identifier;
     }
-    return candump_error::separator;
+    return candump_status::separator;
   }
   const std::string_view id_text = text.substr(0, hash);
-  if (id_text.size() != 3 && id_text.size() != 8) return candump_error::identifier;
+  if (id_text.size() != 3 && id_text.size() != 8) return candump_status::identifier;
   std::uint32_t id = 0;
   for (char c : id_text) {
     const int v = hex_value(c);
-    if (v < 0) return candump_error::identifier;
+    if (v < 0) return candump_status::identifier;
     id = id << 4U | static_cast<std::uint32_t>(v);
   }
   const bool extended = id_text.size() == 8;
   if (extended ? id > can::frame::extended_mask : id > can::frame::standard_mask) {
-    return candump_error::identifier;
+    return candump_status::identifier;
   }
   out.id = extended ? (id | can::frame::extended_flag) : id;
   std::string_view data = text.substr(hash + 1);
-  if (!data.empty() && data.front() == '#') return candump_error::separator;  // CAN FD
+  if (!data.empty() && data.front() == '#') return candump_status::separator;  // CAN FD
   if (!data.empty() && (data.front() == 'R' || data.front() == 'r')) {
     out.id |= can::frame::remote_flag;
     out.dlc = 0;
-    if (data.size() == 1) return candump_error::none;
+    if (data.size() == 1) return candump_status::ok;
     if (data.size() == 2 && data[1] >= '0' && data[1] <= '8') {
       out.dlc = static_cast<std::uint8_t>(data[1] - '0');
-      return candump_error::none;
+      return candump_status::ok;
     }
-    return candump_error::data;
+    return candump_status::data;
   }
   std::uint8_t count = 0;
   while (!data.empty()) {
     if (data.front() == '.' && count > 0 && data.size() > 1) data.remove_prefix(1);
-    if (data.size() < 2 || count == 8) return candump_error::data;
+    if (data.size() < 2 || count == 8) return candump_status::data;
     const int high = hex_value(data[0]);
     const int low = hex_value(data[1]);
-    if (high < 0 || low < 0) return candump_error::data;
+    if (high < 0 || low < 0) return candump_status::data;
     out.data[count++] = static_cast<std::uint8_t>(high << 4 | low);
     data.remove_prefix(2);
   }
   out.dlc = count;
-  return candump_error::none;
+  return candump_status::ok;
 }
 
 }  // namespace
@@ -106,25 +106,25 @@ candump_result parse_candump_line(std::string_view line) {
   candump_result result;
   std::string_view text = trim(line);
   if (text.empty()) {
-    result.error = candump_error::empty;
+    result.status = candump_status::empty;
     return result;
   }
   if (text.front() == '(') {
     const std::size_t close = text.find(')');
     if (close == std::string_view::npos || !parse_timestamp(text.substr(0, close + 1), result.record)) {
-      result.error = candump_error::timestamp;
+      result.status = candump_status::timestamp;
       return result;
     }
     text = text.substr(close + 1);
     if (text.empty() || !is_blank(text.front())) {
-      result.error = candump_error::interface_name;
+      result.status = candump_status::interface_name;
       return result;
     }
     text = trim(text);
     std::size_t end = 0;
     while (end < text.size() && !is_blank(text[end])) ++end;
     if (end == 0 || end == text.size()) {
-      result.error = candump_error::interface_name;
+      result.status = candump_status::interface_name;
       return result;
     }
     result.record.interface_name = std::string(text.substr(0, end));
@@ -133,12 +133,12 @@ candump_result parse_candump_line(std::string_view line) {
   std::size_t end = 0;
   while (end < text.size() && !is_blank(text[end])) ++end;
   if (end != text.size()) {
-    result.error = candump_error::trailing;
-    const candump_error frame_error = parse_frame(text.substr(0, end), result.record.frame);
-    if (frame_error != candump_error::none) result.error = frame_error;
+    result.status = candump_status::trailing;
+    const candump_status frame_error = parse_frame(text.substr(0, end), result.record.frame);
+    if (frame_error != candump_status::ok) result.status = frame_error;
     return result;
   }
-  result.error = parse_frame(text, result.record.frame);
+  result.status = parse_frame(text, result.record.frame);
   return result;
 }
 
@@ -173,26 +173,26 @@ std::string format_candump_line(const candump_record& record) {
   return out;
 }
 
-const char* to_string(candump_error error) {
-  switch (error) {
-    case candump_error::none:
-      return "no error";
-    case candump_error::empty:
-      return "empty line";
-    case candump_error::timestamp:
-      return "malformed timestamp";
-    case candump_error::interface_name:
-      return "missing interface name";
-    case candump_error::identifier:
-      return "malformed identifier";
-    case candump_error::separator:
-      return "missing or CAN FD '#' separator";
-    case candump_error::data:
-      return "malformed data";
-    case candump_error::trailing:
-      return "text after the frame";
+const char* to_string(candump_status status) {
+  switch (status) {
+    case candump_status::ok:
+      return "ok";
+    case candump_status::empty:
+      return "empty";
+    case candump_status::timestamp:
+      return "timestamp";
+    case candump_status::interface_name:
+      return "interface_name";
+    case candump_status::identifier:
+      return "identifier";
+    case candump_status::separator:
+      return "separator";
+    case candump_status::data:
+      return "data";
+    case candump_status::trailing:
+      return "trailing";
   }
-  return "unknown error";
+  return "unknown";
 }
 
 }  // namespace trionet::host

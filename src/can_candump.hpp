@@ -26,9 +26,9 @@ struct candump_record {
   can::frame frame{};
 };
 
-/// Why a line is not candump text. The CLI reports every one of these as `syntax`.
-enum class candump_error : std::uint8_t {
-  none,
+/// Whether a line is candump text. The CLI reports every reason as `syntax`.
+enum class candump_status : std::uint8_t {
+  ok,
   empty,           ///< nothing but blanks
   timestamp,       ///< "(seconds.micros)" malformed
   interface_name,  ///< no interface name after the timestamp
@@ -39,9 +39,10 @@ enum class candump_error : std::uint8_t {
 };
 
 /// A parsed line, or why it is not one.
-struct candump_result {
-  candump_error error = candump_error::none;
+struct [[nodiscard]] candump_result {
+  candump_status status = candump_status::ok;
   candump_record record{};
+  explicit operator bool() const noexcept { return status == candump_status::ok; }
 };
 
 /// Parses one line in either form.
@@ -54,7 +55,7 @@ struct candump_result {
 /// "can0" when the record names none), else the compact form.
 [[nodiscard]] std::string format_candump_line(const candump_record& record);
 
-/// A short English name for `error`, for messages.
-[[nodiscard]] const char* to_string(candump_error error);
+/// The enumerator's name ("identifier"), for messages.
+[[nodiscard]] const char* to_string(candump_status status);
 
 }  // namespace trionet::host

@@ -83,12 +83,12 @@ int encode_command(const std::vector<std::string>& words) {
   can::frame out;
   out.id = id.identifier;
   out.dlc = can::vr_message_size;
-  const can::encode_error encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data);
-  if (encoded == can::encode_error::too_large) {
+  const can::encode_status encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data);
+  if (encoded == can::encode_status::too_large) {
     return fail("--value magnitude must round to less than 4294967296, got '" + parsed.options.at("--value") +
                 "'");
   }
-  if (encoded != can::encode_error::none || id.error != can::scheme_error::none) {
+  if (encoded != can::encode_status::ok || id.status != can::scheme_status::ok) {
     return fail("cannot encode this message");  // unreachable: every input was checked above
   }
   std::printf("%s\n", host::format_candump_frame(out).c_str());
@@ -101,21 +101,12 @@ std::string error_event(std::size_t line, const char* reason) {
 
 std::string decode_line(std::uint8_t nodes, std::size_t line_number, std::string_view line) {
   const host::candump_result parsed = host::parse_candump_line(line);
-  if (parsed.error != host::candump_error::none) return error_event(line_number, "syntax");
+  if (parsed.status != host::candump_status::ok) return error_event(line_number, "syntax");
   const can::frame& frame = parsed.record.frame;
   const can::route_result route = can::route_of(nodes, frame.id);
-  if (route.error != can::scheme_error::none) return error_event(line_number, "unknown_id");
+  if (route.status != can::scheme_status::ok) return error_event(line_number, "unknown_id");
   const can::decode_result decoded = can::decode_vr_frame(frame);
-  switch (decoded.error) {
-    case can::decode_error::none:
-      break;
-    case can::decode_error::dlc:
-      return error_event(line_number, "dlc");
-    case can::decode_error::sign:
-      return error_event(line_number, "sign");
-    case can::decode_error::fraction:
-      return error_event(line_number, "fraction");
-  }
+  if (!decoded) return error_event(line_number, can::to_string(decoded.status));
   const can::vr_message& message = decoded.message;
   return "{\"event\":\"vr\",\"id\":" + std::to_string(frame.identifier()) +
          ",\"from\":" + std::to_string(route.value.sender) +
@@ -123,7 +114,7 @@ std::string decode_line(std::uint8_t nodes, std::size_t line_number, std::string
          ",\"negative\":" + (message.value.negative ? "true" : "false") +
          ",\"int\":" + std::to_string(message.value.integer_part) +
          ",\"frac\":" + std::to_string(message.value.fraction) +
-         ",\"value\":" + format_real(can::to_double(message.value)) + "}";
+         ",\"value\":" + format_real(trionet::to_double(message.value)) + "}";
 }
 
 int decode_command(const std::vector<std::string>& words) {

@@ -22,24 +22,25 @@ namespace trionet::host {
 /// The library frame for a kernel frame: identifier word without CAN_ERR_FLAG, DLC (len) capped at 8, data.
 [[nodiscard]] can::frame from_socketcan(const ::can_frame& frame) noexcept;
 
-/// Why opening a SocketCAN interface failed (`system_error` holds errno).
-enum class socketcan_error : std::uint8_t {
-  none,
+/// Whether opening a SocketCAN interface succeeded (on failure `system_error` holds errno).
+enum class socketcan_status : std::uint8_t {
+  ok,
   name_too_long,      ///< the interface name does not fit IFNAMSIZ
   socket,             ///< socket(PF_CAN) failed: no CAN support in this kernel (EAFNOSUPPORT), no permission
   no_such_interface,  ///< if_nametoindex failed
   bind,               ///< bind() failed
 };
 
-/// An open result: error and errno.
-struct socketcan_open_result {
-  socketcan_error error = socketcan_error::none;
+/// An open result: status and errno.
+struct [[nodiscard]] socketcan_open_result {
+  socketcan_status status = socketcan_status::ok;
   int system_error = 0;
+  explicit operator bool() const noexcept { return status == socketcan_status::ok; }
 };
 
 /// What `receive` got.
-enum class socketcan_receive : std::uint8_t {
-  frame,        ///< a CAN frame was read into `out`
+enum class socketcan_receive_status : std::uint8_t {
+  ok,           ///< a CAN frame was read into `out`
   error_frame,  ///< the kernel delivered an error frame (CAN_ERR_FLAG); `out` holds it without the flag
   timeout,      ///< nothing arrived in time
   failed,       ///< poll or read failed, or the socket is closed
@@ -62,13 +63,14 @@ class socketcan_port final : public can::port {
   [[nodiscard]] can::transmit_status send(const can::frame& outgoing) noexcept override;
 
   /// Waits up to `timeout_ms` milliseconds (0 = poll, negative = forever) for one frame.
-  [[nodiscard]] socketcan_receive receive(can::frame& out, int timeout_ms) noexcept;
+  [[nodiscard]] socketcan_receive_status receive(can::frame& out, int timeout_ms) noexcept;
 
  private:
   int socket_ = -1;
 };
 
-/// A short English name for `error`, for messages.
-[[nodiscard]] const char* to_string(socketcan_error error);
+/// The enumerator's name ("no_such_interface"), for messages.
+[[nodiscard]] const char* to_string(socketcan_status status);
+[[nodiscard]] const char* to_string(socketcan_receive_status status);
 
 }  // namespace trionet::host

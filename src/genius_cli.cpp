@@ -237,11 +237,11 @@ int decode_main(const std::vector<std::string>& words) {
     } else {
       status = parser.push(t.value);
     }
-    if (status == genius::parse_status::complete) {
+    if (status == genius::parse_status::ok) {
       ++transmissions;
       print_transmission(parser.received());
     } else if (genius::is_error(status)) {
-      std::printf("error at character %zu (%s): %s%s\n", i + 1, t.text.c_str(), genius::describe(status),
+      std::printf("error at character %zu (%s): %s%s\n", i + 1, t.text.c_str(), genius::to_string(status),
                   detail.c_str());
     }
   }

@@ -100,7 +100,7 @@ int encode_main(const std::vector<std::string>& words) {
     if (!parse_real(args.options.at("--value"), value)) {
       return fail("--value must be a real number, got '" + args.options.at("--value") + "'");
     }
-    const ring::q32_result q = ring::q32_from_double(value);
+    const trionet::q32_result q = trionet::q32_from_double(value);
     if (!q)
       return fail("--value " + args.options.at("--value") +
                   " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]");
@@ -121,7 +121,7 @@ int encode_main(const std::vector<std::string>& words) {
 
   std::vector<std::uint8_t> frame(ring::frame_length(m));
   const ring::encode_result result = ring::encode(byte_buffer(frame.data(), frame.size()), m);
-  if (!result) return fail(std::string("cannot encode: ") + ring::to_string(result.error));
+  if (!result) return fail(std::string("cannot encode: ") + ring::to_string(result.status));
   std::printf("%s\n", hex_line(frame.data(), result.length).c_str());
   return exit_ok;
 }
@@ -193,9 +193,9 @@ std::string ring_result_json(const ring::decode_result& result) {
              json_string(std::string(reinterpret_cast<const char*>(m.text.data()), m.text.size())) + "}";
     case ring::message_type::variable: {
       char raw[24];
-      std::snprintf(raw, sizeof raw, "0x%016" PRIx64, ring::q32_to_raw(m.value));
+      std::snprintf(raw, sizeof raw, "0x%016" PRIx64, trionet::q32_to_raw(m.value));
       return "{\"event\":\"message\",\"type\":\"var\",\"hops\":" + hops + ",\"vr\":" + std::to_string(m.vr) +
-             ",\"raw\":\"" + raw + "\",\"value\":" + format_real(ring::q32_to_double(m.value)) + "}";
+             ",\"raw\":\"" + raw + "\",\"value\":" + format_real(trionet::q32_to_double(m.value)) + "}";
     }
     case ring::message_type::keypad_offset:
       return "{\"event\":\"message\",\"type\":\"offset\",\"hops\":" + hops +

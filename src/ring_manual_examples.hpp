@@ -19,8 +19,8 @@ using trace_fn = std::function<void(const ring::link_byte&)>;
 
 /// Presses and releases a key, then lets the ring run until it is quiet again.
 template <class Scenario>
-ring::key_result press(Scenario& s, keypad_node& keypad, ring::key k, const trace_fn& trace) {
-  const ring::key_result result = keypad.press(k);
+ring::key_status press(Scenario& s, keypad_node& keypad, ring::key k, const trace_fn& trace) {
+  const ring::key_status result = keypad.press(k);
   (void)keypad.release(k);
   s.settle(trace);
   return result;

@@ -31,7 +31,7 @@ std::string readable(byte_view text) {
   return out;
 }
 
-std::string describe(const ring::decode_result& r) {
+std::string event_text(const ring::decode_result& r) {
   if (r.status == ring::decode_status::frame_error)
     return std::string("frame error: ") + ring::to_string(r.error);
   if (r.status == ring::decode_status::crc_error) return "CRC error (vr " + std::to_string(r.msg.vr) + ")";
@@ -40,7 +40,8 @@ std::string describe(const ring::decode_result& r) {
     case ring::message_type::character:
       return hops + "PRINT   \"" + readable(r.msg.text) + "\"";
     case ring::message_type::variable:
-      return hops + "VR(" + std::to_string(r.msg.vr) + ") = " + format_real(ring::q32_to_double(r.msg.value));
+      return hops + "VR(" + std::to_string(r.msg.vr) +
+             ") = " + format_real(trionet::q32_to_double(r.msg.value));
     case ring::message_type::keypad_offset:
       return hops + "keypad offset " + std::to_string(r.msg.offset);
     case ring::message_type::keypad_mode:
@@ -59,7 +60,7 @@ class tracer {
     const ring::decode_result r = decoders_[b.link].push(b.received);
     if (r.status == ring::decode_status::incomplete) return;
     const std::string route = std::string(names_[b.link]) + " -> " + names_[(b.link + 1) % count_];
-    std::printf("t=%6" PRIu64 "  %-24s %s\n", b.time, route.c_str(), describe(r).c_str());
+    std::printf("t=%6" PRIu64 "  %-24s %s\n", b.time, route.c_str(), event_text(r).c_str());
   }
 
   struct watch {

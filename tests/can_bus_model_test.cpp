@@ -82,9 +82,9 @@ frame vr_frame(std::uint32_t id) {
 TEST(CanBusModel, LowestIdentifierWinsArbitration) {
   bus_model<3> bus;
   recorder heard;
-  ASSERT_EQ(bus.station_port(0).send(vr_frame(40)), transmit_status::queued);
-  ASSERT_EQ(bus.station_port(1).send(vr_frame(12)), transmit_status::queued);
-  ASSERT_EQ(bus.station_port(2).send(vr_frame(31)), transmit_status::queued);
+  ASSERT_EQ(bus.station_port(0).send(vr_frame(40)), transmit_status::ok);
+  ASSERT_EQ(bus.station_port(1).send(vr_frame(12)), transmit_status::ok);
+  ASSERT_EQ(bus.station_port(2).send(vr_frame(31)), transmit_status::ok);
   bus.run_until_idle(heard);
   ASSERT_EQ(heard.deliveries.size(), 3U);
   EXPECT_EQ(heard.deliveries[0].sent.id, 12U);
@@ -101,10 +101,10 @@ TEST(CanBusModel, LowestIdentifierWinsArbitration) {
 TEST(CanBusModel, ATransmissionIsNotPreemptedByAHigherPriorityFrame) {
   bus_model<2> bus;
   recorder heard;
-  ASSERT_EQ(bus.send(0, vr_frame(50)), transmit_status::queued);
+  ASSERT_EQ(bus.send(0, vr_frame(50)), transmit_status::ok);
   bus.advance_to(10, heard);
   EXPECT_TRUE(heard.deliveries.empty());
-  ASSERT_EQ(bus.send(1, vr_frame(10)), transmit_status::queued);
+  ASSERT_EQ(bus.send(1, vr_frame(10)), transmit_status::ok);
   bus.advance_to(1000, heard);
   ASSERT_EQ(heard.deliveries.size(), 2U);
   EXPECT_EQ(heard.deliveries[0].sent.id, 50U);
@@ -124,9 +124,9 @@ TEST(CanBusModel, StationQueueOrdersByIdentifierThenFifoAndReportsFull) {
   a.data[0] = 1;
   frame b = vr_frame(20);
   b.data[0] = 2;
-  ASSERT_EQ(bus.send(0, a), transmit_status::queued);
-  ASSERT_EQ(bus.send(0, b), transmit_status::queued);
-  ASSERT_EQ(bus.send(0, vr_frame(11)), transmit_status::queued);
+  ASSERT_EQ(bus.send(0, a), transmit_status::ok);
+  ASSERT_EQ(bus.send(0, b), transmit_status::ok);
+  ASSERT_EQ(bus.send(0, vr_frame(11)), transmit_status::ok);
   EXPECT_EQ(bus.send(0, vr_frame(5)), transmit_status::busy);
   EXPECT_EQ(bus.send(7, vr_frame(5)), transmit_status::failed);
   bus.run_until_idle(heard);
@@ -178,7 +178,7 @@ TEST(CanTn2017Exchange, AllTwentySenderReceiverPairsOfFiveNodesOnTheBus) {
     for (std::uint8_t d = 1; d <= 5; ++d) {
       if (s == d) continue;
       const auto vr = static_cast<std::uint16_t>(10 * s + d);
-      ASSERT_EQ(exchange.nodes[s - 1].send_to_node(d, vr, -(s * 1000.0 + d + 0.1234)), send_status::sent);
+      ASSERT_EQ(exchange.nodes[s - 1].send_to_node(d, vr, -(s * 1000.0 + d + 0.1234)), send_status::ok);
     }
   }
   exchange.bus.run_until_idle(exchange);
@@ -220,7 +220,7 @@ periodic_outcome run_periodic(std::uint64_t period, unsigned periods) {
     for (std::uint8_t k = 1; k <= 5; ++k) {
       const auto channel = static_cast<std::uint8_t>(5 + (p + k) % 4);
       if (exchange.nodes[k - 1].send_on_channel(channel, static_cast<std::uint16_t>(p % 256), p) !=
-          send_status::sent) {
+          send_status::ok) {
         ++out.refused;
       }
     }

@@ -70,9 +70,9 @@ TEST(CanCli, DecodeBothFormsAndEveryErrorReason) {
       "{\"event\":\"vr\",\"id\":23,\"from\":5,\"to\":2,\"vr\":255,\"negative\":true,\"int\":1,\"frac\":0,"
       "\"value\":-1}\n"
       "{\"event\":\"error\",\"line\":4,\"reason\":\"syntax\"}\n"
-      "{\"event\":\"error\",\"line\":5,\"reason\":\"dlc\"}\n"
-      "{\"event\":\"error\",\"line\":6,\"reason\":\"sign\"}\n"
-      "{\"event\":\"error\",\"line\":7,\"reason\":\"fraction\"}\n"
+      "{\"event\":\"error\",\"line\":5,\"reason\":\"bad_dlc\"}\n"
+      "{\"event\":\"error\",\"line\":6,\"reason\":\"bad_sign\"}\n"
+      "{\"event\":\"error\",\"line\":7,\"reason\":\"bad_fraction\"}\n"
       "{\"event\":\"error\",\"line\":8,\"reason\":\"unknown_id\"}\n"
       "{\"event\":\"vr\",\"id\":10,\"from\":2,\"to\":1,\"vr\":0,\"negative\":false,\"int\":0,\"frac\":0,"
       "\"value\":0}\n");

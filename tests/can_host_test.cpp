@@ -21,7 +21,7 @@ using namespace trionet::host;
 
 TEST(CanCandump, ReadsTheLogForm) {
   const candump_result r = parse_candump_line("(1700000000.123456) can0 028#0100000000020D7A");
-  ASSERT_EQ(r.error, candump_error::none);
+  ASSERT_EQ(r.status, candump_status::ok);
   EXPECT_TRUE(r.record.has_timestamp);
   EXPECT_EQ(r.record.seconds, 1700000000U);
   EXPECT_EQ(r.record.microseconds, 123456U);
@@ -35,7 +35,7 @@ TEST(CanCandump, ReadsTheLogForm) {
 
 TEST(CanCandump, ReadsTheCompactFormAndWritesUpperCase) {
   const candump_result r = parse_candump_line("  028#0100000000020d7a\r\n");
-  ASSERT_EQ(r.error, candump_error::none);
+  ASSERT_EQ(r.status, candump_status::ok);
   EXPECT_FALSE(r.record.has_timestamp);
   EXPECT_TRUE(r.record.interface_name.empty());
   EXPECT_EQ(format_candump_line(r.record), "028#0100000000020D7A");
@@ -44,24 +44,24 @@ TEST(CanCandump, ReadsTheCompactFormAndWritesUpperCase) {
 
 TEST(CanCandump, OtherFrameShapes) {
   const candump_result empty_data = parse_candump_line("7FF#");
-  ASSERT_EQ(empty_data.error, candump_error::none);
+  ASSERT_EQ(empty_data.status, candump_status::ok);
   EXPECT_EQ(empty_data.record.frame.dlc, 0);
   EXPECT_EQ(format_candump_frame(empty_data.record.frame), "7FF#");
 
   const candump_result dotted = parse_candump_line("123#01.02.03");
-  ASSERT_EQ(dotted.error, candump_error::none);
+  ASSERT_EQ(dotted.status, candump_status::ok);
   EXPECT_EQ(dotted.record.frame.dlc, 3);
   EXPECT_EQ(format_candump_frame(dotted.record.frame), "123#010203");
 
   const candump_result extended = parse_candump_line("(0.5) vcan0 1FFFFFFF#AA");
-  ASSERT_EQ(extended.error, candump_error::none);
+  ASSERT_EQ(extended.status, candump_status::ok);
   EXPECT_TRUE(extended.record.frame.extended());
   EXPECT_EQ(extended.record.frame.identifier(), 0x1FFFFFFFU);
   EXPECT_EQ(extended.record.microseconds, 500000U);
   EXPECT_EQ(format_candump_line(extended.record), "(0000000000.500000) vcan0 1FFFFFFF#AA");
 
   const candump_result remote = parse_candump_line("028#R8");
-  ASSERT_EQ(remote.error, candump_error::none);
+  ASSERT_EQ(remote.status, candump_status::ok);
   EXPECT_TRUE(remote.record.frame.remote());
   EXPECT_EQ(remote.record.frame.dlc, 8);
   EXPECT_EQ(remote.record.frame.data_length(), 0);
@@ -70,25 +70,25 @@ TEST(CanCandump, OtherFrameShapes) {
 }
 
 TEST(CanCandump, SyntaxErrorsAreClassified) {
-  EXPECT_EQ(parse_candump_line("   ").error, candump_error::empty);
-  EXPECT_EQ(parse_candump_line("(1700000000) can0 028#01").error, candump_error::timestamp);
-  EXPECT_EQ(parse_candump_line("(17000x0000.1) can0 028#01").error, candump_error::timestamp);
-  EXPECT_EQ(parse_candump_line("(1.1234567) can0 028#01").error, candump_error::timestamp);
-  EXPECT_EQ(parse_candump_line("(1700000000.123456)").error, candump_error::interface_name);
-  EXPECT_EQ(parse_candump_line("(1700000000.123456) can0").error, candump_error::interface_name);
-  EXPECT_EQ(parse_candump_line("28#01").error, candump_error::identifier);
-  EXPECT_EQ(parse_candump_line("800#01").error, candump_error::identifier);
-  EXPECT_EQ(parse_candump_line("2FFFFFFF#01").error, candump_error::identifier);
-  EXPECT_EQ(parse_candump_line("02G#01").error, candump_error::identifier);
-  EXPECT_EQ(parse_candump_line("028").error, candump_error::separator);
-  EXPECT_EQ(parse_candump_line("028##0123").error, candump_error::separator);
-  EXPECT_EQ(parse_candump_line("028#012").error, candump_error::data);
-  EXPECT_EQ(parse_candump_line("028#0100000000020D7A00").error, candump_error::data);
-  EXPECT_EQ(parse_candump_line("028#01xx").error, candump_error::data);
-  EXPECT_EQ(parse_candump_line("028#R9").error, candump_error::data);
-  EXPECT_EQ(parse_candump_line("028#01.").error, candump_error::data);
-  EXPECT_EQ(parse_candump_line("028#01 junk").error, candump_error::trailing);
-  EXPECT_STRNE(to_string(candump_error::data), to_string(candump_error::trailing));
+  EXPECT_EQ(parse_candump_line("   ").status, candump_status::empty);
+  EXPECT_EQ(parse_candump_line("(1700000000) can0 028#01").status, candump_status::timestamp);
+  EXPECT_EQ(parse_candump_line("(17000x0000.1) can0 028#01").status, candump_status::timestamp);
+  EXPECT_EQ(parse_candump_line("(1.1234567) can0 028#01").status, candump_status::timestamp);
+  EXPECT_EQ(parse_candump_line("(1700000000.123456)").status, candump_status::interface_name);
+  EXPECT_EQ(parse_candump_line("(1700000000.123456) can0").status, candump_status::interface_name);
+  EXPECT_EQ(parse_candump_line("28#01").status, candump_status::identifier);
+  EXPECT_EQ(parse_candump_line("800#01").status, candump_status::identifier);
+  EXPECT_EQ(parse_candump_line("2FFFFFFF#01").status, candump_status::identifier);
+  EXPECT_EQ(parse_candump_line("02G#01").status, candump_status::identifier);
+  EXPECT_EQ(parse_candump_line("028").status, candump_status::separator);
+  EXPECT_EQ(parse_candump_line("028##0123").status, candump_status::separator);
+  EXPECT_EQ(parse_candump_line("028#012").status, candump_status::data);
+  EXPECT_EQ(parse_candump_line("028#0100000000020D7A00").status, candump_status::data);
+  EXPECT_EQ(parse_candump_line("028#01xx").status, candump_status::data);
+  EXPECT_EQ(parse_candump_line("028#R9").status, candump_status::data);
+  EXPECT_EQ(parse_candump_line("028#01.").status, candump_status::data);
+  EXPECT_EQ(parse_candump_line("028#01 junk").status, candump_status::trailing);
+  EXPECT_STRNE(to_string(candump_status::data), to_string(candump_status::trailing));
 }
 
 TEST(CanCandump, EveryFrameFormatsAndParsesBack) {
@@ -106,7 +106,7 @@ TEST(CanCandump, EveryFrameFormatsAndParsesBack) {
       record.frame = f;
       const std::string line = format_candump_line(record);
       const candump_result back = parse_candump_line(line);
-      ASSERT_EQ(back.error, candump_error::none) << line;
+      ASSERT_EQ(back.status, candump_status::ok) << line;
       EXPECT_EQ(back.record.frame, f) << line;
       EXPECT_EQ(back.record.has_timestamp, record.has_timestamp) << line;
       if (record.has_timestamp) {
@@ -134,10 +134,10 @@ TEST(CanCandump, RandomLinesAreParsedOrClassified) {
     }
     if (i % 2 == 0) line = "028#" + line.substr(0, length / 2);
     const candump_result r = parse_candump_line(line);
-    if (r.error != candump_error::none) continue;
+    if (r.status != candump_status::ok) continue;
     ++parsed;
     const candump_result again = parse_candump_line(format_candump_line(r.record));
-    ASSERT_EQ(again.error, candump_error::none) << line;
+    ASSERT_EQ(again.status, candump_status::ok) << line;
     EXPECT_EQ(again.record.frame, r.record.frame) << line;
   }
   EXPECT_GT(parsed, 1000) << "the generator reaches valid lines too";
@@ -176,9 +176,9 @@ TEST(CanSocketCan, ClosedPortFailsAndBadNamesAreRefused) {
   EXPECT_FALSE(closed.is_open());
   EXPECT_EQ(closed.send(frame{}), transmit_status::failed);
   frame f;
-  EXPECT_EQ(closed.receive(f, 0), socketcan_receive::failed);
-  EXPECT_EQ(closed.open("").error, socketcan_error::name_too_long);
-  EXPECT_EQ(closed.open("an-interface-name-too-long").error, socketcan_error::name_too_long);
+  EXPECT_EQ(closed.receive(f, 0), socketcan_receive_status::failed);
+  EXPECT_EQ(closed.open("").status, socketcan_status::name_too_long);
+  EXPECT_EQ(closed.open("an-interface-name-too-long").status, socketcan_status::name_too_long);
 }
 
 // Node 1 and node 4 of a 5-node exchange on a real (virtual) CAN interface.
@@ -205,22 +205,22 @@ TEST(CanSocketCan, VrExchangeOverVcan) {
   socketcan_port port1;
   socketcan_port port4;
   const socketcan_open_result opened1 = port1.open(name);
-  if (opened1.error == socketcan_error::socket) {
+  if (opened1.status == socketcan_status::socket) {
     GTEST_SKIP() << "the kernel has no CAN socket support: " << std::strerror(opened1.system_error);
   }
-  ASSERT_EQ(opened1.error, socketcan_error::none)
-      << to_string(opened1.error) << ": " << std::strerror(opened1.system_error);
-  ASSERT_EQ(port4.open(name).error, socketcan_error::none);
+  ASSERT_EQ(opened1.status, socketcan_status::ok)
+      << to_string(opened1.status) << ": " << std::strerror(opened1.system_error);
+  ASSERT_EQ(port4.open(name).status, socketcan_status::ok);
 
   trionet::vr_table<8> vrs1;
   trionet::vr_table<8> vrs4;
   vr_exchange_node node1(make_node_address(5, 1).address, port1, vrs1);
   vr_exchange_node node4(make_node_address(5, 4).address, port4, vrs4);
-  ASSERT_EQ(node1.send_to_node(4, 1, 2.345), send_status::sent);
+  ASSERT_EQ(node1.send_to_node(4, 1, 2.345), send_status::ok);
   frame received;
-  ASSERT_EQ(port4.receive(received, 2000), socketcan_receive::frame);
+  ASSERT_EQ(port4.receive(received, 2000), socketcan_receive_status::ok);
   EXPECT_EQ(format_candump_frame(received), "028#0100000000020D7A");
-  EXPECT_EQ(node4.receive(received).status, receive_status::written);
+  EXPECT_EQ(node4.receive(received).status, receive_status::ok);
   EXPECT_EQ(vrs4[1], 2.345);
 }
 

@@ -31,11 +31,11 @@ TEST(CanTn2017Tables, ReceiveIdentifierTableForFiveNodes) {
   for (const auto& row : note_receive_table) {
     const std::uint8_t node = static_cast<std::uint8_t>(row[0] / 10);
     const identifier_result base = base_identifier(5, node);
-    ASSERT_EQ(base.error, scheme_error::none);
+    ASSERT_EQ(base.status, scheme_status::ok);
     EXPECT_EQ(base.identifier, row[0]);
     for (std::uint8_t channel = 1; channel <= 4; ++channel) {
       const identifier_result id = receive_identifier(5, node, channel);
-      ASSERT_EQ(id.error, scheme_error::none);
+      ASSERT_EQ(id.status, scheme_status::ok);
       EXPECT_EQ(id.identifier, row[channel]) << "node " << int{node} << " Rx #" << int{channel};
     }
   }
@@ -46,7 +46,7 @@ TEST(CanTn2017Tables, TransmitIdentifierTableForFiveNodes) {
     const std::uint8_t node = static_cast<std::uint8_t>(row[0] / 10);
     for (std::uint8_t channel = 5; channel <= 8; ++channel) {
       const identifier_result id = transmit_identifier(5, node, channel);
-      ASSERT_EQ(id.error, scheme_error::none);
+      ASSERT_EQ(id.status, scheme_status::ok);
       EXPECT_EQ(id.identifier, row[channel - 4]) << "node " << int{node} << " Tx #" << int{channel};
     }
   }
@@ -58,14 +58,14 @@ TEST(CanTn2017Tables, VirtualConnectionsTableForFiveNodes) {
     for (std::uint8_t channel = 1; channel <= 4; ++channel) {
       const identifier_result id = receive_identifier(5, node, channel);
       const route_result route = route_of(5, id.identifier);
-      ASSERT_EQ(route.error, scheme_error::none);
+      ASSERT_EQ(route.status, scheme_status::ok);
       EXPECT_EQ(route.value.sender, row[channel]) << "node " << int{node} << " Rx #" << int{channel};
       EXPECT_EQ(route.value.receiver, node);
       EXPECT_EQ(route.value.receive_channel, channel);
     }
     for (std::uint8_t channel = 5; channel <= 8; ++channel) {
       const node_result destination = destination_of(5, node, channel);
-      ASSERT_EQ(destination.error, scheme_error::none);
+      ASSERT_EQ(destination.status, scheme_status::ok);
       EXPECT_EQ(destination.node, row[channel]) << "node " << int{node} << " Tx #" << int{channel};
     }
   }
@@ -89,7 +89,7 @@ TEST(CanTn2017Examples, NodeFiveToNodeTwoUsesBufferSixAddressTwentyThreeReceived
   EXPECT_EQ(receive_channel_of(5, 2, 23).channel, 4);
 }
 
-// PROTOCOL.md 2.1: "node 2 channel 5 -> 31, node 4 channel 6 -> 12"; channel 5 of node 5 goes to node 1.
+// docs/protocol.md 2.1: "node 2 channel 5 -> 31, node 4 channel 6 -> 12"; channel 5 of node 5 goes to node 1.
 TEST(CanTn2017Examples, ProtocolChannelExamplesAndTheRing) {
   EXPECT_EQ(transmit_identifier(5, 2, 5).identifier, 31);
   EXPECT_EQ(transmit_identifier(5, 4, 6).identifier, 12);
@@ -106,16 +106,16 @@ TEST(CanIdentifierScheme, BothWaysForEveryNodeCountFromTwoToEleven) {
       for (std::uint8_t receiver = 1; receiver <= n; ++receiver) {
         if (sender == receiver) continue;
         const identifier_result id = exchange_identifier(n, sender, receiver);
-        ASSERT_EQ(id.error, scheme_error::none);
+        ASSERT_EQ(id.status, scheme_status::ok);
         EXPECT_LE(id.identifier, max_standard_identifier);
         identifiers.insert(id.identifier);
         const route_result route = route_of(n, id.identifier);
-        ASSERT_EQ(route.error, scheme_error::none);
+        ASSERT_EQ(route.status, scheme_status::ok);
         EXPECT_EQ(route.value.sender, sender);
         EXPECT_EQ(route.value.receiver, receiver);
         EXPECT_EQ(receive_identifier(n, receiver, route.value.receive_channel).identifier, id.identifier);
         const channel_result channel = transmit_channel_to(n, sender, receiver);
-        ASSERT_EQ(channel.error, scheme_error::none);
+        ASSERT_EQ(channel.status, scheme_status::ok);
         EXPECT_GE(channel.channel, first_transmit_channel);
         EXPECT_LE(channel.channel, n + 3);
         EXPECT_EQ(destination_of(n, sender, channel.channel).node, receiver);
@@ -131,38 +131,38 @@ TEST(CanIdentifierScheme, BothWaysForEveryNodeCountFromTwoToEleven) {
     for (std::uint32_t id = 0; id <= 0x7FF; ++id) {
       const route_result route = route_of(n, id);
       if (identifiers.count(static_cast<std::uint16_t>(id)) != 0) continue;
-      EXPECT_EQ(route.error, scheme_error::not_exchange_identifier) << "n " << int{n} << " id " << id;
+      EXPECT_EQ(route.status, scheme_status::not_exchange_identifier) << "n " << int{n} << " id " << id;
     }
   }
 }
 
 TEST(CanIdentifierScheme, NotExchangeIdentifiers) {
-  EXPECT_EQ(route_of(5, 9).error, scheme_error::not_exchange_identifier);   // below node 1
-  EXPECT_EQ(route_of(5, 14).error, scheme_error::not_exchange_identifier);  // node 1 has only 4 channels
-  EXPECT_EQ(route_of(5, 54).error, scheme_error::not_exchange_identifier);
-  EXPECT_EQ(route_of(5, 60).error, scheme_error::not_exchange_identifier);               // no node 6 of 5
-  EXPECT_EQ(route_of(5, 0x80000028U).error, scheme_error::not_exchange_identifier);      // extended frame
-  EXPECT_EQ(route_of(5, 0x40000028U).error, scheme_error::not_exchange_identifier);      // remote frame
-  EXPECT_EQ(receive_channel_of(5, 3, 40).error, scheme_error::not_exchange_identifier);  // node 4's
+  EXPECT_EQ(route_of(5, 9).status, scheme_status::not_exchange_identifier);   // below node 1
+  EXPECT_EQ(route_of(5, 14).status, scheme_status::not_exchange_identifier);  // node 1 has only 4 channels
+  EXPECT_EQ(route_of(5, 54).status, scheme_status::not_exchange_identifier);
+  EXPECT_EQ(route_of(5, 60).status, scheme_status::not_exchange_identifier);               // no node 6 of 5
+  EXPECT_EQ(route_of(5, 0x80000028U).status, scheme_status::not_exchange_identifier);      // extended frame
+  EXPECT_EQ(route_of(5, 0x40000028U).status, scheme_status::not_exchange_identifier);      // remote frame
+  EXPECT_EQ(receive_channel_of(5, 3, 40).status, scheme_status::not_exchange_identifier);  // node 4's
   EXPECT_EQ(route_of(11, 119).value.sender, 10);
   EXPECT_EQ(route_of(11, 110).value.sender, 1);
 }
 
 TEST(CanIdentifierScheme, MisuseIsReportedWithAReason) {
-  EXPECT_EQ(exchange_identifier(1, 1, 2).error, scheme_error::bad_node_count);
-  EXPECT_EQ(exchange_identifier(12, 1, 2).error, scheme_error::bad_node_count);
-  EXPECT_EQ(route_of(12, 10).error, scheme_error::bad_node_count);
-  EXPECT_EQ(exchange_identifier(5, 0, 2).error, scheme_error::bad_node);
-  EXPECT_EQ(exchange_identifier(5, 1, 6).error, scheme_error::bad_node);
-  EXPECT_EQ(exchange_identifier(5, 3, 3).error, scheme_error::same_node);
-  EXPECT_EQ(transmit_channel_to(5, 3, 3).error, scheme_error::same_node);
-  EXPECT_EQ(destination_of(5, 1, 4).error, scheme_error::bad_channel);
-  EXPECT_EQ(destination_of(5, 1, 9).error, scheme_error::bad_channel);
-  EXPECT_EQ(destination_of(2, 1, 6).error, scheme_error::bad_channel);
+  EXPECT_EQ(exchange_identifier(1, 1, 2).status, scheme_status::bad_node_count);
+  EXPECT_EQ(exchange_identifier(12, 1, 2).status, scheme_status::bad_node_count);
+  EXPECT_EQ(route_of(12, 10).status, scheme_status::bad_node_count);
+  EXPECT_EQ(exchange_identifier(5, 0, 2).status, scheme_status::bad_node);
+  EXPECT_EQ(exchange_identifier(5, 1, 6).status, scheme_status::bad_node);
+  EXPECT_EQ(exchange_identifier(5, 3, 3).status, scheme_status::same_node);
+  EXPECT_EQ(transmit_channel_to(5, 3, 3).status, scheme_status::same_node);
+  EXPECT_EQ(destination_of(5, 1, 4).status, scheme_status::bad_channel);
+  EXPECT_EQ(destination_of(5, 1, 9).status, scheme_status::bad_channel);
+  EXPECT_EQ(destination_of(2, 1, 6).status, scheme_status::bad_channel);
   EXPECT_EQ(destination_of(2, 1, 5).node, 2);
-  EXPECT_EQ(receive_identifier(5, 1, 0).error, scheme_error::bad_channel);
-  EXPECT_EQ(receive_identifier(5, 1, 5).error, scheme_error::bad_channel);
-  EXPECT_EQ(base_identifier(5, 6).error, scheme_error::bad_node);
+  EXPECT_EQ(receive_identifier(5, 1, 0).status, scheme_status::bad_channel);
+  EXPECT_EQ(receive_identifier(5, 1, 5).status, scheme_status::bad_channel);
+  EXPECT_EQ(base_identifier(5, 6).status, scheme_status::bad_node);
 }
 
 }  // namespace
@@ -173,7 +173,7 @@ TEST(CanIdentifiers, EveryStandardIdentifierRoutesAsTheDivisionSays) {
       const auto r = trionet::can::route_of(n, id);
       const std::uint32_t receiver = id / 10, channel = id % 10 + 1;
       const bool ours = receiver >= 1 && receiver <= n && channel < n;
-      ASSERT_EQ(r.error == trionet::can::scheme_error::none, ours) << int{n} << " " << id;
+      ASSERT_EQ(r.status == trionet::can::scheme_status::ok, ours) << int{n} << " " << id;
       if (ours) {
         ASSERT_EQ(r.value.receiver, receiver);
         ASSERT_EQ(r.value.receive_channel, channel);

@@ -12,16 +12,16 @@ namespace {
 
 using namespace trionet::can;
 using trionet::vr_table;
-using trionet::vr_write;
+using trionet::vr_write_status;
 
 /// A port that records frames and answers with a chosen status.
 class recording_port final : public port {
  public:
-  transmit_status answer = transmit_status::queued;
+  transmit_status answer = transmit_status::ok;
   std::vector<frame> frames;
 
   transmit_status send(const frame& outgoing) noexcept override {
-    if (answer == transmit_status::queued) frames.push_back(outgoing);
+    if (answer == transmit_status::ok) frames.push_back(outgoing);
     return answer;
   }
 };
@@ -36,7 +36,7 @@ frame make_frame(std::uint32_t id, std::vector<std::uint8_t> bytes) {
 
 node_address address(std::uint8_t nodes, std::uint8_t node) {
   const address_result made = make_node_address(nodes, node);
-  EXPECT_EQ(made.error, scheme_error::none);
+  EXPECT_EQ(made.status, scheme_status::ok);
   return made.address;
 }
 
@@ -44,8 +44,8 @@ TEST(CanNode, ProtocolExampleNodeOneSendsVrOneToNodeFour) {
   recording_port wire;
   vr_table<256> vrs;
   vr_exchange_node node1(address(5, 1), wire, vrs);
-  ASSERT_EQ(node1.send_to_node(4, 1, 2.345), send_status::sent);
-  ASSERT_EQ(node1.send_on_channel(7, 1, 2.345), send_status::sent) << "buffer 7 of node 1 is node 4";
+  ASSERT_EQ(node1.send_to_node(4, 1, 2.345), send_status::ok);
+  ASSERT_EQ(node1.send_on_channel(7, 1, 2.345), send_status::ok) << "buffer 7 of node 1 is node 4";
   ASSERT_EQ(wire.frames.size(), 2U);
   EXPECT_EQ(wire.frames[0], make_frame(40, {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A}));
   EXPECT_EQ(wire.frames[1], wire.frames[0]);
@@ -57,7 +57,7 @@ TEST(CanNode, NoteSendVrRoutineChannelFiveIsTheNextNode) {
   vr_table<256> vrs;
   for (std::uint8_t k = 1; k <= 5; ++k) {
     vr_exchange_node node(address(5, k), wire, vrs);
-    ASSERT_EQ(node.send_on_channel(5, 1, 2.345), send_status::sent);
+    ASSERT_EQ(node.send_on_channel(5, 1, 2.345), send_status::ok);
     const route_result route = route_of(5, wire.frames.back().id);
     EXPECT_EQ(route.value.sender, k);
     EXPECT_EQ(route.value.receiver, k % 5 + 1);
@@ -68,7 +68,7 @@ TEST(CanNode, PartsBasedSendNeedsNoDouble) {
   recording_port wire;
   vr_table<8> vrs;
   vr_exchange_node node5(address(5, 5), wire, vrs);
-  ASSERT_EQ(node5.send_on_channel(6, vr_message{7, {true, 3, 1416}}), send_status::sent);
+  ASSERT_EQ(node5.send_on_channel(6, vr_message{7, {true, 3, 1416}}), send_status::ok);
   EXPECT_EQ(wire.frames.back(), make_frame(23, {7, 1, 0, 0, 0, 3, 0x05, 0x88}));
   EXPECT_EQ(node5.send_to_node(2, vr_message{7, {false, 3, 10000}}), send_status::fraction_out_of_range);
 }
@@ -108,14 +108,14 @@ TEST(CanNode, ReceivedFrameOnOwnIdentifierWritesTheVr) {
   vr_table<256> vrs;
   vr_exchange_node node4(address(5, 4), wire, vrs);
   const receive_result r = node4.receive(make_frame(40, {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A}));
-  EXPECT_EQ(r.status, receive_status::written);
+  EXPECT_EQ(r.status, receive_status::ok);
   EXPECT_EQ(r.sender, 1);
   EXPECT_EQ(r.receive_channel, 1);
   EXPECT_EQ(r.message.vr, 1);
   EXPECT_EQ(to_double(r.message.value), 2.345);
   EXPECT_EQ(vrs[1], 2.345);
   const receive_result negative = node4.receive(make_frame(43, {200, 1, 0, 0, 0x01, 0x00, 0x00, 0x05}));
-  EXPECT_EQ(negative.status, receive_status::written);
+  EXPECT_EQ(negative.status, receive_status::ok);
   EXPECT_EQ(negative.sender, 5);
   EXPECT_EQ(vrs[200], -256.0005);
   EXPECT_EQ(node4.counters().written, 2U);
@@ -161,7 +161,7 @@ TEST(CanNode, WritesGoThroughTheVrStorePolicyLikeTheRing) {
   vr_table<100> vrs(refuse_vr_seven, &asked);
   vr_exchange_node node1(address(5, 1), wire, vrs);
   EXPECT_EQ(node1.receive(make_frame(10, {7, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::refused);
-  EXPECT_EQ(node1.receive(make_frame(11, {8, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::written);
+  EXPECT_EQ(node1.receive(make_frame(11, {8, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::ok);
   EXPECT_EQ(node1.receive(make_frame(12, {150, 0, 0, 0, 0, 5, 0, 0})).status, receive_status::out_of_range);
   EXPECT_EQ(vrs[7], 0.0);
   EXPECT_EQ(vrs[8], 5.0);
@@ -171,13 +171,30 @@ TEST(CanNode, WritesGoThroughTheVrStorePolicyLikeTheRing) {
   EXPECT_EQ(node1.counters().out_of_range, 1U);
 }
 
+// A value the VR table cannot hold is its own outcome, not a vr past the table: a Q32.32 table holds
+// [-2^31, 2^31), and the wire carries integer parts up to 2^32 - 1.
+TEST(CanNode, ValueOutOfRangeIsNotFoldedIntoOutOfRange) {
+  recording_port wire;
+  vr_table<100, std::int64_t> vrs;
+  vr_exchange_node node1(address(5, 1), wire, vrs);
+  const receive_result r = node1.receive(make_frame(10, {7, 0, 0x80, 0, 0, 0, 0, 0}));  // VR(7) = 2^31
+  EXPECT_EQ(r.status, receive_status::value_out_of_range);
+  EXPECT_EQ(r.message.vr, 7U);
+  EXPECT_EQ(vrs[7], 0);
+  EXPECT_EQ(node1.counters().value_out_of_range, 1U);
+  EXPECT_EQ(node1.counters().out_of_range, 0U);
+  EXPECT_EQ(node1.receive(make_frame(11, {100, 0, 0, 0, 0, 1, 0, 0})).status, receive_status::out_of_range);
+  EXPECT_EQ(node1.counters().out_of_range, 1U);
+  EXPECT_EQ(node1.counters().value_out_of_range, 1U);
+}
+
 TEST(CanNode, AddressesAreChecked) {
-  EXPECT_EQ(make_node_address(5, 0).error, scheme_error::bad_node);
-  EXPECT_EQ(make_node_address(5, 6).error, scheme_error::bad_node);
-  EXPECT_EQ(make_node_address(1, 1).error, scheme_error::bad_node_count);
-  EXPECT_EQ(make_node_address(12, 1).error, scheme_error::bad_node_count);
+  EXPECT_EQ(make_node_address(5, 0).status, scheme_status::bad_node);
+  EXPECT_EQ(make_node_address(5, 6).status, scheme_status::bad_node);
+  EXPECT_EQ(make_node_address(1, 1).status, scheme_status::bad_node_count);
+  EXPECT_EQ(make_node_address(12, 1).status, scheme_status::bad_node_count);
   constexpr address_result eleven = make_node_address(11, 11);
-  static_assert(eleven.error == scheme_error::none && eleven.address.node() == 11, "constexpr address");
+  static_assert(eleven.status == scheme_status::ok && eleven.address.node() == 11, "constexpr address");
   EXPECT_EQ(node_address{}.node_count(), default_node_count);
 }
 
@@ -189,7 +206,7 @@ TEST(CanNode, ElevenNodeExchangeEveryPairDelivers) {
     for (std::uint8_t d = 1; d <= 11; ++d) {
       if (d == s) continue;
       ASSERT_EQ(sender.send_to_node(d, static_cast<std::uint16_t>(s * 11 + d), s + d / 100.0),
-                send_status::sent);
+                send_status::ok);
     }
   }
   for (std::uint8_t r = 1; r <= 11; ++r) {
@@ -221,12 +238,12 @@ TEST(CanNode, IdentifiersAgreeWithTheSchemeForEveryNodeAndIdentifier) {
           f.id = id | flags;
           const receive_result got = node.receive(f);
           const channel_result channel = receive_channel_of(n, k, f.id);
-          if (channel.error != scheme_error::none) {  // flagged identifiers included: never exchange frames
+          if (channel.status != scheme_status::ok) {  // flagged identifiers included: never exchange frames
             ASSERT_EQ(got.status, receive_status::foreign) << int(n) << " " << int(k) << " " << f.id;
             continue;
           }
           ASSERT_EQ(flags, 0U);
-          ASSERT_EQ(got.status, receive_status::written) << int(n) << " " << int(k) << " " << f.id;
+          ASSERT_EQ(got.status, receive_status::ok) << int(n) << " " << int(k) << " " << f.id;
           ASSERT_EQ(got.receive_channel, channel.channel);
           const route_result route = route_of(n, f.id);
           ASSERT_EQ(got.sender, route.value.sender);
@@ -237,12 +254,12 @@ TEST(CanNode, IdentifiersAgreeWithTheSchemeForEveryNodeAndIdentifier) {
         wire.frames.clear();
         const send_status sent = node.send_to_node(d, vr_message{});
         const identifier_result expected = exchange_identifier(n, k, d);
-        if (expected.error != scheme_error::none) {
+        if (expected.status != scheme_status::ok) {
           ASSERT_EQ(sent, d == k ? send_status::own_node : send_status::no_such_node);
           ASSERT_TRUE(wire.frames.empty());
           continue;
         }
-        ASSERT_EQ(sent, send_status::sent);
+        ASSERT_EQ(sent, send_status::ok);
         ASSERT_EQ(wire.frames.at(0).id, expected.identifier) << int(n) << " " << int(k) << " " << int(d);
       }
     }

@@ -1,4 +1,4 @@
-// TN20-17 VR message codec: PROTOCOL.md 2.2's example, rounding and carry edges, and every decode error.
+// TN20-17 VR message codec: docs/protocol.md 2.2's example, rounding and carry edges, and every decode error.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,13 +25,13 @@ std::string hex(const std::uint8_t (&bytes)[8]) {
   return out;
 }
 
-// PROTOCOL.md 2.2: node 1 sends VR(1) = 2.345 to node 4 -> data 01 00 00 00 00 02 0d 7a.
+// docs/protocol.md 2.2: node 1 sends VR(1) = 2.345 to node 4 -> data 01 00 00 00 00 02 0d 7a.
 TEST(CanVrCodec, ProtocolExampleVrOneIsTwoPointThreeFourFive) {
   std::uint8_t data[8] = {};
-  ASSERT_EQ(encode_vr(1, 2.345, data), encode_error::none);
+  ASSERT_EQ(encode_vr(1, 2.345, data), encode_status::ok);
   EXPECT_EQ(hex(data), "0100000000020D7A");
   const decode_result back = decode_vr_message(byte_view(data));
-  ASSERT_EQ(back.error, decode_error::none);
+  ASSERT_EQ(back.status, decode_status::ok);
   EXPECT_EQ(back.message.vr, 1);
   EXPECT_FALSE(back.message.value.negative);
   EXPECT_EQ(back.message.value.integer_part, 2U);
@@ -49,7 +49,7 @@ struct rounding_case {
 TEST(CanVrCodec, RoundsToFourDecimalsTiesAwayFromZeroWithCarry) {
   const rounding_case cases[] = {
       {2.345, false, 2, 3450},
-      {2.34565, false, 2, 3457},  // PROTOCOL.md: the decimal tie rounds up although the double is below it
+      {2.34565, false, 2, 3457},  // protocol 2.2: the decimal tie rounds up although the double is below it
       {2.34564, false, 2, 3456},
       {2.345649, false, 2, 3456},
       {2.345651, false, 2, 3457},
@@ -72,7 +72,7 @@ TEST(CanVrCodec, RoundsToFourDecimalsTiesAwayFromZeroWithCarry) {
   };
   for (const rounding_case& c : cases) {
     const value_result r = to_vr_value(c.input);
-    ASSERT_EQ(r.error, encode_error::none) << c.input;
+    ASSERT_EQ(r.status, encode_status::ok) << c.input;
     EXPECT_EQ(r.value.negative, c.negative) << c.input;
     EXPECT_EQ(r.value.integer_part, c.integer_part) << c.input;
     EXPECT_EQ(r.value.fraction, c.fraction) << c.input;
@@ -80,19 +80,19 @@ TEST(CanVrCodec, RoundsToFourDecimalsTiesAwayFromZeroWithCarry) {
 }
 
 TEST(CanVrCodec, MagnitudeOfTwoToTheThirtyTwoOrMoreIsAnError) {
-  EXPECT_EQ(to_vr_value(4294967295.99995).error, encode_error::too_large);  // one past: carries into 2^32
-  EXPECT_EQ(to_vr_value(-4294967295.99995).error, encode_error::too_large);
-  EXPECT_EQ(to_vr_value(4294967296.0).error, encode_error::too_large);
-  EXPECT_EQ(to_vr_value(-4294967296.0).error, encode_error::too_large);
-  EXPECT_EQ(to_vr_value(1e300).error, encode_error::too_large);
-  EXPECT_EQ(to_vr_value(std::numeric_limits<double>::infinity()).error, encode_error::too_large);
-  EXPECT_EQ(to_vr_value(-std::numeric_limits<double>::infinity()).error, encode_error::too_large);
-  EXPECT_EQ(to_vr_value(std::numeric_limits<double>::quiet_NaN()).error, encode_error::not_a_number);
+  EXPECT_EQ(to_vr_value(4294967295.99995).status, encode_status::too_large);  // one past: carries into 2^32
+  EXPECT_EQ(to_vr_value(-4294967295.99995).status, encode_status::too_large);
+  EXPECT_EQ(to_vr_value(4294967296.0).status, encode_status::too_large);
+  EXPECT_EQ(to_vr_value(-4294967296.0).status, encode_status::too_large);
+  EXPECT_EQ(to_vr_value(1e300).status, encode_status::too_large);
+  EXPECT_EQ(to_vr_value(std::numeric_limits<double>::infinity()).status, encode_status::too_large);
+  EXPECT_EQ(to_vr_value(-std::numeric_limits<double>::infinity()).status, encode_status::too_large);
+  EXPECT_EQ(to_vr_value(std::numeric_limits<double>::quiet_NaN()).status, encode_status::not_a_number);
   std::uint8_t data[8] = {9, 9, 9, 9, 9, 9, 9, 9};
-  EXPECT_EQ(encode_vr(1, 4294967296.0, data), encode_error::too_large);
-  EXPECT_EQ(encode_vr(256, 1.0, data), encode_error::vr_out_of_range);
+  EXPECT_EQ(encode_vr(1, 4294967296.0, data), encode_status::too_large);
+  EXPECT_EQ(encode_vr(256, 1.0, data), encode_status::vr_out_of_range);
   EXPECT_EQ(hex(data), "0909090909090909") << "nothing is written on error";
-  EXPECT_EQ(encode_vr(255, -4294967295.9999, data), encode_error::none);
+  EXPECT_EQ(encode_vr(255, -4294967295.9999, data), encode_status::ok);
   EXPECT_EQ(hex(data), "FF01FFFFFFFF270F");
 }
 
@@ -114,10 +114,10 @@ TEST(CanVrCodec, FiveDecimalInputsRoundAsDecimalsAtEveryMagnitude) {
     const std::uint64_t expected_scaled = (whole * 100000 + fifth + 5) / 10;  // ties away from zero
     const value_result r = to_vr_value(value);
     if (expected_scaled / 10000 > 4294967295ULL) {
-      EXPECT_EQ(r.error, encode_error::too_large) << text;
+      EXPECT_EQ(r.status, encode_status::too_large) << text;
       continue;
     }
-    ASSERT_EQ(r.error, encode_error::none) << text;
+    ASSERT_EQ(r.status, encode_status::ok) << text;
     EXPECT_EQ(std::uint64_t{r.value.integer_part} * 10000 + r.value.fraction, expected_scaled) << text;
     const value_result negative = to_vr_value(-value);
     EXPECT_EQ(negative.value.negative, expected_scaled != 0) << text;
@@ -137,9 +137,9 @@ TEST(CanVrCodec, FourDecimalValuesRoundTripExactly) {
                   static_cast<unsigned long long>(scaled % 10000));
     const double value = std::strtod(text, nullptr);
     std::uint8_t data[8] = {};
-    ASSERT_EQ(encode_vr(42, value, data), encode_error::none) << text;
+    ASSERT_EQ(encode_vr(42, value, data), encode_status::ok) << text;
     const decode_result back = decode_vr_message(byte_view(data));
-    ASSERT_EQ(back.error, decode_error::none);
+    ASSERT_EQ(back.status, decode_status::ok);
     EXPECT_EQ(to_double(back.message.value), value) << text;
   }
 }
@@ -147,44 +147,44 @@ TEST(CanVrCodec, FourDecimalValuesRoundTripExactly) {
 TEST(CanVrCodec, PartsEncodeBigEndianWithoutDoubles) {
   std::uint8_t data[8] = {};
   const vr_message message{200, {true, 0x12345678U, 9999}};
-  ASSERT_EQ(encode_vr_message(message, data), encode_error::none);
+  ASSERT_EQ(encode_vr_message(message, data), encode_status::ok);
   EXPECT_EQ(hex(data),
             "C801123456782"
             "70F");
   const decode_result back = decode_vr_message(byte_view(data));
-  ASSERT_EQ(back.error, decode_error::none);
+  ASSERT_EQ(back.status, decode_status::ok);
   EXPECT_EQ(back.message.vr, 200);
   EXPECT_TRUE(back.message.value.negative);
   EXPECT_EQ(back.message.value.integer_part, 0x12345678U);
   EXPECT_EQ(back.message.value.fraction, 9999);
 
-  ASSERT_EQ(encode_vr_message(vr_message{3, {true, 0, 0}}, data), encode_error::none);
+  ASSERT_EQ(encode_vr_message(vr_message{3, {true, 0, 0}}, data), encode_status::ok);
   EXPECT_EQ(hex(data), "0300000000000000") << "negative zero is sent with sign 0";
 
   std::uint8_t untouched[8] = {};
   EXPECT_EQ(encode_vr_message(vr_message{1, {false, 1, 10000}}, untouched),
-            encode_error::fraction_out_of_range);
+            encode_status::fraction_out_of_range);
   EXPECT_EQ(hex(untouched), "0000000000000000");
 }
 
 TEST(CanVrCodec, DecodeRejectsDlcSignAndFraction) {
   const std::uint8_t good[8] = {1, 0, 0, 0, 0, 2, 0x0D, 0x7A};
-  EXPECT_EQ(decode_vr_message(byte_view(good, 7)).error, decode_error::dlc);
-  EXPECT_EQ(decode_vr_message(byte_view(good, 0)).error, decode_error::dlc);
+  EXPECT_EQ(decode_vr_message(byte_view(good, 7)).status, decode_status::bad_dlc);
+  EXPECT_EQ(decode_vr_message(byte_view(good, 0)).status, decode_status::bad_dlc);
   const std::uint8_t nine[9] = {1, 0, 0, 0, 0, 2, 0x0D, 0x7A, 0};
-  EXPECT_EQ(decode_vr_message(byte_view(nine)).error, decode_error::dlc);
+  EXPECT_EQ(decode_vr_message(byte_view(nine)).status, decode_status::bad_dlc);
   const std::uint8_t sign_two[8] = {1, 2, 0, 0, 0, 2, 0x0D, 0x7A};
-  EXPECT_EQ(decode_vr_message(byte_view(sign_two)).error, decode_error::sign);
+  EXPECT_EQ(decode_vr_message(byte_view(sign_two)).status, decode_status::bad_sign);
   const std::uint8_t sign_ff[8] = {1, 0xFF, 0, 0, 0, 2, 0x0D, 0x7A};
-  EXPECT_EQ(decode_vr_message(byte_view(sign_ff)).error, decode_error::sign);
+  EXPECT_EQ(decode_vr_message(byte_view(sign_ff)).status, decode_status::bad_sign);
   const std::uint8_t fraction_10000[8] = {1, 0, 0, 0, 0, 2, 0x27, 0x10};
-  EXPECT_EQ(decode_vr_message(byte_view(fraction_10000)).error, decode_error::fraction);
+  EXPECT_EQ(decode_vr_message(byte_view(fraction_10000)).status, decode_status::bad_fraction);
   const std::uint8_t fraction_ffff[8] = {1, 1, 0, 0, 0, 2, 0xFF, 0xFF};
-  EXPECT_EQ(decode_vr_message(byte_view(fraction_ffff)).error, decode_error::fraction);
+  EXPECT_EQ(decode_vr_message(byte_view(fraction_ffff)).status, decode_status::bad_fraction);
   const std::uint8_t sign_and_fraction[8] = {1, 7, 0, 0, 0, 2, 0xFF, 0xFF};
-  EXPECT_EQ(decode_vr_message(byte_view(sign_and_fraction)).error, decode_error::sign) << "wire order";
+  EXPECT_EQ(decode_vr_message(byte_view(sign_and_fraction)).status, decode_status::bad_sign) << "wire order";
   const std::uint8_t fraction_9999[8] = {1, 0, 0, 0, 0, 2, 0x27, 0x0F};
-  EXPECT_EQ(decode_vr_message(byte_view(fraction_9999)).error, decode_error::none);
+  EXPECT_EQ(decode_vr_message(byte_view(fraction_9999)).status, decode_status::ok);
 }
 
 TEST(CanVrCodec, EveryEightByteInputIsClassifiedWithoutUndefinedBehaviour) {
@@ -194,13 +194,13 @@ TEST(CanVrCodec, EveryEightByteInputIsClassifiedWithoutUndefinedBehaviour) {
     for (std::uint8_t& b : data) b = static_cast<std::uint8_t>(random());
     const decode_result r = decode_vr_message(byte_view(data));
     const unsigned fraction = unsigned{data[6]} << 8 | data[7];
-    const decode_error expected = data[1] > 1       ? decode_error::sign
-                                  : fraction > 9999 ? decode_error::fraction
-                                                    : decode_error::none;
-    ASSERT_EQ(r.error, expected);
-    if (expected == decode_error::none) {
+    const decode_status expected = data[1] > 1       ? decode_status::bad_sign
+                                   : fraction > 9999 ? decode_status::bad_fraction
+                                                     : decode_status::ok;
+    ASSERT_EQ(r.status, expected);
+    if (expected == decode_status::ok) {
       std::uint8_t again[8] = {};
-      ASSERT_EQ(encode_vr_message(r.message, again), encode_error::none);
+      ASSERT_EQ(encode_vr_message(r.message, again), encode_status::ok);
       const bool negative_zero = data[1] == 1 && r.message.value.integer_part == 0 && fraction == 0;
       if (!negative_zero) {
         EXPECT_EQ(hex(again), hex(data));
@@ -211,7 +211,7 @@ TEST(CanVrCodec, EveryEightByteInputIsClassifiedWithoutUndefinedBehaviour) {
 
 TEST(CanVrCodec, UsableAtCompileTime) {
   constexpr value_result rounded = to_vr_value(2.34565);
-  static_assert(rounded.error == encode_error::none && rounded.value.fraction == 3457, "constexpr rounding");
+  static_assert(rounded.status == encode_status::ok && rounded.value.fraction == 3457, "constexpr rounding");
   static_assert(to_double(vr_value{true, 1, 5000}) == -1.5, "constexpr conversion");
   EXPECT_EQ(rounded.value.integer_part, 2U);
   EXPECT_TRUE(std::signbit(to_double(vr_value{true, 0, 0}))) << "sign 1 with zero magnitude decodes as -0.0";
@@ -220,9 +220,9 @@ TEST(CanVrCodec, UsableAtCompileTime) {
 }  // namespace
 
 TEST(CanVrCodec, Q32ValuesRoundWithIntegersOnly) {
-  using trionet::can::to_vr_value_q32;
+  using trionet::q32_to_decimal;
   const auto check = [](std::int64_t raw, bool negative, std::uint32_t integer, std::uint16_t fraction) {
-    const auto v = to_vr_value_q32(raw);
+    const auto v = q32_to_decimal(raw);
     EXPECT_EQ(v.negative, negative) << raw;
     EXPECT_EQ(v.integer_part, integer) << raw;
     EXPECT_EQ(v.fraction, fraction) << raw;
@@ -239,8 +239,8 @@ TEST(CanVrCodec, Q32ValuesRoundWithIntegersOnly) {
   // Agrees with the double path wherever the double is exact.
   for (std::int64_t raw : {std::int64_t{12345} << 20, -(std::int64_t{98765} << 16), std::int64_t{3} << 30}) {
     const auto from_double = trionet::can::to_vr_value(static_cast<double>(raw) / 4294967296.0);
-    ASSERT_EQ(from_double.error, trionet::can::encode_error::none);
-    const auto from_q32 = to_vr_value_q32(raw);
+    ASSERT_EQ(from_double.status, trionet::can::encode_status::ok);
+    const auto from_q32 = q32_to_decimal(raw);
     EXPECT_EQ(from_q32.negative, from_double.value.negative);
     EXPECT_EQ(from_q32.integer_part, from_double.value.integer_part);
     EXPECT_EQ(from_q32.fraction, from_double.value.fraction);
@@ -250,10 +250,10 @@ TEST(CanVrCodec, Q32ValuesRoundWithIntegersOnly) {
 // The 32-bit arithmetic gives (fraction * 10000 + 2^31) >> 32 exactly: checked against 64-bit arithmetic at
 // every rounding boundary (two fractions either side of each k + 1/2 ten-thousandths) and on random values.
 TEST(CanVrCodec, Q32FractionRoundingMatchesSixtyFourBitArithmetic) {
-  using trionet::can::to_vr_value_q32;
+  using trionet::q32_to_decimal;
   const auto expect_exact = [](std::uint32_t fraction) {
     const std::uint64_t nearest = (std::uint64_t{fraction} * 10000u + (1ULL << 31U)) >> 32U;
-    const auto v = to_vr_value_q32(static_cast<std::int64_t>((std::uint64_t{7} << 32U) | fraction));
+    const auto v = q32_to_decimal(static_cast<std::int64_t>((std::uint64_t{7} << 32U) | fraction));
     const std::uint64_t got = v.integer_part == 8 ? 10000 : v.fraction;  // 10000 carries into the integer
     ASSERT_EQ(got, nearest) << fraction;
   };

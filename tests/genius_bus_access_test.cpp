@@ -1,4 +1,4 @@
-// Genius bus access (PROTOCOL.md 3.3): rates, turn timing, margins, the bus scan and scan-time terms.
+// Genius bus access (docs/protocol.md 3.3): rates, turn timing, margins, the bus scan and scan-time terms.
 #include <gtest/gtest.h>
 
 #include <vector>

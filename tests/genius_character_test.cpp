@@ -1,4 +1,4 @@
-// Genius 11-bit characters (PROTOCOL.md 3.1): the word codec and the bit-stream receiver.
+// Genius 11-bit characters (docs/protocol.md 3.1): the word codec and the bit-stream receiver.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -80,7 +80,7 @@ collected feed(bit_receiver& rx, const std::vector<bool>& bits) {
     const bit_status s = rx.push(bit);
     if (s == bit_status::nothing_yet) continue;
     out.events.push_back(s);
-    if (s == bit_status::character) out.characters.push_back(rx.last());
+    if (s == bit_status::ok) out.characters.push_back(rx.last());
   }
   return out;
 }
@@ -132,7 +132,7 @@ TEST(GeniusBitReceiver, StopBitNot1ThenResynchronisesOnTheNext1To0Transition) {
   const collected got = feed(rx, bits);
   ASSERT_EQ(got.events.size(), 2u);
   EXPECT_EQ(got.events[0], bit_status::stop_bit_not_1);
-  EXPECT_EQ(got.events[1], bit_status::character);
+  EXPECT_EQ(got.events[1], bit_status::ok);
   EXPECT_EQ(got.characters[0], data_character(0x42));
   EXPECT_EQ(rx.stop_bit_errors(), 1u);
 }
@@ -179,7 +179,7 @@ TEST(GeniusBitReceiver, ExpectNextCharacterIsIgnoredInsideACharacter) {
     ASSERT_EQ(rx.push(bits[i]), bit_status::nothing_yet);
     rx.expect_next_character();
   }
-  EXPECT_EQ(rx.push(bits.back()), bit_status::character);
+  EXPECT_EQ(rx.push(bits.back()), bit_status::ok);
   EXPECT_EQ(rx.last(), data_character(0xf0));
   EXPECT_EQ(rx.start_bit_errors(), 0u);
 }

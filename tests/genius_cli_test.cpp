@@ -112,11 +112,11 @@ TEST(GeniusCli, DecodeReportsWireErrorsWithExit1) {
       run_cli("genius decode", "11 c:04 07 11 22 c:89 aa bb c:ce 33 c:51 c:23 5a c:75 w:412 w:41c w:489");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.out,
-            "error at character 1 (11): data outside a transmission\n"
-            "error at character 11 (c:51): stop CRC mismatch\n"
+            "error at character 1 (11): data_outside_transmission\n"
+            "error at character 11 (c:51): stop_crc_mismatch\n"
             "transmission from SBA 3, broadcast\n"
             "  data 5a\n"
-            "error at character 17 (w:489): framing error (start bit not 0)\n"
+            "error at character 17 (w:489): framing_error (start bit not 0)\n"
             "1 transmission, 3 errors, 0 characters skipped\n");
   const auto unfinished = run_cli("genius decode c:04 07");
   EXPECT_EQ(unfinished.exit_code, 1);

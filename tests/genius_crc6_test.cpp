@@ -1,4 +1,4 @@
-// CRC-6 policy (PROTOCOL.md 3.2): default CRC-6/G-704, configurable parameters.
+// CRC-6 policy (docs/protocol.md 3.2): default CRC-6/G-704, configurable parameters.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -1,4 +1,5 @@
-// Genius transmissions (PROTOCOL.md 3.2): encoder, streaming parser and the bits-to-transmissions receiver.
+// Genius transmissions (docs/protocol.md 3.2): encoder, streaming parser and the bits-to-transmissions
+// receiver.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -121,7 +122,7 @@ TEST(GeniusTransmission, ParseTheExample) {
   transmission_parser<> parser;
   const std::vector<parse_status> statuses = push_all(parser, encode(example));
   for (std::size_t i = 0; i + 1 < statuses.size(); ++i) EXPECT_EQ(statuses[i], parse_status::in_progress);
-  ASSERT_EQ(statuses.back(), parse_status::complete);
+  ASSERT_EQ(statuses.back(), parse_status::ok);
   const transmission& got = parser.received();
   EXPECT_EQ(got.sender, 4);
   EXPECT_FALSE(got.broadcast);
@@ -135,7 +136,7 @@ TEST(GeniusTransmission, ParseTheExample) {
   EXPECT_EQ(std::vector<std::uint8_t>(got.segments[1].data.begin(), got.segments[1].data.end()),
             (std::vector<std::uint8_t>{0xaa, 0xbb}));
   EXPECT_EQ(got.segments[2].data.size(), 1u);
-  EXPECT_EQ(parser.count(parse_status::complete), 1u);
+  EXPECT_EQ(parser.count(parse_status::ok), 1u);
   EXPECT_EQ(parser.errors(), 0u);
   EXPECT_FALSE(parser.in_transmission());
 }
@@ -190,10 +191,10 @@ TEST(GeniusTransmission, RandomTransmissionsRoundTripBackToBack) {
     random_transmission r;
     make_random(random, r);
     const std::vector<parse_status> statuses = push_all(parser, encode(r.t));
-    ASSERT_EQ(statuses.back(), parse_status::complete) << round;
+    ASSERT_EQ(statuses.back(), parse_status::ok) << round;
     expect_same(parser.received(), r.t);
   }
-  EXPECT_EQ(parser.count(parse_status::complete), 500u);
+  EXPECT_EQ(parser.count(parse_status::ok), 500u);
   EXPECT_EQ(parser.errors(), 0u);
 }
 
@@ -215,13 +216,13 @@ TEST(GeniusTransmission, RandomSingleCharacterCorruptionIsNeverAccepted) {
     }
     transmission_parser<128, 8> parser;
     const std::vector<parse_status> statuses = push_all(parser, characters);
-    // Not covered by any CRC (PROTOCOL.md covers data bytes only): the Start's sender and broadcast bit,
-    // and the destination SBA in a Start of block.
+    // Not covered by any CRC (docs/protocol.md 3.2 covers data bytes only): the Start's sender and broadcast
+    // bit, and the destination SBA in a Start of block.
     const character original = encode(r.t)[at];
     const bool uncovered =
         at == 0 ||
         (original.control && read_control(original.byte).kind == control_kind::start_of_block && flip < 5);
-    if (statuses.back() == parse_status::complete && !uncovered) {
+    if (statuses.back() == parse_status::ok && !uncovered) {
       ADD_FAILURE() << "corruption at " << at << " bit " << flip << " accepted";
     }
   }
@@ -238,7 +239,7 @@ void expect_error_then_recovery(const std::vector<character>& bad, parse_status 
       ++errors;
       EXPECT_EQ(s, error);
     }
-    EXPECT_NE(s, parse_status::complete);
+    EXPECT_NE(s, parse_status::ok);
   }
   EXPECT_EQ(errors, 1u);
   EXPECT_EQ(parser.count(error), 1u);
@@ -246,7 +247,7 @@ void expect_error_then_recovery(const std::vector<character>& bad, parse_status 
   const std::uint8_t data[] = {0x01};
   const segment segments[] = {{false, 0, data}};
   const std::vector<parse_status> after = push_all(parser, encode(transmission{2, true, 0, segments}));
-  EXPECT_EQ(after.back(), parse_status::complete);
+  EXPECT_EQ(after.back(), parse_status::ok);
   EXPECT_EQ(parser.received().sender, 2);
 }
 
@@ -280,7 +281,7 @@ TEST(GeniusTransmissionErrors, StartInsideTransmissionBeginsTheNewOne) {
   characters.insert(characters.end(), second.begin(), second.end());
   const std::vector<parse_status> statuses = push_all(parser, characters);
   EXPECT_EQ(statuses[2], parse_status::start_inside_transmission);
-  EXPECT_EQ(statuses.back(), parse_status::complete);
+  EXPECT_EQ(statuses.back(), parse_status::ok);
   expect_same(parser.received(), example);
   EXPECT_EQ(parser.errors(), 1u);
 }
@@ -382,14 +383,14 @@ TEST(GeniusTransmissionErrors, FramingErrorDiscardsTheOpenTransmission) {
   for (std::size_t i = 4; i < characters.size(); ++i)
     EXPECT_EQ(parser.push(characters[i]), parse_status::skipped);
   EXPECT_EQ(parser.count(parse_status::framing_error), 1u);
-  EXPECT_EQ(parser.count(parse_status::complete), 0u);
+  EXPECT_EQ(parser.count(parse_status::ok), 0u);
 }
 
 TEST(GeniusTransmission, ExactCapacityFits) {
   const std::uint8_t data[] = {1, 2, 3, 4};
   const segment segments[] = {{false, 0, data}};
   transmission_parser<4, 1> parser;
-  EXPECT_EQ(push_all(parser, encode(transmission{1, true, 0, segments})).back(), parse_status::complete);
+  EXPECT_EQ(push_all(parser, encode(transmission{1, true, 0, segments})).back(), parse_status::ok);
 }
 
 TEST(GeniusTransmission, CrcPolicyIsConfigurable) {
@@ -398,10 +399,10 @@ TEST(GeniusTransmission, CrcPolicyIsConfigurable) {
   ASSERT_NE(darc::compute(covered), crc6_g704::compute(covered));
   const std::vector<character> characters = encode<darc>(example);
   transmission_parser<256, 16, darc> with_darc;
-  EXPECT_EQ(push_all(with_darc, characters).back(), parse_status::complete);
+  EXPECT_EQ(push_all(with_darc, characters).back(), parse_status::ok);
   transmission_parser<> with_default;
   const std::vector<parse_status> statuses = push_all(with_default, characters);
-  EXPECT_NE(statuses.back(), parse_status::complete);
+  EXPECT_NE(statuses.back(), parse_status::ok);
   EXPECT_EQ(with_default.errors(), 1u);
 }
 
@@ -417,11 +418,11 @@ std::vector<bool> bits_of(const std::vector<character>& characters) {
 }
 
 template <class Receiver>
-std::vector<receive_result> push_bits(Receiver& rx, const std::vector<bool>& bits) {
-  std::vector<receive_result> events;
+std::vector<bit_result> push_bits(Receiver& rx, const std::vector<bool>& bits) {
+  std::vector<bit_result> events;
   for (bool bit : bits) {
-    const receive_result r = rx.push(bit);
-    if (r.bit != bit_status::nothing_yet) events.push_back(r);
+    const bit_result r = rx.push(bit);
+    if (r.status != bit_status::nothing_yet) events.push_back(r);
   }
   return events;
 }
@@ -435,9 +436,9 @@ TEST(GeniusTransmissionReceiver, RandomTransmissionsWithIdleGapsRoundTrip) {
     std::vector<bool> bits(random() % 30, true);  // idle line before the transmission
     const std::vector<bool> body = bits_of(encode(r.t));
     bits.insert(bits.end(), body.begin(), body.end());
-    const std::vector<receive_result> events = push_bits(rx, bits);
+    const std::vector<bit_result> events = push_bits(rx, bits);
     ASSERT_FALSE(events.empty());
-    EXPECT_EQ(events.back().parse, parse_status::complete);
+    EXPECT_EQ(events.back().parse, parse_status::ok);
     expect_same(rx.parser().received(), r.t);
   }
   EXPECT_EQ(rx.bits().start_bit_errors() + rx.bits().stop_bit_errors(), 0u);
@@ -447,28 +448,28 @@ TEST(GeniusTransmissionReceiver, GapInsideATransmissionIsAStartBitError) {
   transmission_receiver<> rx;
   std::vector<bool> bits = bits_of(encode(example));
   bits.insert(bits.begin() + 3 * character_bits, true);  // an idle bit where the 4th start bit is due
-  const std::vector<receive_result> events = push_bits(rx, bits);
+  const std::vector<bit_result> events = push_bits(rx, bits);
   bool saw = false;
-  for (const receive_result& e : events) {
-    if (e.bit == bit_status::start_bit_not_0) {
+  for (const bit_result& e : events) {
+    if (e.status == bit_status::start_bit_not_0) {
       saw = true;
       EXPECT_EQ(e.parse, parse_status::framing_error);
     }
-    EXPECT_NE(e.parse, parse_status::complete);
+    EXPECT_NE(e.parse, parse_status::ok);
   }
   EXPECT_TRUE(saw);
   EXPECT_EQ(rx.bits().start_bit_errors(), 1u);
   // The next transmission is received normally.
-  const std::vector<receive_result> next = push_bits(rx, bits_of(encode(example)));
-  EXPECT_EQ(next.back().parse, parse_status::complete);
+  const std::vector<bit_result> next = push_bits(rx, bits_of(encode(example)));
+  EXPECT_EQ(next.back().parse, parse_status::ok);
 }
 
 TEST(GeniusTransmissionReceiver, IdleAfterStopIsNotAnError) {
   transmission_receiver<> rx;
   std::vector<bool> bits = bits_of(encode(example));
   bits.insert(bits.end(), 50, true);
-  const std::vector<receive_result> events = push_bits(rx, bits);
-  EXPECT_EQ(events.back().parse, parse_status::complete);
+  const std::vector<bit_result> events = push_bits(rx, bits);
+  EXPECT_EQ(events.back().parse, parse_status::ok);
   EXPECT_EQ(rx.bits().start_bit_errors(), 0u);
 }
 
@@ -476,20 +477,20 @@ TEST(GeniusTransmissionReceiver, StopBitErrorInsideATransmission) {
   transmission_receiver<> rx;
   std::vector<bool> bits = bits_of(encode(example));
   bits[2 * character_bits + 10] = false;  // stop bit of the 3rd character
-  const std::vector<receive_result> events = push_bits(rx, bits);
+  const std::vector<bit_result> events = push_bits(rx, bits);
   // Characters 1 and 2 arrive, then the framing error; what follows is out of step (the receiver waits for
   // a 1->0 transition inside character 4) and may produce more framing errors, but never a transmission.
   ASSERT_GE(events.size(), 3u);
-  EXPECT_EQ(events[0].bit, bit_status::character);
-  EXPECT_EQ(events[1].bit, bit_status::character);
-  EXPECT_EQ(events[2].bit, bit_status::stop_bit_not_1);
+  EXPECT_EQ(events[0].status, bit_status::ok);
+  EXPECT_EQ(events[1].status, bit_status::ok);
+  EXPECT_EQ(events[2].status, bit_status::stop_bit_not_1);
   EXPECT_EQ(events[2].parse, parse_status::framing_error);
-  for (const receive_result& e : events) EXPECT_NE(e.parse, parse_status::complete);
+  for (const bit_result& e : events) EXPECT_NE(e.parse, parse_status::ok);
   EXPECT_GE(rx.bits().stop_bit_errors(), 1u);
   bits = std::vector<bool>(5, true);
   const std::vector<bool> next = bits_of(encode(example));
   bits.insert(bits.end(), next.begin(), next.end());
-  EXPECT_EQ(push_bits(rx, bits).back().parse, parse_status::complete);
+  EXPECT_EQ(push_bits(rx, bits).back().parse, parse_status::ok);
 }
 
 }  // namespace

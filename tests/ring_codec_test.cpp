@@ -1,4 +1,4 @@
-// The ring codec against PROTOCOL.md 1.2-1.4 and the manual's message format.
+// The ring codec against docs/protocol.md 1.2-1.4 and the manual's message format.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -85,11 +85,11 @@ const std::vector<std::uint8_t> golden = bytes_of(
 
 }  // namespace
 
-// ---- PROTOCOL.md 1.3 example: hop 1, vr 200, value 99 ----
+// ---- docs/protocol.md 1.3 example: hop 1, vr 200, value 99 ----
 
 TEST(RingGoldenExample, EncodesByteForByte) {
   std::uint8_t frame[16];
-  const auto result = ring::encode_variable(frame, 1, 200, ring::q32_from_integer(99));
+  const auto result = ring::encode_variable(frame, 1, 200, trionet::q32_from_integer(99));
   ASSERT_TRUE(result);
   ASSERT_EQ(result.length, 16u);
   EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
@@ -99,23 +99,23 @@ TEST(RingGoldenExample, EncodesByteForByte) {
 TEST(RingGoldenExample, Decodes) {
   const auto events = decode_all(golden);
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(events[0].status, ring::decode_status::ok);
   EXPECT_EQ(events[0].type, ring::message_type::variable);
   EXPECT_EQ(events[0].hops, 1);
   EXPECT_EQ(events[0].vr, 200);
-  EXPECT_EQ(events[0].value, ring::q32_from_integer(99));
-  EXPECT_EQ(ring::q32_to_double(events[0].value), 99.0);
+  EXPECT_EQ(events[0].value, trionet::q32_from_integer(99));
+  EXPECT_EQ(trionet::q32_to_double(events[0].value), 99.0);
 }
 
 TEST(RingGoldenExample, TableFreeCrcGivesTheSameFrame) {
   std::uint8_t frame[16];
   ASSERT_TRUE(
-      ring::encode_variable<ring::crc16_ccitt_false_bitwise>(frame, 1, 200, ring::q32_from_integer(99)));
+      ring::encode_variable<ring::crc16_ccitt_false_bitwise>(frame, 1, 200, trionet::q32_from_integer(99)));
   EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
   ring::decoder<256, ring::crc16_ccitt_false_bitwise> d;
   const auto events = decode_bytewise(d, golden);
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(events[0].status, ring::decode_status::ok);
 }
 
 // ---- CRC ----
@@ -159,11 +159,11 @@ TEST(RingCrc, AnotherPolynomialAndInitCanBePluggedIn) {
 
   // A decoder with another CRC accepts frames encoded with it and rejects default-CRC frames.
   std::uint8_t frame[16];
-  ASSERT_TRUE(ring::encode_variable<xmodem>(frame, 1, 200, ring::q32_from_integer(99)));
+  ASSERT_TRUE(ring::encode_variable<xmodem>(frame, 1, 200, trionet::q32_from_integer(99)));
   ring::decoder<256, xmodem> d;
   auto events = decode_bytewise(d, std::vector<std::uint8_t>(frame, frame + 16));
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(events[0].status, ring::decode_status::ok);
   events = decode_bytewise(d, golden);
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
@@ -229,39 +229,39 @@ TEST(RingAddressing, BasicAddressIsHopsPlusNine) {
 // ---- Q32.32 ----
 
 TEST(RingQ32, RoundsToNearestTiesAwayFromZero) {
-  const double step = 1.0 / ring::q32_one;
-  EXPECT_EQ(ring::q32_from_double(0.5 * step).raw, 1);
-  EXPECT_EQ(ring::q32_from_double(-0.5 * step).raw, -1);
-  EXPECT_EQ(ring::q32_from_double(0.49 * step).raw, 0);
-  EXPECT_EQ(ring::q32_from_double(1.5 * step).raw, 2);
-  EXPECT_EQ(ring::q32_from_double(-1.5 * step).raw, -2);
-  EXPECT_EQ(ring::q32_from_double(2.5 * step).raw, 3);
-  EXPECT_EQ(ring::q32_from_double(99.0).raw, ring::q32_from_integer(99));
-  EXPECT_EQ(ring::q32_from_double(-2.5).raw, -(std::int64_t{5} << 31));
+  const double step = 1.0 / trionet::q32_one;
+  EXPECT_EQ(trionet::q32_from_double(0.5 * step).raw, 1);
+  EXPECT_EQ(trionet::q32_from_double(-0.5 * step).raw, -1);
+  EXPECT_EQ(trionet::q32_from_double(0.49 * step).raw, 0);
+  EXPECT_EQ(trionet::q32_from_double(1.5 * step).raw, 2);
+  EXPECT_EQ(trionet::q32_from_double(-1.5 * step).raw, -2);
+  EXPECT_EQ(trionet::q32_from_double(2.5 * step).raw, 3);
+  EXPECT_EQ(trionet::q32_from_double(99.0).raw, trionet::q32_from_integer(99));
+  EXPECT_EQ(trionet::q32_from_double(-2.5).raw, -(std::int64_t{5} << 31));
 }
 
 TEST(RingQ32, OutOfRangeIsAnErrorNeverWrapped) {
-  EXPECT_TRUE(ring::q32_from_double(-2147483648.0));
-  EXPECT_EQ(ring::q32_from_double(-2147483648.0).raw, INT64_MIN);
-  EXPECT_EQ(ring::q32_from_double(2147483648.0).error, ring::q32_error::out_of_range);
-  EXPECT_EQ(ring::q32_from_double(-2147483649.0).error, ring::q32_error::out_of_range);
-  EXPECT_EQ(ring::q32_from_double(1e300).error, ring::q32_error::out_of_range);
-  EXPECT_EQ(ring::q32_from_double(-1e300).error, ring::q32_error::out_of_range);
-  EXPECT_EQ(ring::q32_from_double(std::numeric_limits<double>::infinity()).error,
-            ring::q32_error::out_of_range);
-  EXPECT_EQ(ring::q32_from_double(std::nan("")).error, ring::q32_error::not_a_number);
+  EXPECT_TRUE(trionet::q32_from_double(-2147483648.0));
+  EXPECT_EQ(trionet::q32_from_double(-2147483648.0).raw, INT64_MIN);
+  EXPECT_EQ(trionet::q32_from_double(2147483648.0).status, trionet::q32_status::out_of_range);
+  EXPECT_EQ(trionet::q32_from_double(-2147483649.0).status, trionet::q32_status::out_of_range);
+  EXPECT_EQ(trionet::q32_from_double(1e300).status, trionet::q32_status::out_of_range);
+  EXPECT_EQ(trionet::q32_from_double(-1e300).status, trionet::q32_status::out_of_range);
+  EXPECT_EQ(trionet::q32_from_double(std::numeric_limits<double>::infinity()).status,
+            trionet::q32_status::out_of_range);
+  EXPECT_EQ(trionet::q32_from_double(std::nan("")).status, trionet::q32_status::not_a_number);
   // The largest double below 2^31 is in range.
   const double below = std::nextafter(2147483648.0, 0.0);
-  ASSERT_TRUE(ring::q32_from_double(below));
-  EXPECT_GT(ring::q32_from_double(below).raw, 0);
+  ASSERT_TRUE(trionet::q32_from_double(below));
+  EXPECT_GT(trionet::q32_from_double(below).raw, 0);
 }
 
 TEST(RingQ32, RawBitsAreTwosComplement) {
-  EXPECT_EQ(ring::q32_from_raw(0xFFFFFFFFFFFFFFFFull), -1);
-  EXPECT_EQ(ring::q32_from_raw(0x8000000000000000ull), INT64_MIN);
-  EXPECT_EQ(ring::q32_from_raw(0x0000006300000000ull), ring::q32_from_integer(99));
-  EXPECT_EQ(ring::q32_to_raw(-1), 0xFFFFFFFFFFFFFFFFull);
-  EXPECT_EQ(ring::q32_to_double(ring::q32_from_raw(0xFFFFFFFF80000000ull)), -0.5);
+  EXPECT_EQ(trionet::q32_from_raw(0xFFFFFFFFFFFFFFFFull), -1);
+  EXPECT_EQ(trionet::q32_from_raw(0x8000000000000000ull), INT64_MIN);
+  EXPECT_EQ(trionet::q32_from_raw(0x0000006300000000ull), trionet::q32_from_integer(99));
+  EXPECT_EQ(trionet::q32_to_raw(-1), 0xFFFFFFFFFFFFFFFFull);
+  EXPECT_EQ(trionet::q32_to_double(trionet::q32_from_raw(0xFFFFFFFF80000000ull)), -0.5);
 }
 
 // ---- encoders ----
@@ -291,43 +291,43 @@ TEST(RingEncode, NegativeValueCarriesBit63InX9) {
 TEST(RingEncode, ErrorsWriteNothing) {
   struct bad_case {
     ring::message m;
-    ring::encode_error expected;
+    ring::encode_status expected;
   };
   const std::uint8_t high[] = {'A', 200};
   const std::uint8_t ok[] = {'A'};
   const bad_case cases[] = {
-      {ring::message::characters(0, byte_view(ok, 1)), ring::encode_error::hops_out_of_range},
-      {ring::message::characters(16, byte_view(ok, 1)), ring::encode_error::hops_out_of_range},
-      {ring::message::characters(1, byte_view()), ring::encode_error::empty_text},
-      {ring::message::characters(1, byte_view(high, 2)), ring::encode_error::character_out_of_range},
-      {ring::message::variable(1, 16384, 0), ring::encode_error::vr_out_of_range},
-      {ring::message::keypad_offset(1, 0), ring::encode_error::offset_out_of_range},
-      {ring::message::keypad_offset(1, 16), ring::encode_error::offset_out_of_range},
-      {ring::message::keypad_mode(1, 1), ring::encode_error::mode_out_of_range},
-      {ring::message::keypad_mode(1, 128), ring::encode_error::mode_out_of_range},
+      {ring::message::characters(0, byte_view(ok, 1)), ring::encode_status::hops_out_of_range},
+      {ring::message::characters(16, byte_view(ok, 1)), ring::encode_status::hops_out_of_range},
+      {ring::message::characters(1, byte_view()), ring::encode_status::empty_text},
+      {ring::message::characters(1, byte_view(high, 2)), ring::encode_status::character_out_of_range},
+      {ring::message::variable(1, 16384, 0), ring::encode_status::vr_out_of_range},
+      {ring::message::keypad_offset(1, 0), ring::encode_status::offset_out_of_range},
+      {ring::message::keypad_offset(1, 16), ring::encode_status::offset_out_of_range},
+      {ring::message::keypad_mode(1, 1), ring::encode_status::mode_out_of_range},
+      {ring::message::keypad_mode(1, 128), ring::encode_status::mode_out_of_range},
   };
   for (const auto& c : cases) {
     std::uint8_t frame[32];
     std::memset(frame, 0xA5, sizeof frame);
     const auto result = ring::encode(frame, c.m);
-    EXPECT_EQ(result.error, c.expected) << ring::to_string(c.expected);
+    EXPECT_EQ(result.status, c.expected) << ring::to_string(c.expected);
     EXPECT_EQ(result.length, 0u);
     for (std::uint8_t b : frame) ASSERT_EQ(b, 0xA5) << "partial write for " << ring::to_string(c.expected);
   }
   ring::message unknown = ring::message::keypad_mode(1, 0);
   unknown.type = static_cast<ring::message_type>(5);
   std::uint8_t frame[8];
-  EXPECT_EQ(ring::encode(frame, unknown).error, ring::encode_error::unknown_type);
+  EXPECT_EQ(ring::encode(frame, unknown).status, ring::encode_status::unknown_type);
 }
 
 TEST(RingEncode, BufferTooSmallWritesNothing) {
   std::uint8_t frame[16];
   std::memset(frame, 0xA5, sizeof frame);
   const auto result = ring::encode_variable(trionet::byte_buffer(frame, 15), 1, 200, 0);
-  EXPECT_EQ(result.error, ring::encode_error::buffer_too_small);
+  EXPECT_EQ(result.status, ring::encode_status::buffer_too_small);
   for (std::uint8_t b : frame) EXPECT_EQ(b, 0xA5);
-  EXPECT_EQ(ring::encode_characters(trionet::byte_buffer(frame, 4), 1, "ABC", 3).error,
-            ring::encode_error::buffer_too_small);
+  EXPECT_EQ(ring::encode_characters(trionet::byte_buffer(frame, 4), 1, "ABC", 3).status,
+            ring::encode_status::buffer_too_small);
   EXPECT_TRUE(ring::encode_characters(trionet::byte_buffer(frame, 5), 1, "ABC", 3));
 }
 
@@ -337,7 +337,7 @@ TEST(RingDecodeErrors, StrayDataOncePerRun) {
   const auto events = decode_all(bytes_of({0x01, 0x02, 0x03, 0x91, 'A', 0x90, 0x04, 0x05}));
   ASSERT_EQ(events.size(), 3u);
   EXPECT_EQ(events[0].error, ring::frame_error::stray_data);
-  EXPECT_EQ(events[1].status, ring::decode_status::message);
+  EXPECT_EQ(events[1].status, ring::decode_status::ok);
   EXPECT_EQ(events[1].text, "A");
   EXPECT_EQ(events[2].error, ring::frame_error::stray_data);
 }
@@ -351,7 +351,7 @@ TEST(RingDecodeErrors, InterruptedByHeaderThenTheNewMessageDecodes) {
   const auto events = decode_all(bytes_of({0x89, 'A', 'B', 0x91, 'C', 0x90}));
   ASSERT_EQ(events.size(), 2u);
   EXPECT_EQ(events[0].error, ring::frame_error::interrupted);
-  EXPECT_EQ(events[1].status, ring::decode_status::message);
+  EXPECT_EQ(events[1].status, ring::decode_status::ok);
   EXPECT_EQ(events[1].hops, 2);
   EXPECT_EQ(events[1].text, "C");
 }
@@ -397,7 +397,7 @@ TEST(RingDecodeErrors, ZeroHopsSkipsToThatMessagesEnd) {
   const auto events = decode_all(bytes_of({0x81, 'X', 'Y', 0x80, 0x89, 'A', 0x88}));
   ASSERT_EQ(events.size(), 2u);
   EXPECT_EQ(events[0].error, ring::frame_error::zero_hops);
-  EXPECT_EQ(events[1].status, ring::decode_status::message);
+  EXPECT_EQ(events[1].status, ring::decode_status::ok);
   EXPECT_EQ(events[1].text, "A");
   // ... or to the next header.
   const auto again = decode_all(bytes_of({0x81, 'X', 0x89, 'A', 0x88}));
@@ -475,7 +475,7 @@ TEST(RingDecode, RecoversAtNextHeaderAfterEveryError) {
     stream.insert(stream.end(), golden.begin(), golden.end());
     const auto events = decode_all(stream);
     ASSERT_FALSE(events.empty());
-    EXPECT_EQ(events.back().status, ring::decode_status::message);
+    EXPECT_EQ(events.back().status, ring::decode_status::ok);
     EXPECT_EQ(events.back().vr, 200);
   }
 }
@@ -526,7 +526,7 @@ TEST(RingProperty, HundredThousandRandomMessagesRoundTrip) {
       }
     }
     ASSERT_EQ(results, 1);
-    ASSERT_EQ(last.status, ring::decode_status::message);
+    ASSERT_EQ(last.status, ring::decode_status::ok);
     ASSERT_EQ(last.msg.type, m.type);
     ASSERT_EQ(last.msg.hops, m.hops);
     switch (m.type) {
@@ -616,12 +616,12 @@ TEST(RingCrc, SlicedTablesGiveTheSameCrc) {
   // A decoder and an encoder with the sliced policy agree with the golden frame.
   std::uint8_t frame[16];
   ASSERT_TRUE(
-      ring::encode_variable<ring::crc16_ccitt_false_sliced>(frame, 1, 200, ring::q32_from_integer(99)));
+      ring::encode_variable<ring::crc16_ccitt_false_sliced>(frame, 1, 200, trionet::q32_from_integer(99)));
   EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
   ring::decoder<256, ring::crc16_ccitt_false_sliced> d;
   const auto events = decode_bulk(d, golden);
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(events[0].status, ring::decode_status::ok);
 }
 
 // A CRC policy written by hand, with only initial, update and finish, plugs in too.
@@ -641,6 +641,6 @@ TEST(RingCrc, HandWrittenPolicyWithTheMinimalInterface) {
   ring::decoder<256, sum16> d;
   const auto events = decode_bytewise(d, std::vector<std::uint8_t>(frame, frame + 16));
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::message);
+  EXPECT_EQ(events[0].status, ring::decode_status::ok);
   EXPECT_EQ(frame[13], 2);  // V0 + X0 = 1 + 1
 }

@@ -76,7 +76,7 @@ TEST(RingLiveness, SilentStallAForwardedMessageThatLostItsEndIsEndedByTheIdleLin
   trionet::vr_table<16> vr;
   ring::motion_coordinator<> mc(vr);
   feed(mc, {ring::make_header(3, 1), 'A', 'B', 'C'});  // ... and its end of message is lost
-  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
   EXPECT_EQ(drain(mc), (std::vector<std::uint8_t>{ring::make_header(2, 1), 'A', 'B', 'C'}));
   EXPECT_TRUE(mc.in_message());
   EXPECT_FALSE(mc.transmit_pending());  // waiting for the rest of the forwarded message
@@ -119,7 +119,7 @@ TEST(RingLiveness, KeypadHasTheIdleLineToo) {
   EXPECT_FALSE(keypad.in_message());
   EXPECT_EQ(keypad.forwarding_counters().forwards_ended_idle, 1u);
   EXPECT_EQ(keypad.netstat(), ring::netstat_tx_buffer_error);
-  ASSERT_EQ(keypad.press(ring::key::digit_5), ring::key_result::sent);
+  ASSERT_EQ(keypad.press(ring::key::digit_5), ring::key_status::ok);
   EXPECT_EQ(drain(keypad), (std::vector<std::uint8_t>{ring::make_header(3, 1), 'X',  // cut short
                                                       ring::make_header(2, 1), '5', ring::make_end_of_message(2)}));
 }
@@ -149,8 +149,8 @@ TEST(RingLiveness, AForwardedMessageLongerThanLegalIsCutAndCounted) {
     EXPECT_EQ(sent.size(), 1 + l.data);
     EXPECT_EQ(mc.forwarding_counters().forwards_cut, 1u);
     EXPECT_EQ(mc.netstat(), ring::netstat_tx_buffer_error);
-    EXPECT_EQ(mc.forwarding_counters().bytes[static_cast<int>(ring::route::lost)], 1u);
-    EXPECT_EQ(mc.forwarding_counters().bytes[static_cast<int>(ring::route::dropped)], 4u + 1u);
+    EXPECT_EQ(mc.forwarding_counters().bytes[static_cast<int>(ring::byte_route::lost)], 1u);
+    EXPECT_EQ(mc.forwarding_counters().bytes[static_cast<int>(ring::byte_route::dropped)], 4u + 1u);
     // A legal message just after is forwarded whole.
     feed(mc, chars(3, "NEXT"));
     EXPECT_EQ(drain(mc), chars(2, "NEXT"));
@@ -188,15 +188,15 @@ TEST(RingLiveness, DeadRingALappingPrintLosesItsEndOfMessage) {
     ring::keypad<> keypad;
     ring::simulator<> sim(idle);
     ASSERT_TRUE(sim.add(a) && sim.add(b) && sim.add(keypad));
-    ASSERT_EQ(a.send_keypad_offset(11, 11), ring::send_result::queued);  // keys to A, two hops on
+    ASSERT_EQ(a.send_keypad_offset(11, 11), ring::send_status::ok);  // keys to A, two hops on
     sim.run(20);
     ASSERT_TRUE(keypad.network_mode());
 
     drop_first fault{0, is_end_of_message};
     sim.set_fault_hook(&drop_first::hook, &fault);
-    ASSERT_EQ(a.print(14, "ONCE ROUND THE RING").status, ring::send_result::queued);  // 5 hops: ends at B
-    ASSERT_EQ(a.print(10, "A TO B").status, ring::send_result::queued);
-    ASSERT_EQ(b.print(11, "B TO A").status, ring::send_result::queued);
+    ASSERT_EQ(a.print(14, "ONCE ROUND THE RING").status, ring::send_status::ok);  // 5 hops: ends at B
+    ASSERT_EQ(a.print(10, "A TO B").status, ring::send_status::ok);
+    ASSERT_EQ(b.print(11, "B TO A").status, ring::send_status::ok);
     std::uint64_t crossed_late = 0, idles = 0;
     sim.run(1000, [&](const auto& event) {
       if constexpr (std::is_same_v<std::decay_t<decltype(event)>, ring::link_byte>) {
@@ -246,7 +246,7 @@ TEST(RingLiveness, LivelockCirculatingCharactersAreCutByTheBound) {
     }
   } f;
   sim.set_fault_hook(&fault::hook, &f);
-  ASSERT_EQ(a.print(24, "FIVE LAPS ROUND").status, ring::send_result::queued);
+  ASSERT_EQ(a.print(24, "FIVE LAPS ROUND").status, ring::send_status::ok);
   std::uint64_t last_byte = 0, last_fault = 0;
   sim.run(2000, [&](const auto& event) {
     if constexpr (std::is_same_v<std::decay_t<decltype(event)>, ring::link_byte>) {
@@ -262,9 +262,9 @@ TEST(RingLiveness, LivelockCirculatingCharactersAreCutByTheBound) {
                             c.forwarding_counters().forwards_cut;
   EXPECT_GE(cut, 1u);
   // And the ring works: every node's probe arrives.
-  ASSERT_EQ(a.print(10, "PROBE A").status, ring::send_result::queued);
-  ASSERT_EQ(b.print(10, "PROBE B").status, ring::send_result::queued);
-  ASSERT_EQ(c.print(10, "PROBE C").status, ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "PROBE A").status, ring::send_status::ok);
+  ASSERT_EQ(b.print(10, "PROBE B").status, ring::send_status::ok);
+  ASSERT_EQ(c.print(10, "PROBE C").status, ring::send_status::ok);
   sim.run(100);
   EXPECT_NE(read_all(b).find("PROBE A"), std::string::npos);
   EXPECT_NE(read_all(c).find("PROBE B"), std::string::npos);
@@ -307,7 +307,7 @@ TEST(RingLiveness, ABigTransmitQueueNeverCostsForwardedTraffic) {
   for (int t = 0; t < 20000; ++t) {
     if (a.transmit_free() >= 64) {  // A keeps B busy forwarding 60-character PRINT#s to C (2 messages)
       ASSERT_EQ(a.print(11, std::string(60, static_cast<char>('a' + sent % 26)).c_str()).status,
-                ring::send_result::queued);
+                ring::send_status::ok);
       ++sent;
     }
     if (b.transmit_free() >= 64) (void)b.print(10, std::string(60, 'B').c_str());  // and has its own
@@ -328,7 +328,7 @@ TEST(RingLiveness, AFortyCharacterDisplayUpdateAtDefaultCapacities) {
   ring::keypad<> keypad;
   ring::simulator<> sim;
   ASSERT_TRUE(sim.add(mc) && sim.add(keypad));
-  ASSERT_EQ(mc.send_keypad_offset(10, 10), ring::send_result::queued);
+  ASSERT_EQ(mc.send_keypad_offset(10, 10), ring::send_status::ok);
   sim.run(10);
   const std::string line = "LINE ONE IS TWENTY..LINE TWO TOO, TWENTY";  // the whole 2 x 20 display
   ASSERT_EQ(line.size(), 40u);
@@ -337,7 +337,7 @@ TEST(RingLiveness, AFortyCharacterDisplayUpdateAtDefaultCapacities) {
     sim.step();
     return true;
   });
-  EXPECT_EQ(r.status, ring::send_result::queued);
+  EXPECT_EQ(r.status, ring::send_status::ok);
   EXPECT_EQ(r.queued, 41u);
   sim.run(100);
   EXPECT_EQ(std::string(keypad.display().line(0)), line.substr(0, 20));
@@ -352,7 +352,7 @@ TEST(RingLiveness, PrintQueuesWholeMessagesAndSaysHowMuch) {
   std::string text;
   for (int i = 0; i < 256; ++i) text += static_cast<char>('!' + i % 90);
   ring::print_result r = a.print(10, text.c_str());
-  EXPECT_EQ(r.status, ring::send_result::queue_full);
+  EXPECT_EQ(r.status, ring::send_status::queue_full);
   EXPECT_EQ(r.queued, 30u);  // one message: the forward buffer's 32 bytes
   EXPECT_EQ(a.netstat(), ring::netstat_tx_timeout);
   EXPECT_EQ(a.counters().sends_refused, 1u);
@@ -366,7 +366,7 @@ TEST(RingLiveness, PrintQueuesWholeMessagesAndSaysHowMuch) {
     for (int i = 0; i < 5 && a.transmit(byte); ++i) wire.push_back(byte);
     return true;
   });
-  EXPECT_EQ(r.status, ring::send_result::queued);
+  EXPECT_EQ(r.status, ring::send_status::ok);
   EXPECT_EQ(r.queued, 256u);
   EXPECT_GT(waits, 0u);
   EXPECT_EQ(a.netstat(), 0);
@@ -381,13 +381,13 @@ TEST(RingLiveness, PrintQueuesWholeMessagesAndSaysHowMuch) {
   EXPECT_EQ(b.counters().frame_errors, 0u);
   // Giving up sets NETSTAT bit 0 and says how far it got.
   r = a.print_all(10, text.c_str(), [] { return false; });
-  EXPECT_EQ(r.status, ring::send_result::queue_full);
+  EXPECT_EQ(r.status, ring::send_status::queue_full);
   EXPECT_EQ(r.queued, 30u);
   EXPECT_EQ(a.netstat(), ring::netstat_tx_timeout);
   // Nothing is queued unless every character is valid.
   a.clear_netstat();
   const std::size_t free_before = a.transmit_free();
-  EXPECT_EQ(a.print(10, (text + "\xff").c_str()).status, ring::send_result::character_out_of_range);
+  EXPECT_EQ(a.print(10, (text + "\xff").c_str()).status, ring::send_status::character_out_of_range);
   EXPECT_EQ(a.transmit_free(), free_before);
 }
 

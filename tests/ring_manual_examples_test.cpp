@@ -36,7 +36,7 @@ TEST(ManualNodeAddressingExample, RingOfFour) {
   } cases[] = {{10, &node10}, {12, &node12}, {13, &sender}, {14, &node10}, {18, &node10}};
   for (const auto& c : cases) {
     const std::string text = "TO " + std::to_string(c.address);
-    ASSERT_EQ(sender.print(c.address, text.c_str()).status, ring::send_result::queued);
+    ASSERT_EQ(sender.print(c.address, text.c_str()).status, ring::send_status::ok);
     sim.run(200);
     for (mc_node* n : {&sender, &node10, &node11, &node12}) {
       EXPECT_EQ(read_all(*n), n == c.destination ? text : "") << "address " << c.address;
@@ -55,12 +55,12 @@ TEST(ManualKeypadOffsetExample, KeyPressesReachMCc) {
   ring::simulator<> sim;
   for (trionet::byte_port* n : std::initializer_list<trionet::byte_port*>{&a, &b, &c, &keypad})
     ASSERT_TRUE(sim.add(*n));
-  ASSERT_EQ(a.send_keypad_offset(10 + 2, 10 + 2), ring::send_result::queued);
+  ASSERT_EQ(a.send_keypad_offset(10 + 2, 10 + 2), ring::send_status::ok);
   sim.run(50);
   ASSERT_TRUE(keypad.network_mode());
   EXPECT_EQ(keypad.offset(), 3);
-  ASSERT_EQ(keypad.press(ring::key::digit_4), ring::key_result::sent);
-  ASSERT_EQ(keypad.press(ring::key::yes), ring::key_result::sent);
+  ASSERT_EQ(keypad.press(ring::key::digit_4), ring::key_status::ok);
+  ASSERT_EQ(keypad.press(ring::key::yes), ring::key_status::ok);
   sim.run(50);
   EXPECT_EQ(read_all(a), "");
   EXPECT_EQ(read_all(b), "");
@@ -77,8 +77,8 @@ TEST(ManualExample1, TwoKeypadsOneMotionCoordinator) {
   ASSERT_TRUE(ex.keypad2.network_mode());
   EXPECT_EQ(ex.keypad1.offset(), 2);  // SEND(10,2,11): two nodes on, round to the MC
   EXPECT_EQ(ex.keypad2.offset(), 1);  // SEND(11,2,10)
-  // PRINT without ';' ends with CR LF, and CR moves to the start of the other line (PROTOCOL.md 1.9): the
-  // first PRINT's CR leaves the cursor on the second line, so "SPEED:" lands there and "LENGTH:" on the
+  // PRINT without ';' ends with CR LF, and CR moves to the start of the other line (docs/protocol.md 1.9):
+  // the first PRINT's CR leaves the cursor on the second line, so "SPEED:" lands there and "LENGTH:" on the
   // first.
   EXPECT_EQ(std::string(ex.keypad1.display().line(0)), "LENGTH:             ");
   EXPECT_EQ(std::string(ex.keypad1.display().line(1)), "SPEED:              ");
@@ -131,12 +131,12 @@ TEST(ManualWarning, MessageThroughAKeypadInLocalModeIsLost) {
   ASSERT_TRUE(sim.add(a));
   ASSERT_TRUE(sim.add(keypad));
   ASSERT_TRUE(sim.add(b));
-  ASSERT_EQ(a.print(11, "TOO EARLY").status, ring::send_result::queued);
+  ASSERT_EQ(a.print(11, "TOO EARLY").status, ring::send_status::ok);
   sim.run(50);
   EXPECT_EQ(read_all(b), "");
   EXPECT_EQ(keypad.forwarding_counters().messages_dropped, 1u);
-  ASSERT_EQ(a.send_keypad_offset(10, 11), ring::send_result::queued);
-  ASSERT_EQ(a.print(11, "IN TIME").status, ring::send_result::queued);
+  ASSERT_EQ(a.send_keypad_offset(10, 11), ring::send_status::ok);
+  ASSERT_EQ(a.print(11, "IN TIME").status, ring::send_status::ok);
   sim.run(50);
   EXPECT_EQ(read_all(b), "IN TIME");
   EXPECT_EQ(keypad.forwarding_counters().messages_dropped, 1u);
@@ -170,13 +170,13 @@ std::uint64_t key_wait(bool keypad_between, int burst) {
   int queued = 0;
   auto refill = [&] {
     while (queued < burst && source.transmit_free() >= 16) {
-      EXPECT_EQ(source.send_variable(sink_address, 1, queued), ring::send_result::queued);
+      EXPECT_EQ(source.send_variable(sink_address, 1, queued), ring::send_status::ok);
       ++queued;
     }
   };
   refill();
   sim.run(20);  // the flow is running
-  EXPECT_EQ(keypad.press(ring::key::digit_1), ring::key_result::sent);
+  EXPECT_EQ(keypad.press(ring::key::digit_1), ring::key_status::ok);
   const std::uint64_t pressed = sim.now();
   std::uint64_t left = 0;
   const std::size_t keypad_link = keypad_between ? 1 : 2;

@@ -1,5 +1,5 @@
-// Ring nodes (PROTOCOL.md 1.5-1.9): forwarding, delivery, the receive buffer, NETSTAT, the keypad and its
-// display, and the simulator's fault injection.
+// Ring nodes (docs/protocol.md 1.5-1.9): forwarding, delivery, the receive buffer, NETSTAT, the keypad and
+// its display, and the simulator's fault injection.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -88,7 +88,7 @@ TEST(RingForwarding, ForwardedTrafficGoesBeforeOwnAtMessageBoundaries) {
   mc_node mc(vr);
   const auto forwarded = chars(2, "FW");
   feed(mc, forwarded);
-  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
   std::vector<std::uint8_t> expected = chars(1, "FW");
   const auto own = chars(1, "OWN");
   expected.insert(expected.end(), own.begin(), own.end());
@@ -98,7 +98,7 @@ TEST(RingForwarding, ForwardedTrafficGoesBeforeOwnAtMessageBoundaries) {
 TEST(RingForwarding, NeverInterleavesTwoMessages) {
   trionet::vr_table<16> vr;
   mc_node mc(vr);
-  ASSERT_EQ(mc.print(10, "OWN MESSAGE").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN MESSAGE").status, ring::send_status::ok);
   std::vector<std::uint8_t> sent;
   std::uint8_t b = 0;
   ASSERT_TRUE(mc.transmit(b));  // own message has begun
@@ -119,7 +119,7 @@ TEST(RingForwarding, NeverInterleavesTwoMessages) {
 TEST(RingForwarding, ForwardBufferOverflowLosesTheMessageAndSetsNetstatBit1) {
   trionet::vr_table<16> vr;
   ring::motion_coordinator<256, 16, 48> mc(vr);  // forward buffer of 16
-  ASSERT_EQ(mc.print(10, "OWN MESSAGE 14").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN MESSAGE 14").status, ring::send_status::ok);
   std::uint8_t b = 0;
   ASSERT_TRUE(mc.transmit(b));  // own message has begun: forwarding must wait
   // Faster than the line could bring it (a burst from a host, say): 22 bytes for 16 places.
@@ -142,7 +142,7 @@ TEST(RingForwarding, AForwardedMessageCutShortUpstreamDoesNotBlockTheNode) {
   mc.receive('X');
   // The end of message is lost; a message for this node arrives instead.
   feed(mc, chars(1, "ME"));
-  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
   std::vector<std::uint8_t> expected = {ring::make_header(2, 1), 'X'};
   const auto own = chars(1, "OWN");
   expected.insert(expected.end(), own.begin(), own.end());
@@ -156,7 +156,7 @@ TEST(RingMotionCoordinator, KeyAndGetWithDefkey) {
   trionet::vr_table<16> vr;
   mc_node mc(vr);
   EXPECT_FALSE(mc.key(3));
-  EXPECT_EQ(mc.get(4).status, ring::get_result::status::nothing_yet);
+  EXPECT_EQ(mc.get(4).status, ring::get_status::nothing_yet);
   feed(mc, chars(1, "U5"));
   EXPECT_TRUE(mc.key(3));
   EXPECT_TRUE(mc.key(4));
@@ -167,7 +167,7 @@ TEST(RingMotionCoordinator, KeyAndGetWithDefkey) {
   EXPECT_FALSE(mc.get(3));
   feed(mc, chars(1, "U"));
   EXPECT_EQ(mc.get(4).value, 'U');  // GET#4 is raw
-  EXPECT_EQ(mc.get(7).status, ring::get_result::status::bad_channel);
+  EXPECT_EQ(mc.get(7).status, ring::get_status::bad_channel);
 }
 
 TEST(RingMotionCoordinator, DefaultDefkeyTranslatesTheKeypadCodes) {
@@ -189,7 +189,7 @@ TEST(RingMotionCoordinator, ConfigurableDefkey) {
 TEST(RingMotionCoordinator, DirectVariableTransferWritesVr) {
   trionet::vr_table<256> vr;
   mc_node mc(vr);
-  feed(mc, frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99))));
+  feed(mc, frame_of(ring::message::variable(1, 200, trionet::q32_from_integer(99))));
   EXPECT_EQ(vr[200], 99.0);
   EXPECT_EQ(mc.counters().variables_written, 1u);
   EXPECT_FALSE(mc.key(4));  // not a character
@@ -199,9 +199,9 @@ TEST(RingMotionCoordinator, WritePolicyRefusesAndOutOfRangeIsCounted) {
   auto read_only_below_10 = [](void*, std::uint16_t vr, double) noexcept { return vr >= 10; };
   trionet::vr_table<64> vr(read_only_below_10);
   mc_node mc(vr);
-  feed(mc, frame_of(ring::message::variable(1, 5, ring::q32_from_integer(1))));
-  feed(mc, frame_of(ring::message::variable(1, 20, ring::q32_from_integer(2))));
-  feed(mc, frame_of(ring::message::variable(1, 64, ring::q32_from_integer(3))));
+  feed(mc, frame_of(ring::message::variable(1, 5, trionet::q32_from_integer(1))));
+  feed(mc, frame_of(ring::message::variable(1, 20, trionet::q32_from_integer(2))));
+  feed(mc, frame_of(ring::message::variable(1, 64, trionet::q32_from_integer(3))));
   EXPECT_EQ(vr[5], 0.0);
   EXPECT_EQ(vr[20], 2.0);
   EXPECT_EQ(mc.counters().variables_refused, 1u);
@@ -209,10 +209,32 @@ TEST(RingMotionCoordinator, WritePolicyRefusesAndOutOfRangeIsCounted) {
   EXPECT_EQ(mc.counters().variables_out_of_range, 1u);
 }
 
+// A store that cannot hold a value says so (`value_out_of_range`), and the MC counts that apart from a vr
+// past the table.
+TEST(RingMotionCoordinator, ValueOutOfRangeIsNotFoldedIntoOutOfRange) {
+  class small_values final : public trionet::vr_store {  // holds VR(0..9), values below 1000 only
+   public:
+    trionet::vr_write_status write(std::uint16_t vr, const trionet::network_value& value) noexcept override {
+      if (vr >= 10) return trionet::vr_write_status::out_of_range;
+      if (value.to_double() >= 1000.0) return trionet::vr_write_status::value_out_of_range;
+      return trionet::vr_write_status::ok;
+    }
+  } store;
+  mc_node mc(store);
+  feed(mc, frame_of(ring::message::variable(1, 5, trionet::q32_from_integer(1000))));
+  EXPECT_EQ(mc.counters().variables_value_out_of_range, 1u);
+  EXPECT_EQ(mc.counters().variables_out_of_range, 0u);
+  feed(mc, frame_of(ring::message::variable(1, 10, trionet::q32_from_integer(1))));
+  EXPECT_EQ(mc.counters().variables_out_of_range, 1u);
+  EXPECT_EQ(mc.counters().variables_value_out_of_range, 1u);
+  feed(mc, frame_of(ring::message::variable(1, 5, trionet::q32_from_integer(999))));
+  EXPECT_EQ(mc.counters().variables_written, 1u);
+}
+
 TEST(RingMotionCoordinator, CrcErrorSetsNetstatBit2AndDoesNotWrite) {
   trionet::vr_table<256> vr;
   mc_node mc(vr);
-  auto frame = frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99)));
+  auto frame = frame_of(ring::message::variable(1, 200, trionet::q32_from_integer(99)));
   frame[8] ^= 0x01;
   feed(mc, frame);
   EXPECT_EQ(vr[200], 0.0);
@@ -260,7 +282,7 @@ TEST(RingMotionCoordinator, ReceiveBufferIsAllOrNothingPerMessage) {
   EXPECT_EQ(mc.characters_waiting(), 0u);
 }
 
-// The character maximum (PROTOCOL.md 1.4, default 256) is not the receive buffer's size: a longer message is a
+// The character maximum (docs/protocol.md 1.4, default 256) is not the receive buffer's size: a longer message is a
 // frame error (bad length), whatever the buffer.
 TEST(RingMotionCoordinator, LongerThanTheCharacterMaximumIsABadLength) {
   trionet::vr_table<16> vr;
@@ -289,18 +311,18 @@ TEST(RingMotionCoordinator, KeypadMessagesAreIgnoredAndCounted) {
 TEST(RingMotionCoordinator, SendCallsRejectOutOfRangeBeforeQueuingAByte) {
   trionet::vr_table<16> vr;
   mc_node mc(vr);
-  EXPECT_EQ(mc.print(9, "X").status, ring::send_result::bad_address);
-  EXPECT_EQ(mc.print(25, "X").status, ring::send_result::bad_address);
-  EXPECT_EQ(mc.print(10, "").status, ring::send_result::empty_text);
-  EXPECT_EQ(mc.print(10, "caf\xc3\xa9").status, ring::send_result::character_out_of_range);
-  EXPECT_EQ(mc.send_variable(10, 16384, 1.0), ring::send_result::vr_out_of_range);
-  EXPECT_EQ(mc.send_variable(10, 1, 3e9), ring::send_result::value_out_of_range);
-  EXPECT_EQ(mc.send_variable(10, 16384, 3e9), ring::send_result::vr_out_of_range);  // address, vr, value
-  EXPECT_EQ(mc.send_variable(9, 16384, 3e9), ring::send_result::bad_address);
-  EXPECT_EQ(mc.send_variable(8, 1, 1.0), ring::send_result::bad_address);
-  EXPECT_EQ(mc.send_keypad_offset(10, 9), ring::send_result::offset_out_of_range);
-  EXPECT_EQ(mc.send_keypad_offset(10, 25), ring::send_result::offset_out_of_range);
-  EXPECT_EQ(mc.send_keypad_mode(10, 1), ring::send_result::mode_out_of_range);
+  EXPECT_EQ(mc.print(9, "X").status, ring::send_status::bad_address);
+  EXPECT_EQ(mc.print(25, "X").status, ring::send_status::bad_address);
+  EXPECT_EQ(mc.print(10, "").status, ring::send_status::empty_text);
+  EXPECT_EQ(mc.print(10, "caf\xc3\xa9").status, ring::send_status::character_out_of_range);
+  EXPECT_EQ(mc.send_variable(10, 16384, 1.0), ring::send_status::vr_out_of_range);
+  EXPECT_EQ(mc.send_variable(10, 1, 3e9), ring::send_status::value_out_of_range);
+  EXPECT_EQ(mc.send_variable(10, 16384, 3e9), ring::send_status::vr_out_of_range);  // address, vr, value
+  EXPECT_EQ(mc.send_variable(9, 16384, 3e9), ring::send_status::bad_address);
+  EXPECT_EQ(mc.send_variable(8, 1, 1.0), ring::send_status::bad_address);
+  EXPECT_EQ(mc.send_keypad_offset(10, 9), ring::send_status::offset_out_of_range);
+  EXPECT_EQ(mc.send_keypad_offset(10, 25), ring::send_status::offset_out_of_range);
+  EXPECT_EQ(mc.send_keypad_mode(10, 1), ring::send_status::mode_out_of_range);
   EXPECT_FALSE(mc.transmit_pending());
   EXPECT_EQ(mc.netstat(), 0);
   EXPECT_EQ(mc.transmit_free(), 32u);
@@ -309,11 +331,11 @@ TEST(RingMotionCoordinator, SendCallsRejectOutOfRangeBeforeQueuingAByte) {
 TEST(RingMotionCoordinator, SendMapsBasicAddressesAndTypes) {
   trionet::vr_table<16> vr;
   mc_node mc(vr);
-  ASSERT_EQ(mc.send_keypad_offset(12, 12), ring::send_result::queued);  // SEND(10+2,2,10+2)
+  ASSERT_EQ(mc.send_keypad_offset(12, 12), ring::send_status::ok);  // SEND(10+2,2,10+2)
   EXPECT_EQ(drain(mc), frame_of(ring::message::keypad_offset(3, 3)));
-  ASSERT_EQ(mc.send_variable(10, 200, 99), ring::send_result::queued);
-  EXPECT_EQ(drain(mc), frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99))));
-  ASSERT_EQ(mc.send_keypad_mode(24, 127), ring::send_result::queued);
+  ASSERT_EQ(mc.send_variable(10, 200, 99), ring::send_status::ok);
+  EXPECT_EQ(drain(mc), frame_of(ring::message::variable(1, 200, trionet::q32_from_integer(99))));
+  ASSERT_EQ(mc.send_keypad_mode(24, 127), ring::send_status::ok);
   EXPECT_EQ(drain(mc), frame_of(ring::message::keypad_mode(15, 127)));
 }
 
@@ -322,29 +344,29 @@ TEST(RingMotionCoordinator, SendsWithItsOwnCrcPolicy) {
   using xmodem = ring::crc16<0x1021, 0x0000>;
   trionet::vr_table<256> vr_a, vr_b;
   ring::motion_coordinator<256, 48, 48, xmodem> a(vr_a), b(vr_b);
-  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_result::queued);
+  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_status::ok);
   const auto sent = drain(a);
   std::uint8_t expected[16];
-  ASSERT_TRUE(ring::encode_variable<xmodem>(expected, 1, 200, ring::q32_from_integer(99)));
+  ASSERT_TRUE(ring::encode_variable<xmodem>(expected, 1, 200, trionet::q32_from_integer(99)));
   EXPECT_EQ(sent, std::vector<std::uint8_t>(expected, expected + 16));
   feed(b, sent);
   EXPECT_EQ(vr_b[200], 99.0);
   EXPECT_EQ(b.netstat(), 0);
   // The table-free variant sends the same bytes as the table one.
   ring::motion_coordinator<256, 48, 48, ring::crc16_ccitt_false_bitwise> c(vr_a);
-  ASSERT_EQ(c.send_variable(10, 200, 99), ring::send_result::queued);
-  EXPECT_EQ(drain(c), frame_of(ring::message::variable(1, 200, ring::q32_from_integer(99))));
+  ASSERT_EQ(c.send_variable(10, 200, 99), ring::send_status::ok);
+  EXPECT_EQ(drain(c), frame_of(ring::message::variable(1, 200, trionet::q32_from_integer(99))));
 }
 
 TEST(RingMotionCoordinator, FullTransmitQueueRefusesWholeAndSetsNetstatBit0) {
   trionet::vr_table<16> vr;
   ring::motion_coordinator<256, 48, 10> mc(vr);                  // 10-byte transmit queue
-  ASSERT_EQ(mc.print(10, "123456").status, ring::send_result::queued);  // 8 bytes
-  EXPECT_EQ(mc.print(10, "AB").status, ring::send_result::queue_full);  // needs 4, 2 free
+  ASSERT_EQ(mc.print(10, "123456").status, ring::send_status::ok);  // 8 bytes
+  EXPECT_EQ(mc.print(10, "AB").status, ring::send_status::queue_full);  // needs 4, 2 free
   EXPECT_EQ(mc.netstat(), ring::netstat_tx_timeout);
   EXPECT_EQ(mc.counters().sends_refused, 1u);
   EXPECT_EQ(drain(mc), chars(1, "123456"));  // nothing partial was queued
-  EXPECT_EQ(mc.print(10, "12345678").status, ring::send_result::queued);
+  EXPECT_EQ(mc.print(10, "12345678").status, ring::send_status::ok);
 }
 
 // ---- keypad ----
@@ -352,7 +374,7 @@ TEST(RingMotionCoordinator, FullTransmitQueueRefusesWholeAndSetsNetstatBit0) {
 TEST(RingKeypad, LocalModeUntilItsOffsetArrives) {
   ring::keypad<> keypad;
   EXPECT_FALSE(keypad.network_mode());
-  EXPECT_EQ(keypad.press(ring::key::digit_5), ring::key_result::local_mode);
+  EXPECT_EQ(keypad.press(ring::key::digit_5), ring::key_status::local_mode);
   feed(keypad, chars(1, "TO ME"));    // to it: dropped
   feed(keypad, chars(2, "THROUGH"));  // through it: dropped, not forwarded
   EXPECT_FALSE(keypad.transmit_pending());
@@ -371,13 +393,13 @@ TEST(RingKeypad, LocalModeUntilItsOffsetArrives) {
 TEST(RingKeypad, KeyPressesGoToTheOffsetAndModeAddsKeyOff) {
   ring::keypad<> keypad;
   feed(keypad, frame_of(ring::message::keypad_offset(1, 3)));
-  EXPECT_EQ(keypad.press(ring::key::digit_7), ring::key_result::sent);
-  EXPECT_EQ(keypad.release(ring::key::digit_7), ring::key_result::not_sent);  // mode 0: key ON only
+  EXPECT_EQ(keypad.press(ring::key::digit_7), ring::key_status::ok);
+  EXPECT_EQ(keypad.release(ring::key::digit_7), ring::key_status::nothing_to_send);  // mode 0: key ON only
   EXPECT_EQ(drain(keypad), chars(3, "7"));
   feed(keypad, frame_of(ring::message::keypad_mode(1, 127)));
   EXPECT_EQ(keypad.mode(), 127);
-  EXPECT_EQ(keypad.press(ring::key::up), ring::key_result::sent);
-  EXPECT_EQ(keypad.release(ring::key::up), ring::key_result::sent);
+  EXPECT_EQ(keypad.press(ring::key::up), ring::key_status::ok);
+  EXPECT_EQ(keypad.release(ring::key::up), ring::key_status::ok);
   std::vector<std::uint8_t> expected = chars(3, "U");
   const auto off = chars(3, std::string(1, static_cast<char>('U' + 64 < 128 ? 'U' + 64 : 'U')));
   expected.insert(expected.end(), off.begin(), off.end());
@@ -395,8 +417,8 @@ TEST(RingKeypad, ConfigurableCodesAndKeyOff) {
   ring::keypad<> keypad(config);
   feed(keypad, frame_of(ring::message::keypad_offset(1, 1)));
   feed(keypad, frame_of(ring::message::keypad_mode(1, 127)));
-  ASSERT_EQ(keypad.press(ring::key::start), ring::key_result::sent);
-  ASSERT_EQ(keypad.release(ring::key::start), ring::key_result::sent);
+  ASSERT_EQ(keypad.press(ring::key::start), ring::key_status::ok);
+  ASSERT_EQ(keypad.release(ring::key::start), ring::key_status::ok);
   std::vector<std::uint8_t> expected = chars(1, "q");
   const auto off = chars(1, "Q");
   expected.insert(expected.end(), off.begin(), off.end());
@@ -471,7 +493,7 @@ TEST(RingSimulator, FlippedBitIsACrcErrorAtTheDestination) {
   ring::simulator<> sim;
   (void)sim.add(a);
   (void)sim.add(b);
-  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_result::queued);
+  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_status::ok);
   sim.run(5);
   sim.flip_next(0, 0x01);
   sim.run(20);
@@ -485,19 +507,19 @@ TEST(RingSimulator, DroppedByteAndCutLink) {
   ring::simulator<> sim;
   (void)sim.add(a);
   (void)sim.add(b);
-  ASSERT_EQ(a.print(10, "ABC").status, ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "ABC").status, ring::send_status::ok);
   sim.run(2);
   sim.drop_next(0);
   sim.run(10);
   EXPECT_EQ(read_all(b, 4), "AC");  // a lost data byte is not detectable for a character message
   sim.cut(0);
-  ASSERT_EQ(a.print(10, "XYZ").status, ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "XYZ").status, ring::send_status::ok);
   int lost = 0;
   sim.run(10, [&](const ring::link_byte& x) { lost += x.delivered ? 0 : 1; });
   EXPECT_EQ(lost, 5);
   EXPECT_FALSE(b.key(4));
   sim.cut(0, false);
-  ASSERT_EQ(a.print(10, "OK").status, ring::send_result::queued);
+  ASSERT_EQ(a.print(10, "OK").status, ring::send_status::ok);
   sim.run(10);
   EXPECT_EQ(read_all(b, 4), "OK");
 }
@@ -539,27 +561,27 @@ TEST(RingForwarding, EveryReceivedByteIsAccountedFor) {
                     std::vector<std::uint8_t>{1, 2, 0x88}}) {
     stream.insert(stream.end(), part.begin(), part.end());
   }
-  ASSERT_EQ(mc.print(10, "HOLD THE LINK").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "HOLD THE LINK").status, ring::send_status::ok);
   std::uint8_t b = 0;
   ASSERT_TRUE(mc.transmit(b));
   feed(mc, stream);
   const auto& bytes = mc.forwarding_counters().bytes;
   EXPECT_EQ(bytes[0] + bytes[1] + bytes[2] + bytes[3], stream.size());
-  EXPECT_EQ(bytes[static_cast<int>(ring::route::local)], 7u + 3u);
-  EXPECT_EQ(bytes[static_cast<int>(ring::route::lost)],
+  EXPECT_EQ(bytes[static_cast<int>(ring::byte_route::local)], 7u + 3u);
+  EXPECT_EQ(bytes[static_cast<int>(ring::byte_route::lost)],
             2u);  // both forwarded messages overflow: one lost byte each
   EXPECT_EQ(mc.forwarding_counters().forwards_lost, 2u);
-  EXPECT_GT(bytes[static_cast<int>(ring::route::dropped)], 0u);
+  EXPECT_GT(bytes[static_cast<int>(ring::byte_route::dropped)], 0u);
 }
 
 TEST(RingMotionCoordinator, Q32TableAndSendWithoutFloatingPoint) {
   trionet::vr_table<256, std::int64_t> vr_a, vr_b;
   ring::motion_coordinator<> a(vr_a), b(vr_b);
-  ASSERT_EQ(a.send_variable_q32(10, 200, ring::q32_from_integer(99) + 1), ring::send_result::queued);
-  EXPECT_EQ(a.send_variable_q32(10, 16384, 0), ring::send_result::vr_out_of_range);
-  EXPECT_EQ(a.send_variable_q32(25, 1, 0), ring::send_result::bad_address);
+  ASSERT_EQ(a.send_variable_q32(10, 200, trionet::q32_from_integer(99) + 1), ring::send_status::ok);
+  EXPECT_EQ(a.send_variable_q32(10, 16384, 0), ring::send_status::vr_out_of_range);
+  EXPECT_EQ(a.send_variable_q32(25, 1, 0), ring::send_status::bad_address);
   feed(b, drain(a));
-  EXPECT_EQ(vr_b[200], ring::q32_from_integer(99) + 1);  // exact: no double on the way
+  EXPECT_EQ(vr_b[200], trionet::q32_from_integer(99) + 1);  // exact: no double on the way
 }
 
 // Now and then, bytes outside any message between frames: stray data, or a header with A = 0 and its data.

@@ -32,9 +32,9 @@ TEST(RingPosixLink, TwoNodeRingOverASocketPair) {
   ring::motion_coordinator<> a(vr_a), b(vr_b);
   trionet::host::fd_link link_a(sv[0], a), link_b(sv[1], b);  // a -> b over one direction, b -> a the other
 
-  ASSERT_EQ(a.print(10, "HELLO").status, ring::send_result::queued);
-  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_result::queued);
-  ASSERT_EQ(a.print(11, "ROUND").status, ring::send_result::queued);  // 2 hops: b forwards it back to a
+  ASSERT_EQ(a.print(10, "HELLO").status, ring::send_status::ok);
+  ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_status::ok);
+  ASSERT_EQ(a.print(11, "ROUND").status, ring::send_status::ok);  // 2 hops: b forwards it back to a
   for (int i = 0; i < 200 && !(read_all(b) == "HELLO" || b.characters_waiting() != 0); ++i) {
     (void)link_a.pump(5);
     (void)link_b.pump(5);
@@ -91,7 +91,7 @@ TEST(RingPosixLink, ReadTimeoutIsTheIdleLine) {
   trionet::host::fd_link link(sv[0], mc);
   const std::uint8_t partial[] = {ring::make_header(3, 1), 'A', 'B'};  // forwarded; no end of message
   ASSERT_EQ(::write(sv[1], partial, sizeof partial), static_cast<ssize_t>(sizeof partial));
-  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_result::queued);
+  ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
   bool idle = false;
   for (int i = 0; i < 20 && !idle; ++i) idle = link.pump(5).line_idle;
   EXPECT_TRUE(idle);

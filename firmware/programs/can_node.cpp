@@ -44,7 +44,7 @@ class bxcan_port final : public can::port {
   can::transmit_status send(const can::frame& outgoing) noexcept override {
     if (!board::can0::tx_free()) return can::transmit_status::busy;
     board::can0::write(outgoing.id, outgoing.dlc, outgoing.data);
-    return can::transmit_status::queued;
+    return can::transmit_status::ok;
   }
 };
 
@@ -95,7 +95,7 @@ int main() {
     vr[position_vr] += 4294967;                 // the axis moves 0.001 (Q32.32)
     can::vr_message message;
     message.vr = position_vr;
-    message.value = can::to_vr_value_q32(vr[position_vr]);
+    message.value = trionet::q32_to_decimal(vr[position_vr]);
     static_cast<void>(node.send_on_channel(next_node_channel, message));
 #endif
   }

@@ -47,7 +47,7 @@ namespace ring = trionet::ring;
 constexpr int next_node = 10;  // BASIC address of the next node round the ring
 constexpr std::uint16_t position_vr = 0;
 
-constexpr std::int64_t step = ring::q32_from_double(0.001).raw;  // computed at compile time
+constexpr std::int64_t step = trionet::q32_from_double(0.001).raw;  // computed at compile time
 
 trionet::vr_table<64, std::int64_t> vr;  // Q32.32 VRs: no floating point anywhere in the image
 ring::motion_coordinator<256, 32, 32, ring::crc16_ccitt_false_bitwise> node(vr);  // default capacities

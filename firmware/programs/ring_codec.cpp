@@ -73,7 +73,7 @@ extern "C" void UART0_IRQHandler() {
     }
 #else
     const ring::decode_result result = receiver.push(byte);
-    if (result.status == ring::decode_status::message) {
+    if (result.status == ring::decode_status::ok) {
       reply(result.msg);
     } else if (result.status == ring::decode_status::crc_error) {
       crc_errors = crc_errors + 1;

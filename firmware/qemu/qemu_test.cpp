@@ -1,10 +1,11 @@
 // The emulated Cortex-M3 test: runs trionet on a real Arm core (qemu-system-arm -M lm3s6965evb) and reports
 // to the host through semihosting. scripts/firmware-qemu-test runs it.
 //
-// Ring codec golden vectors and errors, then two-node rings: two Motion Coordinators wired back to back through
-// their byte ports (SEND and PRINT#, forwarding round the ring, a corrupted byte), and a Motion Coordinator with
-// a keypad (keypad offset, a key press read with GET#3). Then the CAN VR exchange: PROTOCOL.md's example
-// frame between two nodes, and the integer-only decimal <-> Q32.32 conversions against 64-bit arithmetic.
+// Ring codec golden vectors and errors, then two-node rings: two Motion Coordinators wired back to back
+// through their byte ports (SEND and PRINT#, forwarding round the ring, a corrupted byte), and a Motion
+// Coordinator with a keypad (keypad offset, a key press read with GET#3). Then the CAN VR exchange:
+// the docs/protocol.md 2.2 example frame between two nodes, and the integer-only decimal <-> Q32.32
+// conversions against 64-bit arithmetic.
 //
 // Output: one line per group, "FAIL ..." for each failed check, then "trionet-qemu-test: PASS" or
 // "trionet-qemu-test: FAIL"; qemu exits with 0 on pass, 1 on a failed check, 2 on a fault.
@@ -76,7 +77,7 @@ bool equal(const std::uint8_t* a, const std::uint8_t* b, std::size_t length) {
   return true;
 }
 
-// PROTOCOL.md 1.3: hop 1, vr 200, value 99.
+// docs/protocol.md 1.3: hop 1, vr 200, value 99.
 constexpr std::uint8_t golden_frame[16] = {0x8a, 0x48, 0x01, 0x00, 0x00, 0x00, 0x00, 0x30,
                                            0x0c, 0x00, 0x00, 0x00, 0x00, 0x7f, 0x3e, 0x88};
 constexpr std::uint32_t can_scale = 10000;  // ten-thousandths per unit
@@ -111,23 +112,23 @@ void golden_encode() {
   group("golden example: encode_variable(hops 1, vr 200, 99)");
   std::uint8_t frame[16] = {};
   const std::uint16_t vr = *opaque(&golden_frame[1]) == 0x48 ? 200 : 0;
-  const ring::encode_result table = ring::encode_variable(frame, 1, vr, ring::q32_from_integer(99));
-  CHECK(table.error == ring::encode_error::none);
+  const ring::encode_result table = ring::encode_variable(frame, 1, vr, trionet::q32_from_integer(99));
+  CHECK(table.status == ring::encode_status::ok);
   CHECK(table.length == 16);
   CHECK(equal(frame, golden_frame, sizeof frame));
 
   std::uint8_t frame_bitwise[16] = {};
   const ring::encode_result bitwise = ring::encode_variable<ring::crc16_ccitt_false_bitwise>(
-      frame_bitwise, 1, vr, ring::q32_from_integer(99));
+      frame_bitwise, 1, vr, trionet::q32_from_integer(99));
   CHECK(bitwise.length == 16);
   CHECK(equal(frame_bitwise, golden_frame, sizeof frame_bitwise));
 
   std::uint8_t small[15] = {0x55};
-  const ring::encode_result too_small = ring::encode_variable(small, 1, vr, ring::q32_from_integer(99));
-  CHECK(too_small.error == ring::encode_error::buffer_too_small);
+  const ring::encode_result too_small = ring::encode_variable(small, 1, vr, trionet::q32_from_integer(99));
+  CHECK(too_small.status == ring::encode_status::buffer_too_small);
   CHECK(small[0] == 0x55);  // untouched on error
   const ring::encode_result no_hops = ring::encode_variable(frame, 0, vr, 0);
-  CHECK(no_hops.error == ring::encode_error::hops_out_of_range);
+  CHECK(no_hops.status == ring::encode_status::hops_out_of_range);
 }
 
 void golden_decode() {
@@ -137,18 +138,18 @@ void golden_decode() {
   ring::decoder<> table;
   ring::decode_result result = feed(table, bytes, sizeof golden_frame, reports);
   CHECK(reports == 1);
-  CHECK(result.status == ring::decode_status::message);
+  CHECK(result.status == ring::decode_status::ok);
   CHECK(result.msg.type == ring::message_type::variable);
   CHECK(result.msg.hops == 1);
   CHECK(result.msg.vr == 200);
-  CHECK(result.msg.value == ring::q32_from_integer(99));
+  CHECK(result.msg.value == trionet::q32_from_integer(99));
 
   ring::decoder<ring::default_max_characters, ring::crc16_ccitt_false_bitwise> bitwise;
   result = feed(bitwise, bytes, sizeof golden_frame, reports);
   CHECK(reports == 1);
-  CHECK(result.status == ring::decode_status::message);
+  CHECK(result.status == ring::decode_status::ok);
   CHECK(result.msg.vr == 200);
-  CHECK(result.msg.value == ring::q32_from_integer(99));
+  CHECK(result.msg.value == trionet::q32_from_integer(99));
 }
 
 void character_round_trip() {
@@ -162,15 +163,15 @@ void character_round_trip() {
   unsigned reports = 0;
   const ring::decode_result result = feed(decoder, frame, encoded.length, reports);
   CHECK(reports == 1);
-  CHECK(result.status == ring::decode_status::message);
+  CHECK(result.status == ring::decode_status::ok);
   CHECK(result.msg.type == ring::message_type::character);
   CHECK(result.msg.hops == 3);
   CHECK(result.msg.text.size() == 5 &&
         equal(result.msg.text.data(), reinterpret_cast<const std::uint8_t*>("HELLO"), 5));
   std::uint8_t bad[4] = {};
   const std::uint8_t high[1] = {0x80};
-  CHECK(ring::encode_characters(bad, 1, trionet::byte_view(high)).error ==
-        ring::encode_error::character_out_of_range);
+  CHECK(ring::encode_characters(bad, 1, trionet::byte_view(high)).status ==
+        ring::encode_status::character_out_of_range);
 }
 
 void decoder_errors() {
@@ -203,7 +204,7 @@ void decoder_errors() {
   CHECK(reports == 1);
   CHECK(result.error == ring::frame_error::stray_data);
   result = feed(stray, opaque(golden_frame), sizeof golden_frame, reports);
-  CHECK(reports == 1 && result.status == ring::decode_status::message && result.msg.vr == 200);
+  CHECK(reports == 1 && result.status == ring::decode_status::ok && result.msg.vr == 200);
 
   // A header inside an open message: the first message is lost, the second one decodes.
   ring::decoder<> interrupted;
@@ -212,7 +213,7 @@ void decoder_errors() {
   CHECK(reports == 0);
   CHECK(interrupted.push(0x8a).error == ring::frame_error::interrupted);
   result = feed(interrupted, opaque(golden_frame) + 1, sizeof golden_frame - 1, reports);
-  CHECK(reports == 1 && result.status == ring::decode_status::message);
+  CHECK(reports == 1 && result.status == ring::decode_status::ok);
 
   // X9 bits 6..1 set under a valid CRC: a bad field.
   for (std::size_t i = 0; i < sizeof frame; ++i) frame[i] = golden_frame[i];
@@ -229,22 +230,22 @@ void decoder_errors() {
 void q32_values() {
   group("Q32.32 conversions");
   const double half = *opaque(&golden_frame[0]) == 0x8a ? 2.5 : 0.0;
-  const ring::q32_result value = ring::q32_from_double(half);
-  CHECK(value.error == ring::q32_error::none);
+  const trionet::q32_result value = trionet::q32_from_double(half);
+  CHECK(value.status == trionet::q32_status::ok);
   CHECK(value.raw == 0x280000000LL);
-  CHECK(ring::q32_to_double(value.raw) == 2.5);
-  CHECK(ring::q32_from_double(half * 1e12).error == ring::q32_error::out_of_range);
-  CHECK(ring::q32_from_raw(0xFFFFFFFFFFFFFFFFULL) == -1);
+  CHECK(trionet::q32_to_double(value.raw) == 2.5);
+  CHECK(trionet::q32_from_double(half * 1e12).status == trionet::q32_status::out_of_range);
+  CHECK(trionet::q32_from_raw(0xFFFFFFFFFFFFFFFFULL) == -1);
 }
 
-/// The PROTOCOL.md 2.2 example between two CAN nodes of five, with Q32.32 VR tables (no floating point):
+/// The docs/protocol.md 2.2 example between two CAN nodes of five, with Q32.32 VR tables (no floating point):
 /// node 1 sends VR(1) = 2.345 to node 4 as 028#0100000000020D7A.
 class capture_port final : public trionet::can::port {
  public:
   trionet::can::transmit_status send(const trionet::can::frame& outgoing) noexcept override {
     last = outgoing;
     ++sent;
-    return trionet::can::transmit_status::queued;
+    return trionet::can::transmit_status::ok;
   }
   trionet::can::frame last{};
   unsigned sent = 0;
@@ -260,12 +261,12 @@ void can_example() {
   const std::int64_t value = *opaque(&golden_frame[0]) == 0x8a ? 10071698309LL : 0;  // 2.345 in Q32.32
   can::vr_message message;
   message.vr = 1;
-  message.value = can::to_vr_value_q32(value);
-  CHECK(node1.send_to_node(4, message) == can::send_status::sent);
+  message.value = trionet::q32_to_decimal(value);
+  CHECK(node1.send_to_node(4, message) == can::send_status::ok);
   const std::uint8_t expected[8] = {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A};
   CHECK(wire.sent == 1 && wire.last.id == 0x028 && wire.last.dlc == 8 && equal(wire.last.data, expected, 8));
   const can::receive_result received = node4.receive(wire.last);
-  CHECK(received.status == can::receive_status::written);
+  CHECK(received.status == can::receive_status::ok);
   CHECK(received.sender == 1 && received.receive_channel == 1);
   CHECK(vr4[1] == (std::int64_t{2} << 32) + 1481763717);  // 2.3450 rounded to the nearest 2^-32
   CHECK(node1.receive(wire.last).status == can::receive_status::foreign);
@@ -276,17 +277,17 @@ void can_conversions() {
   unsigned wrong = 0;
   const std::uint32_t scale = *opaque(&can_scale);
   for (std::uint32_t t = 0; t < scale; ++t) {  // every ten-thousandth to Q32.32
-    std::int64_t raw = 0;
-    const bool ok = trionet::network_value::from_decimal(false, 3, static_cast<std::uint16_t>(t)).to_q32(raw);
+    const trionet::q32_result q = trionet::q32_from_decimal({false, 3, static_cast<std::uint16_t>(t)});
     const std::uint64_t fraction = ((std::uint64_t{t} << 32) + scale / 2) / scale;
-    if (!ok || static_cast<std::uint64_t>(raw) != ((std::uint64_t{3} << 32) | fraction)) ++wrong;
+    if (!q || static_cast<std::uint64_t>(q.raw) != ((std::uint64_t{3} << 32) | fraction)) ++wrong;
   }
   CHECK(wrong == 0);
   wrong = 0;
-  for (std::uint64_t k = 0; k < scale; ++k) {  // Q32.32 to the nearest ten-thousandth, either side of each tie
+  for (std::uint64_t k = 0; k < scale;
+       ++k) {  // Q32.32 to the nearest ten-thousandth, either side of each tie
     const std::uint64_t tie = ((2 * k + 1) << 32) / (2 * scale);
     for (std::uint64_t f = tie - 1; f <= tie + 1; ++f) {
-      const trionet::can::vr_value v = trionet::can::to_vr_value_q32(static_cast<std::int64_t>(f));
+      const trionet::can::vr_value v = trionet::q32_to_decimal(static_cast<std::int64_t>(f));
       const std::uint64_t nearest = (f * scale + (1ULL << 31)) >> 32;
       const std::uint64_t got = v.integer_part == 1 ? scale : v.fraction;
       if (got != nearest) ++wrong;
@@ -298,7 +299,8 @@ void can_conversions() {
 /// Wires two ring nodes back to back (a's transmitter to b's receiver and b's to a's) and moves bytes until
 /// neither has anything to send, at most `limit` bytes. `corrupt_at` (if not 0) flips bit 0 of the byte with
 /// that number on the way from a to b. Returns the number of bytes moved.
-unsigned exchange(trionet::byte_port& a, trionet::byte_port& b, unsigned corrupt_at = 0, unsigned limit = 2000) {
+unsigned exchange(trionet::byte_port& a, trionet::byte_port& b, unsigned corrupt_at = 0,
+                  unsigned limit = 2000) {
   unsigned moved = 0;
   unsigned from_a = 0;
   std::uint8_t byte = 0;
@@ -340,8 +342,8 @@ void two_motion_coordinators(const char* name) {
 
   // SEND(10,1,200,99) and PRINT #10,"HELLO": a ring of two, so address 10 (one hop) is the other node.
   const double value = *opaque(&golden_frame[1]) == 0x48 ? 99.0 : 0.0;
-  CHECK(a.send_variable(10, 200, value) == ring::send_result::queued);
-  CHECK(a.print(10, trionet::byte_view(opaque(hello), sizeof hello)) == ring::send_result::queued);
+  CHECK(a.send_variable(10, 200, value) == ring::send_status::ok);
+  CHECK(a.print(10, trionet::byte_view(opaque(hello), sizeof hello)) == ring::send_status::ok);
   CHECK(exchange(a, b) == 16 + 7);
   CHECK(vr_b[200] == 99.0);
   CHECK(b.counters().variables_written == 1);
@@ -352,14 +354,14 @@ void two_motion_coordinators(const char* name) {
   CHECK(a.netstat() == 0 && b.netstat() == 0);
 
   // PRINT #11 from b: two hops round a ring of two comes back to b; a forwards it with A decremented.
-  CHECK(b.print(11, "OK") == ring::send_result::queued);
+  CHECK(b.print(11, "OK") == ring::send_status::ok);
   CHECK(exchange(b, a) == 4 + 4);
   CHECK(a.forwarding_counters().messages_forwarded == 1);
   CHECK(!a.key(4));
   CHECK(read_all(b, text, sizeof text) == 2 && text[0] == 'O' && text[1] == 'K');
 
   // A byte corrupted on the fibre: a CRC error at the destination, NETSTAT bit 2, VR(201) not written.
-  CHECK(a.send_variable(10, 201, 5.25) == ring::send_result::queued);
+  CHECK(a.send_variable(10, 201, 5.25) == ring::send_status::ok);
   exchange(a, b, 8);
   CHECK(vr_b[201] == 0.0);
   CHECK((b.netstat() & ring::netstat_rx_crc_error) != 0);
@@ -376,12 +378,12 @@ void motion_coordinator_and_keypad() {
 
   // In local mode the keypad sends nothing. SEND(10,2,10) puts it in network mode with its keys going one hop
   // along, which in a ring of two is the MC.
-  CHECK(keypad.press(ring::key::yes) == ring::key_result::local_mode);
-  CHECK(mc.send_keypad_offset(10, 10) == ring::send_result::queued);
+  CHECK(keypad.press(ring::key::yes) == ring::key_status::local_mode);
+  CHECK(mc.send_keypad_offset(10, 10) == ring::send_status::ok);
   exchange(mc, keypad);
   CHECK(keypad.network_mode());
   CHECK(keypad.offset() == 1);
-  CHECK(keypad.press(ring::key::yes) == ring::key_result::sent);
+  CHECK(keypad.press(ring::key::yes) == ring::key_status::ok);
   exchange(keypad, mc);
   CHECK(mc.key(3));
   const ring::get_result key = mc.get(3);
@@ -389,7 +391,7 @@ void motion_coordinator_and_keypad() {
   CHECK(!mc.key(3));
 
   // PRINT #10 from the MC reaches the keypad's display.
-  CHECK(mc.print(10, "RUN") == ring::send_result::queued);
+  CHECK(mc.print(10, "RUN") == ring::send_status::ok);
   exchange(mc, keypad);
   const char* line = keypad.display().line(0);
   CHECK(line[0] == 'R' && line[1] == 'U' && line[2] == 'N');
@@ -416,7 +418,7 @@ int main() {
       "two-node ring: table-free CRC node to table CRC node");
   motion_coordinator_and_keypad();
 #if TRIONET_QEMU_TEST_CUSTOM_CRC
-  // The CRC is configurable (PROTOCOL.md 1.3), so two nodes that both use another polynomial must still
+  // The CRC is configurable (docs/protocol.md 1.3), so two nodes that both use another polynomial must still
   // exchange variables (the regression test, on the core, for nodes that sent with the default CRC).
   using crc16_arc_polynomial = ring::crc16<0x8005, 0x0000, 0, ring::crc_table::none>;
   two_motion_coordinators<crc16_arc_polynomial, crc16_arc_polynomial>(

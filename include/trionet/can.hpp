@@ -1,7 +1,7 @@
-// trionet CAN: the TN20-17 VR exchange over CANbus (PROTOCOL.md section 2), in one include.
+// trionet CAN: the TN20-17 VR exchange over CANbus (docs/protocol.md section 2), in one include.
 //
 //   can/identifiers.hpp  node, base identifier, receive and transmit channels, both ways
-//   can/vr_codec.hpp     the 8-byte VR message: sign, integer part, fraction; rounding
+//   can/vr_codec.hpp     the 8-byte VR message: sign, integer part, fraction; rounding; a frame's VR message
 //   can/frame.hpp        a classic CAN frame
 //   can/port.hpp         the transmit interface a CAN driver implements
 //   can/node.hpp         one controller of the exchange: send VRs, receive frames into VR()
@@ -11,9 +11,9 @@
 // in src/ of the repository; see docs/can.md.
 #pragma once
 
-#include "can/bus_model.hpp"
-#include "can/frame.hpp"
-#include "can/identifiers.hpp"
-#include "can/node.hpp"
-#include "can/port.hpp"
-#include "can/vr_codec.hpp"
+#include "trionet/can/bus_model.hpp"
+#include "trionet/can/frame.hpp"
+#include "trionet/can/identifiers.hpp"
+#include "trionet/can/node.hpp"
+#include "trionet/can/port.hpp"
+#include "trionet/can/vr_codec.hpp"

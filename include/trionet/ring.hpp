@@ -1,6 +1,8 @@
-// The Trio Motion Coordinator fibre-optic ring: everything in include/trionet/ring/.
+// The Trio Motion Coordinator fibre-optic ring: everything in include/trionet/ring/, and the Q32.32 values
+// that direct variable transfers carry (trionet/q32.hpp).
 #pragma once
 
+#include "trionet/q32.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/decoder.hpp"
@@ -12,5 +14,4 @@
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/motion_coordinator.hpp"
 #include "trionet/ring/node.hpp"
-#include "trionet/ring/q32.hpp"
 #include "trionet/ring/simulator.hpp"

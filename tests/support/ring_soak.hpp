@@ -107,10 +107,10 @@ constexpr std::size_t no_id = static_cast<std::size_t>(-1);
 /// VR() of a soak node: accepts every write and remembers the last one.
 class recording_store final : public vr_store {
  public:
-  vr_write write(std::uint16_t vr, const network_value& value) noexcept override {
+  vr_write_status write(std::uint16_t vr, const network_value& value) noexcept override {
     last_vr = vr;
     last_value = value.q32;
-    return vr_write::written;
+    return vr_write_status::ok;
   }
   std::uint16_t last_vr = 0;
   std::int64_t last_value = 0;
@@ -243,7 +243,7 @@ class harness {
       const std::size_t id = new_message(0, i, kind::character);  // tracked as a message like any other
       records_[id].text.clear();
       nodes_[0].own.push_back(id);
-      while (nodes_[0].mc->send_keypad_offset(hops_to_keypad + 9, offset_hops + 9) != ring::send_result::queued)
+      while (nodes_[0].mc->send_keypad_offset(hops_to_keypad + 9, offset_hops + 9) != ring::send_status::ok)
         step();
     }
     for (int t = 0; t < 20000; ++t) {
@@ -285,7 +285,7 @@ class harness {
         return false;
       }
       const ring::print_result r = n.mc->print(hops + 9, text.c_str());
-      if (r.status != ring::send_result::queued) {
+      if (r.status != ring::send_status::ok) {
         records_.pop_back();
         return false;
       }
@@ -301,9 +301,9 @@ class harness {
     if (rng_() % 4 == 0 && hops + cfg_.nodes <= 15) hops += cfg_.nodes;  // once round the ring first
     const std::size_t id = new_message(i, destination, kind::variable);
     records_[id].vr = static_cast<std::uint16_t>(i);
-    records_[id].value = ring::q32_from_integer(static_cast<std::int32_t>(id));
+    records_[id].value = trionet::q32_from_integer(static_cast<std::int32_t>(id));
     if (n.mc->send_variable_q32(static_cast<int>(hops) + 9, records_[id].vr, records_[id].value) !=
-        ring::send_result::queued) {
+        ring::send_status::ok) {
       records_.pop_back();
       return false;
     }
@@ -319,7 +319,7 @@ class harness {
     const ring::key k = keys[rng_() % 5];
     const std::size_t destination = (i + n.pad->offset()) % cfg_.nodes;
     const std::size_t id = new_message(i, destination, kind::key);
-    if (n.pad->press(k) != ring::key_result::sent) {
+    if (n.pad->press(k) != ring::key_status::ok) {
       records_.pop_back();
       return false;
     }

@@ -32,8 +32,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "frame.hpp"
-#include "port.hpp"
+#include "trionet/can/frame.hpp"
+#include "trionet/can/port.hpp"
 
 namespace trionet::can {
 
@@ -69,6 +69,16 @@ enum class stuffing : std::uint8_t {
   worst_case,  ///< every frame takes its worst-case stuffed length (the safe figure for analysis)
   none,        ///< every frame takes its unstuffed length (the best case)
 };
+
+constexpr const char* to_string(stuffing value) noexcept {
+  switch (value) {
+    case stuffing::worst_case:
+      return "worst_case";
+    case stuffing::none:
+      return "none";
+  }
+  return "unknown";
+}
 
 /// One frame that went over the bus: who sent it, and when it was queued, won arbitration and was delivered
 /// (end of its intermission), in bit times.
@@ -119,7 +129,7 @@ class bus_model {
     queue& q = queues_[station];
     if (q.count == QueueDepth) return transmit_status::busy;
     q.entries[q.count++] = entry{outgoing, now_, next_sequence_++};
-    return transmit_status::queued;
+    return transmit_status::ok;
   }
 
   /// Runs the bus up to `time` (bit times): every frame whose transmission ends at or before `time` is

@@ -14,8 +14,7 @@
 
 #include <cstdint>
 
-#include "../span.hpp"
-#include "vr_codec.hpp"
+#include "trionet/span.hpp"
 
 namespace trionet::can {
 
@@ -59,13 +58,6 @@ struct frame {
 }
 [[nodiscard]] constexpr bool operator!=(const frame& a, const frame& b) noexcept {
   return !(a == b);
-}
-
-/// Decodes a frame's data as a VR message. A remote frame carries no data (`dlc`); a DLC of 9..15 is not
-/// exactly 8 and is also `dlc`. The identifier is not looked at (see `route_of`).
-[[nodiscard]] constexpr decode_result decode_vr_frame(const frame& received) noexcept {
-  if (received.remote() || received.dlc != vr_message_size) return {decode_error::dlc, {}};
-  return decode_vr_message(received.payload());
 }
 
 }  // namespace trionet::can

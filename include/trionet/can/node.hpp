@@ -1,4 +1,4 @@
-// A TN20-17 VR-exchange node: one Motion Coordinator's side of the exchange (PROTOCOL.md 2.1, 2.2).
+// A TN20-17 VR-exchange node: one Motion Coordinator's side of the exchange (docs/protocol.md 2.1, 2.2).
 //
 // Sending: `send_to_node` (by destination node) or `send_on_channel` (by transmit channel 5..N+3, as the
 // note's `send_vr` routine does) encodes VR(vr) = value and hands one frame to the `port`. Receiving: the
@@ -10,11 +10,11 @@
 
 #include <cstdint>
 
-#include "../vr.hpp"
-#include "frame.hpp"
-#include "identifiers.hpp"
-#include "port.hpp"
-#include "vr_codec.hpp"
+#include "trionet/can/frame.hpp"
+#include "trionet/can/identifiers.hpp"
+#include "trionet/can/port.hpp"
+#include "trionet/can/vr_codec.hpp"
+#include "trionet/vr.hpp"
 
 namespace trionet::can {
 
@@ -36,22 +36,23 @@ class node_address {
 };
 
 /// A node address, or why the pair is invalid (`bad_node_count`, `bad_node`).
-struct address_result {
-  scheme_error error = scheme_error::none;
+struct [[nodiscard]] address_result {
+  scheme_status status = scheme_status::ok;
   node_address address{};
+  constexpr explicit operator bool() const noexcept { return status == scheme_status::ok; }
 };
 
 /// Checks that `node` is 1..node_count and node_count is 2..11.
 [[nodiscard]] constexpr address_result make_node_address(std::uint8_t node_count,
                                                          std::uint8_t node) noexcept {
-  const scheme_error error = detail::check_node(node_count, node);
-  if (error != scheme_error::none) return {error, {}};
-  return {scheme_error::none, node_address(node_count, node)};
+  const scheme_status status = detail::check_node(node_count, node);
+  if (status != scheme_status::ok) return {status, {}};
+  return {scheme_status::ok, node_address(node_count, node)};
 }
 
-/// What became of a send request. Everything but `sent` means no frame was queued.
+/// What became of a send request. Everything but `ok` means no frame was queued.
 enum class send_status : std::uint8_t {
-  sent,                   ///< the port queued the frame
+  ok,                     ///< the port queued the frame
   no_such_node,           ///< destination outside 1..N
   own_node,               ///< destination is this node
   no_such_channel,        ///< transmit channel outside 5..N+3
@@ -63,39 +64,90 @@ enum class send_status : std::uint8_t {
   port_failed,            ///< the port failed (counted in `send_failed`)
 };
 
-/// What became of a received frame. Only `written` changed a VR.
+constexpr const char* to_string(send_status status) noexcept {
+  switch (status) {
+    case send_status::ok:
+      return "ok";
+    case send_status::no_such_node:
+      return "no_such_node";
+    case send_status::own_node:
+      return "own_node";
+    case send_status::no_such_channel:
+      return "no_such_channel";
+    case send_status::vr_out_of_range:
+      return "vr_out_of_range";
+    case send_status::not_a_number:
+      return "not_a_number";
+    case send_status::too_large:
+      return "too_large";
+    case send_status::fraction_out_of_range:
+      return "fraction_out_of_range";
+    case send_status::port_busy:
+      return "port_busy";
+    case send_status::port_failed:
+      return "port_failed";
+  }
+  return "unknown";
+}
+
+/// What became of a received frame. Only `ok` changed a VR.
 enum class receive_status : std::uint8_t {
-  written,       ///< VR(vr) now holds the value
-  refused,       ///< the write policy refused the vr
-  out_of_range,  ///< vr is past the end of the VR table
-  foreign,       ///< not one of this node's receive identifiers (or an extended or remote frame)
-  bad_dlc,       ///< ours, but not exactly 8 data bytes
-  bad_sign,      ///< ours, but the sign byte is not 0 or 1
-  bad_fraction,  ///< ours, but the fraction exceeds 9999
+  ok,                  ///< VR(vr) now holds the value
+  refused,             ///< the write policy refused the vr
+  out_of_range,        ///< vr is past the end of the VR table
+  value_out_of_range,  ///< the VR table's value type cannot hold the value (a Q32.32 table)
+  foreign,             ///< not one of this node's receive identifiers (or an extended or remote frame)
+  bad_dlc,             ///< ours, but not exactly 8 data bytes
+  bad_sign,            ///< ours, but the sign byte is not 0 or 1
+  bad_fraction,        ///< ours, but the fraction exceeds 9999
 };
 
+constexpr const char* to_string(receive_status status) noexcept {
+  switch (status) {
+    case receive_status::ok:
+      return "ok";
+    case receive_status::refused:
+      return "refused";
+    case receive_status::out_of_range:
+      return "out_of_range";
+    case receive_status::value_out_of_range:
+      return "value_out_of_range";
+    case receive_status::foreign:
+      return "foreign";
+    case receive_status::bad_dlc:
+      return "bad_dlc";
+    case receive_status::bad_sign:
+      return "bad_sign";
+    case receive_status::bad_fraction:
+      return "bad_fraction";
+  }
+  return "unknown";
+}
+
 /// A received frame's fate, and for frames on our identifiers, who sent it on which receive channel and what
-/// it said (`message` is meaningful for written, refused and out_of_range; `to_double(message.value)` gives
-/// the value as a double).
+/// it said (`message` is meaningful for ok, refused, out_of_range and value_out_of_range;
+/// `to_double(message.value)` gives the value as a double).
 struct receive_result {
   receive_status status = receive_status::foreign;
   std::uint8_t sender = 0;
   std::uint8_t receive_channel = 0;
   vr_message message{};
+  constexpr explicit operator bool() const noexcept { return status == receive_status::ok; }
 };
 
 /// Counts since construction or `clear_counters`. Each wraps at 2^32.
 struct node_counters {
-  std::uint32_t sent = 0;          ///< frames the port queued
-  std::uint32_t send_busy = 0;     ///< frames the port had no room for
-  std::uint32_t send_failed = 0;   ///< frames the port failed to take
-  std::uint32_t written = 0;       ///< VR writes applied
-  std::uint32_t refused = 0;       ///< VR writes the policy refused
-  std::uint32_t out_of_range = 0;  ///< VR writes past the end of the VR table
-  std::uint32_t foreign = 0;       ///< frames not for this node
-  std::uint32_t bad_dlc = 0;       ///< frames for this node with DLC != 8
-  std::uint32_t bad_sign = 0;      ///< frames for this node with a sign byte other than 0 or 1
-  std::uint32_t bad_fraction = 0;  ///< frames for this node with a fraction > 9999
+  std::uint32_t sent = 0;                ///< frames the port queued
+  std::uint32_t send_busy = 0;           ///< frames the port had no room for
+  std::uint32_t send_failed = 0;         ///< frames the port failed to take
+  std::uint32_t written = 0;             ///< VR writes applied
+  std::uint32_t refused = 0;             ///< VR writes the policy refused
+  std::uint32_t out_of_range = 0;        ///< VR writes past the end of the VR table
+  std::uint32_t value_out_of_range = 0;  ///< VR writes whose value the VR table's type cannot hold
+  std::uint32_t foreign = 0;             ///< frames not for this node
+  std::uint32_t bad_dlc = 0;             ///< frames for this node with DLC != 8
+  std::uint32_t bad_sign = 0;            ///< frames for this node with a sign byte other than 0 or 1
+  std::uint32_t bad_fraction = 0;        ///< frames for this node with a fraction > 9999
 
   /// All malformed frames for this node, whatever the reason.
   [[nodiscard]] constexpr std::uint32_t malformed() const noexcept {
@@ -104,7 +156,7 @@ struct node_counters {
 };
 
 /// One controller on the exchange. Holds its address, a reference to its port and VR store, and counters.
-/// Cost: 10 counters (40 bytes), two pointers and a 2-byte address (52 bytes on a 32-bit MCU); `send_*` and
+/// Cost: 11 counters (44 bytes), two pointers and a 2-byte address (56 bytes on a 32-bit MCU); `send_*` and
 /// `receive` are O(1) with one virtual call each (port or store).
 /// Context: `receive` may run in the CAN receive ISR if the `vr_store` may be written there; `send_*` may run
 /// in an ISR if the port allows it. `receive` and `send_*` touch disjoint counters, so one receiving context
@@ -123,20 +175,20 @@ class vr_exchange_node {
   /// Sends VR(vr) = value (rounded to 4 decimals) to node `destination`.
   [[nodiscard]] send_status send_to_node(std::uint8_t destination, std::uint16_t vr, double value) noexcept {
     const identifier_result id = identifier_to(destination);
-    if (id.error != scheme_error::none) return scheme_to_send(id.error);
+    if (!id) return scheme_to_send(id.status);
     frame out;
-    const encode_error error = encode_vr(vr, value, out.data);
-    if (error != encode_error::none) return encode_to_send(error);
+    const encode_status encoded = encode_vr(vr, value, out.data);
+    if (encoded != encode_status::ok) return encode_to_send(encoded);
     return transmit(id.identifier, out);
   }
 
   /// Sends `message` (parts, no double arithmetic) to node `destination`.
   [[nodiscard]] send_status send_to_node(std::uint8_t destination, const vr_message& message) noexcept {
     const identifier_result id = identifier_to(destination);
-    if (id.error != scheme_error::none) return scheme_to_send(id.error);
+    if (!id) return scheme_to_send(id.status);
     frame out;
-    const encode_error error = encode_vr_message(message, out.data);
-    if (error != encode_error::none) return encode_to_send(error);
+    const encode_status encoded = encode_vr_message(message, out.data);
+    if (encoded != encode_status::ok) return encode_to_send(encoded);
     return transmit(id.identifier, out);
   }
 
@@ -144,7 +196,7 @@ class vr_exchange_node {
   [[nodiscard]] send_status send_on_channel(std::uint8_t transmit_channel, std::uint16_t vr,
                                             double value) noexcept {
     const node_result destination = destination_of(address_.node_count(), address_.node(), transmit_channel);
-    if (destination.error != scheme_error::none) return send_status::no_such_channel;
+    if (!destination) return send_status::no_such_channel;
     return send_to_node(destination.node, vr, value);
   }
 
@@ -152,7 +204,7 @@ class vr_exchange_node {
   [[nodiscard]] send_status send_on_channel(std::uint8_t transmit_channel,
                                             const vr_message& message) noexcept {
     const node_result destination = destination_of(address_.node_count(), address_.node(), transmit_channel);
-    if (destination.error != scheme_error::none) return send_status::no_such_channel;
+    if (!destination) return send_status::no_such_channel;
     return send_to_node(destination.node, message);
   }
 
@@ -160,7 +212,7 @@ class vr_exchange_node {
   /// writes VR(vr) through the store; otherwise classifies and counts it. Never fails.
   receive_result receive(const frame& received) noexcept {
     receive_result result;
-    // This node's receive identifiers are 10k .. 10k + N - 2 (PROTOCOL.md 2.1): one unsigned comparison
+    // This node's receive identifiers are 10k .. 10k + N - 2 (docs/protocol.md 2.1): one unsigned comparison
     // also rejects identifiers below them and any with the extended or remote flag set. (`route_of` answers
     // the same for any identifier; a test checks that they agree.)
     const std::uint8_t k = address_.node();
@@ -173,39 +225,39 @@ class vr_exchange_node {
     result.receive_channel = static_cast<std::uint8_t>(offset + 1U);
     result.sender = static_cast<std::uint8_t>(result.receive_channel < k ? offset + 1U : offset + 2U);
     const decode_result decoded = decode_vr_frame(received);
-    switch (decoded.error) {
-      case decode_error::none:
+    switch (decoded.status) {
+      case decode_status::ok:
         break;
-      case decode_error::dlc:
+      case decode_status::bad_dlc:
         ++counters_.bad_dlc;
         result.status = receive_status::bad_dlc;
         return result;
-      case decode_error::sign:
+      case decode_status::bad_sign:
         ++counters_.bad_sign;
         result.status = receive_status::bad_sign;
         return result;
-      case decode_error::fraction:
+      case decode_status::bad_fraction:
         ++counters_.bad_fraction;
         result.status = receive_status::bad_fraction;
         return result;
     }
     result.message = decoded.message;
     const vr_value& v = decoded.message.value;
-    switch (store_->write(decoded.message.vr,
-                          network_value::from_decimal(v.negative, v.integer_part, v.fraction))) {
-      case vr_write::written:
-        ++counters_.written;
-        result.status = receive_status::written;
-        break;
-      case vr_write::refused:
-        ++counters_.refused;
-        result.status = receive_status::refused;
-        break;
-      case vr_write::out_of_range:
-      case vr_write::value_out_of_range:
-        ++counters_.out_of_range;
-        result.status = receive_status::out_of_range;
-        break;
+    // An if-chain rather than a switch: on Cortex-M0+ a four-way switch here links a jump-table helper.
+    const vr_write_status written = store_->write(
+        decoded.message.vr, network_value::from_decimal(v.negative, v.integer_part, v.fraction));
+    if (written == vr_write_status::ok) {
+      ++counters_.written;
+      result.status = receive_status::ok;
+    } else if (written == vr_write_status::refused) {
+      ++counters_.refused;
+      result.status = receive_status::refused;
+    } else if (written == vr_write_status::out_of_range) {
+      ++counters_.out_of_range;
+      result.status = receive_status::out_of_range;
+    } else {
+      ++counters_.value_out_of_range;
+      result.status = receive_status::value_out_of_range;
     }
     return result;
   }
@@ -216,26 +268,26 @@ class vr_exchange_node {
   // own, already valid, address).
   [[nodiscard]] identifier_result identifier_to(std::uint8_t destination) const noexcept {
     const std::uint8_t k = address_.node();
-    if (destination < 1 || destination > address_.node_count()) return {scheme_error::bad_node, 0};
-    if (destination == k) return {scheme_error::same_node, 0};
+    if (destination < 1 || destination > address_.node_count()) return {scheme_status::bad_node, 0};
+    if (destination == k) return {scheme_status::same_node, 0};
     const unsigned rank = k < destination ? k : k - 1U;
-    return {scheme_error::none, static_cast<std::uint16_t>(10U * destination + rank - 1U)};
+    return {scheme_status::ok, static_cast<std::uint16_t>(10U * destination + rank - 1U)};
   }
 
-  [[nodiscard]] static constexpr send_status scheme_to_send(scheme_error error) noexcept {
-    return error == scheme_error::same_node ? send_status::own_node : send_status::no_such_node;
+  [[nodiscard]] static constexpr send_status scheme_to_send(scheme_status status) noexcept {
+    return status == scheme_status::same_node ? send_status::own_node : send_status::no_such_node;
   }
 
-  [[nodiscard]] static constexpr send_status encode_to_send(encode_error error) noexcept {
-    switch (error) {
-      case encode_error::vr_out_of_range:
+  [[nodiscard]] static constexpr send_status encode_to_send(encode_status status) noexcept {
+    switch (status) {
+      case encode_status::vr_out_of_range:
         return send_status::vr_out_of_range;
-      case encode_error::not_a_number:
+      case encode_status::not_a_number:
         return send_status::not_a_number;
-      case encode_error::too_large:
+      case encode_status::too_large:
         return send_status::too_large;
-      case encode_error::fraction_out_of_range:
-      case encode_error::none:
+      case encode_status::fraction_out_of_range:
+      case encode_status::ok:
         break;
     }
     return send_status::fraction_out_of_range;
@@ -245,9 +297,9 @@ class vr_exchange_node {
     out.id = identifier;
     out.dlc = vr_message_size;
     switch (port_->send(out)) {
-      case transmit_status::queued:
+      case transmit_status::ok:
         ++counters_.sent;
-        return send_status::sent;
+        return send_status::ok;
       case transmit_status::busy:
         ++counters_.send_busy;
         return send_status::port_busy;

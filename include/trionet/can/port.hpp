@@ -5,16 +5,28 @@
 
 #include <cstdint>
 
-#include "frame.hpp"
+#include "trionet/can/frame.hpp"
 
 namespace trionet::can {
 
 /// What became of a frame handed to a port.
 enum class transmit_status : std::uint8_t {
-  queued,  ///< accepted for transmission (in a mailbox, a queue or already on the bus)
+  ok,      ///< accepted for transmission (in a mailbox, a queue or already on the bus)
   busy,    ///< no free transmit mailbox or queue slot now; nothing was queued, the caller may retry
   failed,  ///< the controller or driver failed (bus off, I/O error); nothing was queued
 };
+
+constexpr const char* to_string(transmit_status status) noexcept {
+  switch (status) {
+    case transmit_status::ok:
+      return "ok";
+    case transmit_status::busy:
+      return "busy";
+    case transmit_status::failed:
+      return "failed";
+  }
+  return "unknown";
+}
 
 /// A CAN transmitter. One virtual call per frame; implementations must not block for long, must not throw,
 /// and decide themselves whether they may be called from an ISR (document it on the implementation).

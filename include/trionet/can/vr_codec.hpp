@@ -1,4 +1,4 @@
-// TN20-17 VR message codec: one VR() value in the 8 data bytes of a CAN frame (PROTOCOL.md 2.2).
+// TN20-17 VR message codec: one VR() value in the 8 data bytes of a CAN frame (docs/protocol.md 2.2).
 //
 //   byte    0        1        2        3        4        5        6        7
 //       +--------+--------+--------+--------+--------+--------+--------+--------+
@@ -11,7 +11,9 @@
 //
 // Two ways in: from a double (`encode_vr`, rounding to 4 decimals) or from the parts directly
 // (`encode_vr_message` with a `vr_message`), for firmware that keeps fixed-point values and wants no double
-// arithmetic. Decoding gives the parts (`decode_vr_message`) and, if wanted, a double (`to_double`).
+// arithmetic (`trionet::q32_to_decimal` gives the parts of a Q32.32 value). Decoding gives the parts
+// (`decode_vr_message`, or `decode_vr_frame` for a whole frame) and, if wanted, a double (`to_double`, in
+// trionet/q32.hpp with the other decimal conversions).
 //
 // Rounding from a double. The magnitude is rounded to 4 decimals, ties away from zero, with carry into the
 // integer part (0.99995 -> 1.0000). A decimal tie such as 2.34565 is not representable in binary: the double
@@ -32,7 +34,9 @@
 
 #include <cstdint>
 
-#include "../span.hpp"
+#include "trionet/can/frame.hpp"
+#include "trionet/q32.hpp"
+#include "trionet/span.hpp"
 
 namespace trionet::can {
 
@@ -40,17 +44,10 @@ namespace trionet::can {
 constexpr std::uint8_t vr_message_size = 8;
 /// Largest VR number a message carries (one byte).
 constexpr std::uint16_t max_message_vr = 255;
-/// Largest fraction in ten-thousandths.
-constexpr std::uint16_t max_fraction = 9999;
-/// Ten-thousandths per unit.
-constexpr std::uint32_t fraction_scale = 10000;
 
-/// A value as the message carries it: sign, integer part of the magnitude, fraction in ten-thousandths.
-struct vr_value {
-  bool negative = false;
-  std::uint32_t integer_part = 0;
-  std::uint16_t fraction = 0;  ///< ten-thousandths, 0..9999
-};
+/// A value as the message carries it: sign, integer part of the magnitude, fraction in ten-thousandths
+/// (0..9999). The same decimal that trionet/q32.hpp converts to and from Q32.32.
+using vr_value = decimal;
 
 /// One decoded or to-be-encoded message: VR(vr) = value.
 struct vr_message {
@@ -58,98 +55,100 @@ struct vr_message {
   vr_value value{};
 };
 
-/// Why a value or message cannot be encoded (API misuse, reported to the caller; nothing is written).
-enum class encode_error : std::uint8_t {
-  none,
+/// What became of an encode (API misuse is reported to the caller; on anything but `ok` nothing is written).
+enum class encode_status : std::uint8_t {
+  ok,
   vr_out_of_range,        ///< vr > 255
   not_a_number,           ///< the value is NaN
   too_large,              ///< |value| is 2^32 or more (infinities included), or rounds up to 2^32
   fraction_out_of_range,  ///< a parts-based fraction > 9999
 };
 
-/// Why 8 bytes from the wire are not a VR message (bad wire data: classify, count, drop).
-enum class decode_error : std::uint8_t {
-  none,
-  dlc,       ///< the frame does not carry exactly 8 data bytes
-  sign,      ///< byte 1 is neither 0 nor 1
-  fraction,  ///< bytes 6..7 exceed 9999
+constexpr const char* to_string(encode_status status) noexcept {
+  switch (status) {
+    case encode_status::ok:
+      return "ok";
+    case encode_status::vr_out_of_range:
+      return "vr_out_of_range";
+    case encode_status::not_a_number:
+      return "not_a_number";
+    case encode_status::too_large:
+      return "too_large";
+    case encode_status::fraction_out_of_range:
+      return "fraction_out_of_range";
+  }
+  return "unknown";
+}
+
+/// Whether 8 bytes from the wire are a VR message (bad wire data: classify, count, drop).
+enum class decode_status : std::uint8_t {
+  ok,
+  bad_dlc,       ///< the frame does not carry exactly 8 data bytes
+  bad_sign,      ///< byte 1 is neither 0 nor 1
+  bad_fraction,  ///< bytes 6..7 exceed 9999
 };
 
+constexpr const char* to_string(decode_status status) noexcept {
+  switch (status) {
+    case decode_status::ok:
+      return "ok";
+    case decode_status::bad_dlc:
+      return "bad_dlc";
+    case decode_status::bad_sign:
+      return "bad_sign";
+    case decode_status::bad_fraction:
+      return "bad_fraction";
+  }
+  return "unknown";
+}
+
 /// A rounded value, or why there is none.
-struct value_result {
-  encode_error error = encode_error::none;
+struct [[nodiscard]] value_result {
+  encode_status status = encode_status::ok;
   vr_value value{};
+  constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
 /// A decoded message, or why there is none.
-struct decode_result {
-  decode_error error = decode_error::none;
+struct [[nodiscard]] decode_result {
+  decode_status status = decode_status::ok;
   vr_message message{};
+  constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 
 /// `value` rounded to 4 decimals, ties away from zero, as sign, integer part and fraction (see the header
 /// comment for how decimal ties are honoured). Zero, and anything that rounds to zero, has sign 0.
 [[nodiscard]] constexpr value_result to_vr_value(double value) noexcept {
-  if (value != value) return {encode_error::not_a_number, {}};
+  if (value != value) return {encode_status::not_a_number, {}};
   const bool negative = value < 0.0;
   const double magnitude = negative ? -value : value;
   constexpr double two_to_32 = 4294967296.0;
-  if (!(magnitude < two_to_32)) return {encode_error::too_large, {}};
+  if (!(magnitude < two_to_32)) return {encode_status::too_large, {}};
   const auto whole = static_cast<std::uint32_t>(magnitude);         // floor: magnitude >= 0
   const double remainder = magnitude - static_cast<double>(whole);  // exact (Sterbenz)
   auto ten_thousandths = static_cast<std::uint32_t>(remainder * 10000.0);
-  if (ten_thousandths > max_fraction) ten_thousandths = max_fraction;  // product rounded up to 10000
+  if (ten_thousandths > vr_value::max_fraction)
+    ten_thousandths = vr_value::max_fraction;  // rounded up to 10000
   // The decimal tie between ten_thousandths and ten_thousandths + 1, correctly rounded to a double.
   const std::uint64_t tie_numerator =
       std::uint64_t{whole} * 100000U + std::uint64_t{ten_thousandths} * 10U + 5U;
   const double tie = static_cast<double>(tie_numerator) / 100000.0;
-  std::uint64_t scaled = std::uint64_t{whole} * fraction_scale + ten_thousandths;
+  std::uint64_t scaled = std::uint64_t{whole} * vr_value::scale + ten_thousandths;
   if (magnitude >= tie) ++scaled;
-  if (scaled / fraction_scale > UINT32_MAX) return {encode_error::too_large, {}};  // carried into 2^32
+  if (scaled / vr_value::scale > UINT32_MAX) return {encode_status::too_large, {}};  // carried into 2^32
   vr_value out;
   out.negative = negative && scaled != 0;
-  out.integer_part = static_cast<std::uint32_t>(scaled / fraction_scale);
-  out.fraction = static_cast<std::uint16_t>(scaled % fraction_scale);
-  return {encode_error::none, out};
-}
-
-/// A Q32.32 value (value * 2^32, as the ring and Q32.32 VR tables hold it) rounded to 4 decimals, ties away
-/// from zero, with integer arithmetic only: for firmware without floating point. Always in range.
-[[nodiscard]] constexpr vr_value to_vr_value_q32(std::int64_t raw) noexcept {
-  const bool negative = raw < 0;
-  const std::uint64_t magnitude =
-      negative ? ~static_cast<std::uint64_t>(raw) + 1U : static_cast<std::uint64_t>(raw);
-  auto integer = static_cast<std::uint32_t>(magnitude >> 32U);  // at most 2^31
-  // (fraction * 10000 + 2^31) / 2^32: the nearest ten-thousandth, a tie rounded up (away from zero). In 32-bit
-  // pieces, fraction = high * 2^16 + low, so that no 64-bit multiply routine is needed on a core without one.
-  const auto fraction = static_cast<std::uint32_t>(magnitude);
-  const std::uint32_t low = (fraction & 0xFFFFU) * fraction_scale + 0x80000000U;  // < 2^32
-  auto ten_thousandths = ((fraction >> 16U) * fraction_scale + (low >> 16U)) >> 16U;
-  if (ten_thousandths == fraction_scale) {
-    ten_thousandths = 0;
-    ++integer;
-  }
-  vr_value out;
-  out.negative = negative && (integer != 0 || ten_thousandths != 0);
-  out.integer_part = integer;
-  out.fraction = static_cast<std::uint16_t>(ten_thousandths);
-  return out;
-}
-
-/// The value a message carries, as the double nearest to it (exact decimal numerator, one rounding).
-/// Sign 1 with a zero magnitude gives -0.0.
-[[nodiscard]] constexpr double to_double(const vr_value& value) noexcept {
-  const std::uint64_t scaled = std::uint64_t{value.integer_part} * fraction_scale + value.fraction;
-  const double magnitude = static_cast<double>(scaled) / static_cast<double>(fraction_scale);
-  return value.negative ? -magnitude : magnitude;
+  out.integer_part = static_cast<std::uint32_t>(scaled / vr_value::scale);
+  out.fraction = static_cast<std::uint16_t>(scaled % vr_value::scale);
+  return {encode_status::ok, out};
 }
 
 /// Writes `message` into the 8 data bytes `out`. A negative zero is sent with sign 0. Nothing is written on
 /// error (fraction > 9999).
-[[nodiscard]] constexpr encode_error encode_vr_message(const vr_message& message,
-                                                       std::uint8_t (&out)[vr_message_size]) noexcept {
+[[nodiscard]] constexpr encode_status encode_vr_message(const vr_message& message,
+                                                        std::uint8_t (&out)[vr_message_size]) noexcept {
   const vr_value& value = message.value;
-  if (value.fraction > max_fraction) return encode_error::fraction_out_of_range;
+  if (value.fraction > vr_value::max_fraction) return encode_status::fraction_out_of_range;
   const bool negative = value.negative && (value.integer_part != 0 || value.fraction != 0);
   out[0] = message.vr;
   out[1] = negative ? 1 : 0;
@@ -159,32 +158,39 @@ struct decode_result {
   out[5] = static_cast<std::uint8_t>(value.integer_part);
   out[6] = static_cast<std::uint8_t>(value.fraction >> 8U);
   out[7] = static_cast<std::uint8_t>(value.fraction);
-  return encode_error::none;
+  return encode_status::ok;
 }
 
 /// Encodes VR(vr) = value, rounded to 4 decimals, into the 8 data bytes `out`. Nothing is written on error.
-[[nodiscard]] constexpr encode_error encode_vr(std::uint16_t vr, double value,
-                                               std::uint8_t (&out)[vr_message_size]) noexcept {
-  if (vr > max_message_vr) return encode_error::vr_out_of_range;
+[[nodiscard]] constexpr encode_status encode_vr(std::uint16_t vr, double value,
+                                                std::uint8_t (&out)[vr_message_size]) noexcept {
+  if (vr > max_message_vr) return encode_status::vr_out_of_range;
   const value_result rounded = to_vr_value(value);
-  if (rounded.error != encode_error::none) return rounded.error;
+  if (!rounded) return rounded.status;
   return encode_vr_message(vr_message{static_cast<std::uint8_t>(vr), rounded.value}, out);
 }
 
 /// Decodes the data bytes of a frame; `payload.size()` is the frame's data length (DLC), which must be 8.
 /// Checks in wire order: length, sign, fraction.
 [[nodiscard]] constexpr decode_result decode_vr_message(byte_view payload) noexcept {
-  if (payload.size() != vr_message_size) return {decode_error::dlc, {}};
-  if (payload[1] > 1) return {decode_error::sign, {}};
+  if (payload.size() != vr_message_size) return {decode_status::bad_dlc, {}};
+  if (payload[1] > 1) return {decode_status::bad_sign, {}};
   const auto fraction = static_cast<std::uint16_t>(payload[6] << 8U | payload[7]);
-  if (fraction > max_fraction) return {decode_error::fraction, {}};
+  if (fraction > vr_value::max_fraction) return {decode_status::bad_fraction, {}};
   vr_message message;
   message.vr = payload[0];
   message.value.negative = payload[1] == 1;
   message.value.integer_part = std::uint32_t{payload[2]} << 24U | std::uint32_t{payload[3]} << 16U |
                                std::uint32_t{payload[4]} << 8U | std::uint32_t{payload[5]};
   message.value.fraction = fraction;
-  return {decode_error::none, message};
+  return {decode_status::ok, message};
+}
+
+/// Decodes a frame's data as a VR message. A remote frame carries no data (`bad_dlc`); a DLC of 9..15 is not
+/// exactly 8 and is also `bad_dlc`. The identifier is not looked at (see `route_of`).
+[[nodiscard]] constexpr decode_result decode_vr_frame(const frame& received) noexcept {
+  if (received.remote() || received.dlc != vr_message_size) return {decode_status::bad_dlc, {}};
+  return decode_vr_message(received.payload());
 }
 
 }  // namespace trionet::can

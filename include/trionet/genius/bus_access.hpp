@@ -1,4 +1,4 @@
-// Genius bus access (PROTOCOL.md 3.3): rates, turn timing after a Stop, margins between turns, a
+// Genius bus access (docs/protocol.md 3.3): rates, turn timing after a Stop, margins between turns, a
 // discrete-event bus scan that finds collisions, and the per-device scan-time estimate.
 //
 // Bus model. Devices sit on one line at positions in feet; a signal needs `propagation_us_per_2000ft`
@@ -22,7 +22,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "../span.hpp"
+#include "trionet/span.hpp"
 
 namespace trionet::genius {
 
@@ -34,7 +34,21 @@ enum class rate : std::uint8_t {
   baud_38k4,       ///< 38.4 kbaud ("38.4")
 };
 
-/// One row of PROTOCOL.md 3.3's rate table plus GE's published scan-time terms (GFK-0825F).
+constexpr const char* to_string(rate value) noexcept {
+  switch (value) {
+    case rate::standard_153k6:
+      return "standard_153k6";
+    case rate::extended_153k6:
+      return "extended_153k6";
+    case rate::baud_76k8:
+      return "baud_76k8";
+    case rate::baud_38k4:
+      return "baud_38k4";
+  }
+  return "unknown";
+}
+
+/// One row of docs/protocol.md 3.3's rate table plus GE's published scan-time terms (GFK-0825F).
 struct rate_properties {
   const char* name;         ///< the CLI name: "153.6s", "153.6e", "76.8", "38.4"
   const char* description;  ///< e.g. "153.6 kbaud standard"
@@ -91,7 +105,7 @@ struct bus_timing {
   rate bus_rate = rate::standard_153k6;
   double bit_time_us = 0;
   double skip_us = 0;                      ///< the skip time (rule by default, or explicit)
-  double propagation_us_per_2000ft = 3.0;  ///< PROTOCOL.md 3.3, configurable
+  double propagation_us_per_2000ft = 3.0;  ///< docs/protocol.md 3.3, configurable
   double detection_us = 0;                 ///< time a device needs to detect a start bit
 };
 
@@ -122,6 +136,24 @@ enum class layout_status : std::uint8_t {
   bad_position,       ///< a position that is negative or not finite
   bad_timing,         ///< skip <= 0, or a negative or non-finite propagation, detection or bit time
 };
+
+constexpr const char* to_string(layout_status value) noexcept {
+  switch (value) {
+    case layout_status::ok:
+      return "ok";
+    case layout_status::sba_out_of_range:
+      return "sba_out_of_range";
+    case layout_status::duplicate_sba:
+      return "duplicate_sba";
+    case layout_status::sender_not_on_bus:
+      return "sender_not_on_bus";
+    case layout_status::bad_position:
+      return "bad_position";
+    case layout_status::bad_timing:
+      return "bad_timing";
+  }
+  return "unknown";
+}
 
 /// The offset of `d` after `s` in SBA order: (d - s) mod 32, 1..31 for d != s.
 [[nodiscard]] constexpr unsigned sba_offset(std::uint8_t s, std::uint8_t d) noexcept {

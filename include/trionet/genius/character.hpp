@@ -1,4 +1,4 @@
-// GE Genius bus characters: the 11-bit serial format (PROTOCOL.md 3.1) and a bit-stream receiver.
+// GE Genius bus characters: the 11-bit serial format (docs/protocol.md 3.1) and a bit-stream receiver.
 //
 // One character on the wire, first bit on the left, characters back to back with no gap:
 //
@@ -59,8 +59,22 @@ enum class character_status : std::uint8_t {
   not_11_bits,      ///< the word has bits above bit 10 set: not an 11-bit word at all
 };
 
+constexpr const char* to_string(character_status value) noexcept {
+  switch (value) {
+    case character_status::ok:
+      return "ok";
+    case character_status::start_bit_not_0:
+      return "start_bit_not_0";
+    case character_status::stop_bit_not_1:
+      return "stop_bit_not_1";
+    case character_status::not_11_bits:
+      return "not_11_bits";
+  }
+  return "unknown";
+}
+
 /// The result of decoding one word: `value` is meaningful only when `status` is ok.
-struct character_result {
+struct [[nodiscard]] character_result {
   character_status status = character_status::ok;
   character value{};
   constexpr explicit operator bool() const noexcept { return status == character_status::ok; }
@@ -83,12 +97,27 @@ struct character_result {
 }
 
 /// What one bit pushed into a `bit_receiver` completed.
+/// As for every streaming push, "nothing yet" is 0 and `ok` follows.
 enum class bit_status : std::uint8_t {
   nothing_yet,      ///< no character finished with this bit (idle line, or inside a character)
-  character,        ///< a character finished: see `bit_receiver::last()`
+  ok,               ///< a character finished: see `bit_receiver::last()`
   start_bit_not_0,  ///< framing error: a start bit was due (see `expect_next_character`) but the line was 1
   stop_bit_not_1,   ///< framing error: the 11th bit of a character was 0
 };
+
+constexpr const char* to_string(bit_status value) noexcept {
+  switch (value) {
+    case bit_status::nothing_yet:
+      return "nothing_yet";
+    case bit_status::ok:
+      return "ok";
+    case bit_status::start_bit_not_0:
+      return "start_bit_not_0";
+    case bit_status::stop_bit_not_1:
+      return "stop_bit_not_1";
+  }
+  return "unknown";
+}
 
 /// Receives a Genius bit stream one bit at a time (one call per bit period, the line level as sampled).
 ///
@@ -131,12 +160,12 @@ class bit_receiver {
   }
 
   /// Declares that the next bit is the start bit of a character that follows the last one without a gap.
-  /// Has effect only between characters (after `push` returned `character`); otherwise ignored.
+  /// Has effect only between characters (after `push` returned `ok`); otherwise ignored.
   void expect_next_character() noexcept {
     if (state_ == state::idle) state_ = state::start_due;
   }
 
-  /// The character completed by the last `push` that returned `character`.
+  /// The character completed by the last `push` that returned `ok`.
   [[nodiscard]] character last() const noexcept { return last_; }
   /// True while a character is being received (a start bit was seen, the stop bit not yet).
   [[nodiscard]] bool receiving() const noexcept { return state_ == state::receiving; }
@@ -177,7 +206,7 @@ class bit_receiver {
     state_ = state::idle;
     last_ = result.value;
     ++characters_;
-    return bit_status::character;
+    return bit_status::ok;
   }
 
   state state_ = state::idle;

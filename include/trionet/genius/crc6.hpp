@@ -1,4 +1,4 @@
-// CRC-6 for Genius transmissions (PROTOCOL.md 3.2), as a policy type.
+// CRC-6 for Genius transmissions (docs/protocol.md 3.2), as a policy type.
 //
 // The default is CRC-6/G-704: poly 0x03 (x^6 + x + 1), init 0, reflected in and out, xorout 0; its check
 // value over the ASCII bytes "123456789" is 0x06. Any other 6-bit CRC in the Rocksoft/reveng model is one
@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "../span.hpp"
+#include "trionet/span.hpp"
 
 namespace trionet::genius {
 
@@ -22,7 +22,8 @@ namespace detail {
 constexpr std::uint8_t reflect6(std::uint8_t value) noexcept {
   std::uint8_t out = 0;
   for (unsigned i = 0; i < 6; ++i) {
-    if (((static_cast<unsigned>(value) >> i) & 1u) != 0) out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
+    if (((static_cast<unsigned>(value) >> i) & 1u) != 0)
+      out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
   }
   return out;
 }
@@ -101,7 +102,7 @@ struct crc6 {
   }
 };
 
-/// The default Genius CRC (PROTOCOL.md 3.2, configurable): CRC-6/G-704.
+/// The default Genius CRC (docs/protocol.md 3.2, configurable): CRC-6/G-704.
 using crc6_g704 = crc6<0x03, 0x00, true, true, 0x00>;
 /// The same CRC computed bitwise, without the 256-byte table (for tight flash).
 using crc6_g704_bitwise = crc6<0x03, 0x00, true, true, 0x00, false>;

@@ -1,5 +1,5 @@
-// Genius transmissions (PROTOCOL.md 3.2): control characters, an encoder into caller buffers, a streaming
-// parser with error reasons, and a bits-to-transmissions receiver.
+// Genius transmissions (docs/protocol.md 3.2): control characters, an encoder into caller buffers, a
+// streaming parser with error reasons, and a bits-to-transmissions receiver.
 //
 // Control characters (control bit 1). The bit layout is this library's decision (GE does not publish it):
 //
@@ -25,7 +25,7 @@
 // the destination SBA of a directed transmission, plain data and the data inside blocks. The SBAs carried
 // in control characters are not covered.
 //
-// Rules (Decisions where PROTOCOL.md is silent): at least one data character per transmission (the
+// Rules (Decisions where docs/protocol.md 3.2 is silent): at least one data character per transmission (the
 // destination SBA counts); every block holds at least one data character; blocks do not nest; in a
 // directed transmission the destination SBA (0..31) comes right after the Start, before any block.
 #pragma once
@@ -33,9 +33,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "../span.hpp"
-#include "character.hpp"
-#include "crc6.hpp"
+#include "trionet/genius/character.hpp"
+#include "trionet/genius/crc6.hpp"
+#include "trionet/span.hpp"
 
 namespace trionet::genius {
 
@@ -44,6 +44,22 @@ constexpr std::uint8_t max_sba = 31;
 
 /// The four control characters (bits 7..6 of the byte), plus `unknown` for a Start of block with bit 5 set.
 enum class control_kind : std::uint8_t { start, stop, start_of_block, end_of_block, unknown };
+
+constexpr const char* to_string(control_kind value) noexcept {
+  switch (value) {
+    case control_kind::start:
+      return "start";
+    case control_kind::stop:
+      return "stop";
+    case control_kind::start_of_block:
+      return "start_of_block";
+    case control_kind::end_of_block:
+      return "end_of_block";
+    case control_kind::unknown:
+      return "unknown";
+  }
+  return "unknown";
+}
 
 /// The fields of a control character's byte. Only the fields of its `kind` are meaningful.
 struct control_fields {
@@ -108,7 +124,7 @@ struct transmission {
   span<const segment> segments;
 };
 
-/// Why an encode failed (misuse of the API; nothing was written).
+/// What became of an encode (misuse of the API; on anything but `ok` nothing was written).
 enum class encode_status : std::uint8_t {
   ok,
   buffer_too_small,          ///< the caller's buffer is shorter than the transmission
@@ -118,8 +134,26 @@ enum class encode_status : std::uint8_t {
   empty_block,               ///< a block with no data
 };
 
+constexpr const char* to_string(encode_status value) noexcept {
+  switch (value) {
+    case encode_status::ok:
+      return "ok";
+    case encode_status::buffer_too_small:
+      return "buffer_too_small";
+    case encode_status::sender_out_of_range:
+      return "sender_out_of_range";
+    case encode_status::destination_out_of_range:
+      return "destination_out_of_range";
+    case encode_status::empty_transmission:
+      return "empty_transmission";
+    case encode_status::empty_block:
+      return "empty_block";
+  }
+  return "unknown";
+}
+
 /// The outcome of an encode: `length` characters were written (or would be, for `encoded_length`).
-struct encode_result {
+struct [[nodiscard]] encode_result {
   encode_status status = encode_status::ok;
   std::size_t length = 0;
   constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
@@ -202,10 +236,11 @@ template <class Crc = crc6_g704>
 
 /// What one character pushed into a `transmission_parser` did. Every value from
 /// `data_outside_transmission` on is a wire error: it is counted, the transmission being received (if
-/// any) is discarded whole, and the parser skips characters until the next Start.
+/// any) is discarded whole, and the parser skips characters until the next Start. As for every streaming
+/// push, "nothing yet" (`in_progress`) is 0 and `ok` follows.
 enum class parse_status : std::uint8_t {
   in_progress,  ///< accepted; the transmission continues
-  complete,     ///< a Stop with a matching CRC: `transmission_parser::received()` holds the transmission
+  ok,           ///< a Stop with a matching CRC: `transmission_parser::received()` holds the transmission
   skipped,      ///< ignored while looking for a Start after an error (counted, not an error itself)
   data_outside_transmission,     ///< a data character with no transmission open
   control_outside_transmission,  ///< a Stop, Start of block or End of block with no transmission open
@@ -232,49 +267,48 @@ constexpr std::size_t parse_status_count = static_cast<std::size_t>(parse_status
          static_cast<std::uint8_t>(parse_status::data_outside_transmission);
 }
 
-/// A short English name of each status ("stop CRC mismatch"), for logs and the CLI.
-[[nodiscard]] constexpr const char* describe(parse_status status) noexcept {
-  switch (status) {
+constexpr const char* to_string(parse_status value) noexcept {
+  switch (value) {
     case parse_status::in_progress:
-      return "in progress";
-    case parse_status::complete:
-      return "complete";
+      return "in_progress";
+    case parse_status::ok:
+      return "ok";
     case parse_status::skipped:
       return "skipped";
     case parse_status::data_outside_transmission:
-      return "data outside a transmission";
+      return "data_outside_transmission";
     case parse_status::control_outside_transmission:
-      return "control character outside a transmission";
+      return "control_outside_transmission";
     case parse_status::start_inside_transmission:
-      return "Start inside a transmission";
+      return "start_inside_transmission";
     case parse_status::unknown_control:
-      return "unknown control character";
+      return "unknown_control";
     case parse_status::destination_out_of_range:
-      return "destination SBA out of range";
+      return "destination_out_of_range";
     case parse_status::missing_destination:
-      return "directed transmission without destination";
+      return "missing_destination";
     case parse_status::block_not_closed:
-      return "block not closed";
+      return "block_not_closed";
     case parse_status::end_of_block_outside_block:
-      return "End of block outside a block";
+      return "end_of_block_outside_block";
     case parse_status::empty_block:
-      return "empty block";
+      return "empty_block";
     case parse_status::empty_transmission:
-      return "empty transmission";
+      return "empty_transmission";
     case parse_status::block_crc_mismatch:
-      return "block CRC mismatch";
+      return "block_crc_mismatch";
     case parse_status::stop_crc_mismatch:
-      return "stop CRC mismatch";
+      return "stop_crc_mismatch";
     case parse_status::overflow:
       return "overflow";
     case parse_status::framing_error:
-      return "framing error";
+      return "framing_error";
   }
   return "unknown";
 }
 
 /// Streaming parser: push characters one at a time; a complete, CRC-checked transmission is reported by
-/// `complete`, and `received()` then views it (valid until the next push). The destination SBA of a
+/// `ok`, and `received()` then views it (valid until the next push). The destination SBA of a
 /// directed transmission is reported in `transmission::destination`, not in the segments. Consecutive
 /// plain data characters form one segment.
 ///
@@ -305,7 +339,7 @@ class transmission_parser {
     return fail(parse_status::framing_error);
   }
 
-  /// The last complete transmission. Valid after `push` returned `complete`, until the next push.
+  /// The last complete transmission. Valid after `push` returned `ok`, until the next push.
   [[nodiscard]] const transmission& received() const noexcept { return received_; }
   /// True between a Start and the end of its transmission (Stop or error).
   [[nodiscard]] bool in_transmission() const noexcept { return open_; }
@@ -400,7 +434,7 @@ class transmission_parser {
         if (data_characters_ == 0) return fail(parse_status::empty_transmission);
         if (Crc::finish(stop_crc_) != f.crc) return fail(parse_status::stop_crc_mismatch);
         complete();
-        return accept(parse_status::complete);
+        return accept(parse_status::ok);
       default:
         return fail(parse_status::unknown_control);
     }
@@ -458,9 +492,10 @@ class transmission_parser {
 
 /// What one bit did in a `transmission_receiver`: the character layer's status and, when that completed a
 /// character or reported a framing error, what the transmission parser made of it.
-struct receive_result {
-  bit_status bit = bit_status::nothing_yet;
-  parse_status parse = parse_status::in_progress;  ///< meaningful only when `bit` is not nothing_yet
+struct [[nodiscard]] bit_result {
+  bit_status status = bit_status::nothing_yet;
+  parse_status parse = parse_status::in_progress;  ///< meaningful only when `status` is not nothing_yet
+  constexpr explicit operator bool() const noexcept { return status == bit_status::ok; }
 };
 
 /// Bits in, transmissions out: a `bit_receiver` feeding a `transmission_parser`. While a transmission is
@@ -470,13 +505,13 @@ struct receive_result {
 template <std::size_t DataCapacity = 256, std::size_t SegmentCapacity = 16, class Crc = crc6_g704>
 class transmission_receiver {
  public:
-  [[nodiscard]] receive_result push(bool bit) noexcept {
-    receive_result result;
-    result.bit = bits_.push(bit);
-    switch (result.bit) {
+  [[nodiscard]] bit_result push(bool bit) noexcept {
+    bit_result result;
+    result.status = bits_.push(bit);
+    switch (result.status) {
       case bit_status::nothing_yet:
         break;
-      case bit_status::character:
+      case bit_status::ok:
         result.parse = parser_.push(bits_.last());
         if (parser_.in_transmission()) bits_.expect_next_character();
         break;

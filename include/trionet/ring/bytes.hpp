@@ -1,4 +1,4 @@
-// Bytes on the fibre ring (PROTOCOL.md 1.1-1.2): control/data classification, header and end of message,
+// Bytes on the fibre ring (docs/protocol.md 1.1-1.2): control/data classification, header and end of message,
 // hop counts and BASIC addresses.
 //
 //          bit  7   6   5   4   3   2   1   0
@@ -19,6 +19,18 @@ namespace trionet::ring {
 
 /// The three classes of byte on the ring, told apart by bit 7 and the type field.
 enum class byte_class : std::uint8_t { data, header, end_of_message };
+
+constexpr const char* to_string(byte_class value) noexcept {
+  switch (value) {
+    case byte_class::data:
+      return "data";
+    case byte_class::header:
+      return "header";
+    case byte_class::end_of_message:
+      return "end_of_message";
+  }
+  return "unknown";
+}
 
 constexpr std::uint8_t control_flag = 0x80;  ///< bit 7: set on header and end of message
 constexpr std::uint8_t min_hops = 1;         ///< the next node along the ring

@@ -1,4 +1,4 @@
-// The CRC of a direct variable transfer (PROTOCOL.md 1.3), as a policy type.
+// The CRC of a direct variable transfer (docs/protocol.md 1.3), as a policy type.
 //
 // A CRC policy is any type with
 //   static constexpr std::uint16_t initial;                            // register before the first byte
@@ -26,6 +26,18 @@ namespace trionet::ring {
 /// How a CRC policy computes: no table (smallest), one 256-entry table (512 bytes, the default), or four
 /// tables (2 KiB) that take four bytes per step ("slicing by 4": fastest on long buffers and on hosts).
 enum class crc_table : std::uint8_t { none = 0, lookup = 1, sliced = 2 };
+
+constexpr const char* to_string(crc_table value) noexcept {
+  switch (value) {
+    case crc_table::none:
+      return "none";
+    case crc_table::lookup:
+      return "lookup";
+    case crc_table::sliced:
+      return "sliced";
+  }
+  return "unknown";
+}
 
 template <std::uint16_t Polynomial, std::uint16_t Initial, std::uint16_t XorOut = 0,
           crc_table Table = crc_table::lookup>
@@ -129,9 +141,9 @@ using crc16_ccitt_false_table = crc16<0x1021, 0xFFFF>;
 using crc16_ccitt_false_bitwise = crc16<0x1021, 0xFFFF, 0, crc_table::none>;
 /// The same CRC four bytes per step with 2 KiB of tables, for hosts and gateways.
 using crc16_ccitt_false_sliced = crc16<0x1021, 0xFFFF, 0, crc_table::sliced>;
-/// The default CRC of the ring (PROTOCOL.md 1.3): sliced where pointers are 64-bit (hosts and gateways, where
-/// 2 KiB of tables cost nothing and it is the fastest), one table elsewhere (32-bit cores: firmware, 512 B).
-/// Every form gives the same CRC; pass another policy to a node or the codec to choose for yourself.
+/// The default CRC of the ring (docs/protocol.md 1.3): sliced where pointers are 64-bit (hosts and gateways,
+/// where 2 KiB of tables cost nothing and it is the fastest), one table elsewhere (32-bit cores: firmware,
+/// 512 B). Every form gives the same CRC; pass another policy to a node or the codec to choose for yourself.
 using crc16_ccitt_false =
     std::conditional_t<(UINTPTR_MAX > 0xFFFFFFFFu), crc16_ccitt_false_sliced, crc16_ccitt_false_table>;
 

@@ -1,4 +1,4 @@
-// The streaming ring decoder: validates messages at their destination (PROTOCOL.md 1.4).
+// The streaming ring decoder: validates messages at their destination (docs/protocol.md 1.4).
 //
 // The caller owns the decoder and feeds it bytes; it never blocks, allocates or reads a clock.
 //
@@ -33,15 +33,34 @@
 
 namespace trionet::ring {
 
+/// What one pushed byte completed. As for every streaming push, "nothing yet" is 0 and `ok` follows: the
+/// per-byte path returns `incomplete` almost always, and a zero result is the cheapest to make.
 enum class decode_status : std::uint8_t {
   incomplete,   ///< nothing to report yet
-  message,      ///< a valid message: see `decode_result::msg`
+  ok,           ///< a valid message: see `decode_result::msg`
   frame_error,  ///< a message or byte was discarded: see `decode_result::error`
   crc_error,    ///< a direct variable transfer failed its CRC; `msg.hops` and `msg.vr` are as received
   no_room,      ///< a valid character transfer that the character store had no room for (discarded whole;
                 ///< only with a store smaller than MaxCharacters, e.g. a node's receive buffer)
 };
 
+constexpr const char* to_string(decode_status status) noexcept {
+  switch (status) {
+    case decode_status::incomplete:
+      return "incomplete";
+    case decode_status::ok:
+      return "ok";
+    case decode_status::frame_error:
+      return "frame_error";
+    case decode_status::crc_error:
+      return "crc_error";
+    case decode_status::no_room:
+      return "no_room";
+  }
+  return "unknown";
+}
+
+/// Why a frame was discarded (`none` unless the status is `frame_error`).
 enum class frame_error : std::uint8_t {
   none,
   stray_data,    ///< data bytes outside any message (one report per run)
@@ -81,10 +100,11 @@ constexpr const char* to_string(frame_error error) noexcept {
   return "unknown";
 }
 
-struct decode_result {
+struct [[nodiscard]] decode_result {
   decode_status status = decode_status::incomplete;
   frame_error error = frame_error::none;
-  message msg;  ///< meaningful for `message`; `hops` and `vr` also for `crc_error`
+  message msg;  ///< meaningful for `ok`; `hops` and `vr` also for `crc_error`
+  constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 
 /// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes (no checks).
@@ -288,7 +308,7 @@ class basic_decoder {
   decode_result finish(std::uint8_t end_hops) noexcept {
     const decode_result result = check(end_hops);
     if (type_ == 1) {
-      if (result.status == decode_status::message) {
+      if (result.status == decode_status::ok) {
         decode_result committed = result;
         committed.msg.text = store_.commit();
         return committed;
@@ -302,7 +322,7 @@ class basic_decoder {
     if (end_hops != hops_) return error(frame_error::eom_mismatch);
     if (type_ > 4) return error(frame_error::unknown_type);
     decode_result result;
-    result.status = decode_status::message;
+    result.status = decode_status::ok;
     result.msg.type = static_cast<message_type>(type_);
     result.msg.hops = hops_;
     switch (result.msg.type) {
@@ -342,7 +362,7 @@ class basic_decoder {
   static decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) noexcept {
     if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
     decode_result result;
-    result.status = decode_status::message;
+    result.status = decode_status::ok;
     result.msg.type = message_type::variable;
     result.msg.hops = hops;
     read_variable_data(data, result.msg.vr, result.msg.value);

@@ -1,4 +1,4 @@
-// Ring encoders: a message into a caller-provided buffer (PROTOCOL.md 1.2-1.3).
+// Ring encoders: a message into a caller-provided buffer (docs/protocol.md 1.2-1.3).
 // Every encoder checks all fields and the room first and writes nothing unless the whole frame fits:
 // on error the buffer is untouched. Cost: O(frame length), no allocation; safe from an ISR.
 #pragma once
@@ -13,8 +13,9 @@
 
 namespace trionet::ring {
 
-enum class encode_error : std::uint8_t {
-  none,
+/// What became of an encode (misuse of the API; on anything but `ok` nothing was written).
+enum class encode_status : std::uint8_t {
+  ok,
   buffer_too_small,        ///< the frame does not fit in the buffer
   hops_out_of_range,       ///< hops not 1..15
   empty_text,              ///< a character transfer needs at least one character
@@ -25,57 +26,57 @@ enum class encode_error : std::uint8_t {
   unknown_type,            ///< message type not 1..4
 };
 
-/// Text for an encode_error, for logs and the CLI.
-constexpr const char* to_string(encode_error error) noexcept {
-  switch (error) {
-    case encode_error::none:
-      return "none";
-    case encode_error::buffer_too_small:
-      return "buffer too small";
-    case encode_error::hops_out_of_range:
-      return "hops out of range 1..15";
-    case encode_error::empty_text:
-      return "empty text";
-    case encode_error::character_out_of_range:
-      return "character above 127";
-    case encode_error::vr_out_of_range:
-      return "vr out of range 0..16383";
-    case encode_error::offset_out_of_range:
-      return "keypad offset out of range 1..15";
-    case encode_error::mode_out_of_range:
-      return "keypad mode not 0 or 127";
-    case encode_error::unknown_type:
-      return "unknown message type";
+constexpr const char* to_string(encode_status status) noexcept {
+  switch (status) {
+    case encode_status::ok:
+      return "ok";
+    case encode_status::buffer_too_small:
+      return "buffer_too_small";
+    case encode_status::hops_out_of_range:
+      return "hops_out_of_range";
+    case encode_status::empty_text:
+      return "empty_text";
+    case encode_status::character_out_of_range:
+      return "character_out_of_range";
+    case encode_status::vr_out_of_range:
+      return "vr_out_of_range";
+    case encode_status::offset_out_of_range:
+      return "offset_out_of_range";
+    case encode_status::mode_out_of_range:
+      return "mode_out_of_range";
+    case encode_status::unknown_type:
+      return "unknown_type";
   }
   return "unknown";
 }
 
+/// The outcome of an encode: `length` bytes were written (0 unless `ok`).
 struct [[nodiscard]] encode_result {
-  std::size_t length;  ///< bytes written (0 on error)
-  encode_error error;
-  constexpr explicit operator bool() const noexcept { return error == encode_error::none; }
+  encode_status status = encode_status::ok;
+  std::size_t length = 0;
+  constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
-/// Checks a message's fields (not the buffer). The first problem found, or none.
-constexpr encode_error check(const message& m) noexcept {
-  if (!valid_hops(m.hops)) return encode_error::hops_out_of_range;
+/// Checks a message's fields (not the buffer). The first problem found, or `ok`.
+constexpr encode_status check(const message& m) noexcept {
+  if (!valid_hops(m.hops)) return encode_status::hops_out_of_range;
   switch (m.type) {
     case message_type::character:
-      if (m.text.empty()) return encode_error::empty_text;
+      if (m.text.empty()) return encode_status::empty_text;
       for (std::uint8_t c : m.text) {
-        if (!is_data(c)) return encode_error::character_out_of_range;
+        if (!is_data(c)) return encode_status::character_out_of_range;
       }
-      return encode_error::none;
+      return encode_status::ok;
     case message_type::variable:
-      return m.vr <= max_vr ? encode_error::none : encode_error::vr_out_of_range;
+      return m.vr <= max_vr ? encode_status::ok : encode_status::vr_out_of_range;
     case message_type::keypad_offset:
-      return valid_hops(m.offset) ? encode_error::none : encode_error::offset_out_of_range;
+      return valid_hops(m.offset) ? encode_status::ok : encode_status::offset_out_of_range;
     case message_type::keypad_mode:
       return m.mode == keypad_mode_key_on || m.mode == keypad_mode_key_on_off
-                 ? encode_error::none
-                 : encode_error::mode_out_of_range;
+                 ? encode_status::ok
+                 : encode_status::mode_out_of_range;
   }
-  return encode_error::unknown_type;
+  return encode_status::unknown_type;
 }
 
 /// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1). Precondition: vr <= 16383.
@@ -96,10 +97,10 @@ constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int
 /// Encodes any message. On success returns its frame length; on error writes nothing.
 template <class Crc = crc16_ccitt_false>
 constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
-  const encode_error error = check(m);
-  if (error != encode_error::none) return {0, error};
+  const encode_status status = check(m);
+  if (status != encode_status::ok) return {status, 0};
   const std::size_t length = frame_length(m);
-  if (out.size() < length) return {0, encode_error::buffer_too_small};
+  if (out.size() < length) return {encode_status::buffer_too_small, 0};
   std::uint8_t* p = out.data();
   *p++ = make_header(m.hops, static_cast<std::uint8_t>(m.type));
   switch (m.type) {
@@ -118,7 +119,7 @@ constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
       break;
   }
   *p = make_end_of_message(m.hops);
-  return {length, encode_error::none};
+  return {encode_status::ok, length};
 }
 
 /// PRINT#: a character transfer of `text` (each character 0..127, at least one).
@@ -130,7 +131,7 @@ inline encode_result encode_characters(byte_buffer out, std::uint8_t hops, const
   return encode_characters(out, hops, byte_view(reinterpret_cast<const std::uint8_t*>(text), length));
 }
 
-/// SEND(n,1,vr,value): a direct variable transfer of a Q32.32 value (see q32.hpp).
+/// SEND(n,1,vr,value): a direct variable transfer of a Q32.32 value (see trionet/q32.hpp).
 template <class Crc = crc16_ccitt_false>
 constexpr encode_result encode_variable(byte_buffer out, std::uint8_t hops, std::uint16_t vr,
                                         std::int64_t value) noexcept {

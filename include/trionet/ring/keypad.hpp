@@ -1,4 +1,4 @@
-// A membrane keypad on the fibre ring (PROTOCOL.md 1.7-1.9).
+// A membrane keypad on the fibre ring (docs/protocol.md 1.7-1.9).
 //
 //   local mode (at power-up)          network mode
 //   - handles only a keypad offset    - forwards like any node
@@ -29,14 +29,28 @@
 namespace trionet::ring {
 
 /// What became of a key press or release.
-enum class key_result : std::uint8_t {
-  sent,        ///< queued for the node `offset` hops along
-  not_sent,    ///< a key OFF in keypad mode 0: nothing to send
-  local_mode,  ///< the keypad has no offset yet: nothing is sent (counted)
-  queue_full,  ///< no room in the transmit queue (counted)
+enum class key_status : std::uint8_t {
+  ok,               ///< queued for the node `offset` hops along
+  nothing_to_send,  ///< a key OFF in keypad mode 0: nothing to send
+  local_mode,       ///< the keypad has no offset yet: nothing is sent (counted)
+  queue_full,       ///< no room in the transmit queue (counted)
 };
 
-/// The keypad's configurable behaviour (PROTOCOL.md 1.7-1.8 defaults).
+constexpr const char* to_string(key_status status) noexcept {
+  switch (status) {
+    case key_status::ok:
+      return "ok";
+    case key_status::nothing_to_send:
+      return "nothing_to_send";
+    case key_status::local_mode:
+      return "local_mode";
+    case key_status::queue_full:
+      return "queue_full";
+  }
+  return "unknown";
+}
+
+/// The keypad's configurable behaviour (docs/protocol.md 1.7-1.8 defaults).
 struct keypad_config {
   const keypad_codes* codes = &default_keypad_codes;
   std::uint8_t (*key_off_code)(std::uint8_t on) noexcept = default_key_off_code;
@@ -44,7 +58,7 @@ struct keypad_config {
 
 /// Counters of a keypad; they only ever grow (and wrap at 2^32).
 struct keypad_counters {
-  std::uint32_t frame_errors = 0;           ///< frame errors of PROTOCOL.md 1.4 and 1.10 (NETSTAT bit 3)
+  std::uint32_t frame_errors = 0;           ///< frame errors of docs/protocol.md 1.4 and 1.10 (NETSTAT bit 3)
   std::uint32_t crc_errors = 0;             ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
   std::uint32_t dropped_in_local_mode = 0;  ///< messages to this keypad dropped before its offset arrived
   std::uint32_t display_messages = 0;       ///< character transfers shown on the display
@@ -72,11 +86,11 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
 
   // ---- keys ----
 
-  [[nodiscard]] key_result press(key k) noexcept { return send_key((*config_.codes)[k]); }
+  [[nodiscard]] key_status press(key k) noexcept { return send_key((*config_.codes)[k]); }
 
-  [[nodiscard]] key_result release(key k) noexcept {
+  [[nodiscard]] key_status release(key k) noexcept {
     if (mode_ != keypad_mode_key_on_off)
-      return network_mode() ? key_result::not_sent : key_result::local_mode;
+      return network_mode() ? key_status::nothing_to_send : key_status::local_mode;
     return send_key(config_.key_off_code((*config_.codes)[k]));
   }
 
@@ -89,25 +103,25 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
   const keypad_display& display() const noexcept { return display_; }
 
  private:
-  key_result send_key(std::uint8_t character) noexcept {
+  key_status send_key(std::uint8_t character) noexcept {
     if (!network_mode()) {
       ++this->counters_.keys_lost;
-      return key_result::local_mode;
+      return key_status::local_mode;
     }
     const std::uint8_t text[1] = {character};
     if (!this->link_.queue(message::characters(offset_, byte_view(text, 1)))) {
       ++this->counters_.keys_lost;
       this->netstat_.raise_tx_timeout();
-      return key_result::queue_full;
+      return key_status::queue_full;
     }
     ++this->counters_.keys_sent;
-    return key_result::sent;
+    return key_status::ok;
   }
 
   // A message for this keypad (the core has counted errors already). In local mode the link forwards nothing
   // and the keypad never transmits: the transmit queue stays empty because keys are refused.
   void deliver(const decode_result& r) noexcept {
-    if (r.status != decode_status::message) return;  // no_room cannot happen: the store holds MaxCharacters
+    if (r.status != decode_status::ok) return;  // no_room cannot happen: the store holds MaxCharacters
     if (!network_mode()) {
       if (r.msg.type == message_type::keypad_offset) {
         offset_ = r.msg.offset;

@@ -1,4 +1,4 @@
-// Membrane keypad keys, the raw characters they send and the DEFKEY table (PROTOCOL.md 1.8).
+// Membrane keypad keys, the raw characters they send and the DEFKEY table (docs/protocol.md 1.8).
 //
 //   key        raw (GET#4)   DEFKEY (GET#3)
 //   0..9       '0'..'9'      0..9
@@ -41,6 +41,48 @@ enum class key : std::uint8_t {
 };
 constexpr std::size_t key_count = 18;
 
+constexpr const char* to_string(key value) noexcept {
+  switch (value) {
+    case key::digit_0:
+      return "digit_0";
+    case key::digit_1:
+      return "digit_1";
+    case key::digit_2:
+      return "digit_2";
+    case key::digit_3:
+      return "digit_3";
+    case key::digit_4:
+      return "digit_4";
+    case key::digit_5:
+      return "digit_5";
+    case key::digit_6:
+      return "digit_6";
+    case key::digit_7:
+      return "digit_7";
+    case key::digit_8:
+      return "digit_8";
+    case key::digit_9:
+      return "digit_9";
+    case key::up:
+      return "up";
+    case key::down:
+      return "down";
+    case key::clear:
+      return "clear";
+    case key::yes:
+      return "yes";
+    case key::no:
+      return "no";
+    case key::point:
+      return "point";
+    case key::start:
+      return "start";
+    case key::stop:
+      return "stop";
+  }
+  return "unknown";
+}
+
 constexpr key digit_key(unsigned digit) noexcept {
   return static_cast<key>(digit % 10);
 }
@@ -74,7 +116,7 @@ constexpr defkey_table make_default_defkey(const keypad_codes& codes = default_k
 
 inline constexpr defkey_table default_defkey = make_default_defkey();
 
-/// The key OFF character for a key ON character (PROTOCOL.md 1.7, the default): on + 64 where that stays
+/// The key OFF character for a key ON character (docs/protocol.md 1.7, the default): on + 64 where that stays
 /// below 128, else the same character.
 constexpr std::uint8_t default_key_off_code(std::uint8_t on) noexcept {
   return on + 64 < 128 ? static_cast<std::uint8_t>(on + 64) : on;

@@ -1,4 +1,4 @@
-// The 2 x 20 character display of a membrane keypad (PROTOCOL.md 1.9), as a model readable as text.
+// The 2 x 20 character display of a membrane keypad (docs/protocol.md 1.9), as a model readable as text.
 //
 //   position  0 .. 19   first line        (row-major; CURSOR(p) = CHR(27);"H";CHR(p))
 //   position 20 .. 39   second line

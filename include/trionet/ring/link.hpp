@@ -1,4 +1,4 @@
-// What every ring node does with its link (PROTOCOL.md 1.5, 1.10): decrement and forward, one message at a
+// What every ring node does with its link (docs/protocol.md 1.5, 1.10): decrement and forward, one message at a
 // time, forwarded traffic before the node's own, and the liveness rules that stop a damaged message from
 // holding a node or the ring.
 //
@@ -44,22 +44,22 @@
 namespace trionet::ring {
 
 /// Where a node's link sent a received byte.
-enum class route : std::uint8_t {
+enum class byte_route : std::uint8_t {
   local,      ///< for this node's own decoder (A = 1 or A = 0 messages, and bytes outside any message)
   forwarded,  ///< into the forward buffer
   dropped,    ///< discarded: forwarding is off, or the rest of a lost message
   lost,       ///< the byte on which a forwarded message was lost (buffer full, or longer than legal)
 };
 
-constexpr const char* to_string(route r) noexcept {
+constexpr const char* to_string(byte_route r) noexcept {
   switch (r) {
-    case route::local:
+    case byte_route::local:
       return "local";
-    case route::forwarded:
+    case byte_route::forwarded:
       return "forwarded";
-    case route::dropped:
+    case byte_route::dropped:
       return "dropped";
-    case route::lost:
+    case byte_route::lost:
       return "lost";
   }
   return "unknown";
@@ -67,7 +67,7 @@ constexpr const char* to_string(route r) noexcept {
 
 /// Counters of a node's link; they only ever grow (and wrap at 2^32).
 struct link_counters {
-  /// Received bytes by where they went, indexed by `route`: their sum is every byte received.
+  /// Received bytes by where they went, indexed by `byte_route`: their sum is every byte received.
   std::uint32_t bytes[4] = {};
   std::uint32_t messages_forwarded = 0;   ///< headers of messages passed on (A decremented)
   std::uint32_t forwards_lost = 0;        ///< forwarded messages lost to a full forward buffer
@@ -85,7 +85,7 @@ struct link_counters {
 namespace detail {
 
 /// `Crc` is the CRC policy the node's own direct variable transfers are sent with; `MaxCharacters` the
-/// character maximum of PROTOCOL.md 1.4 (the forwarding bound of type 1 and the reserved types).
+/// character maximum of docs/protocol.md 1.4 (the forwarding bound of type 1 and the reserved types).
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
           class Crc = crc16_ccitt_false>
 class link {
@@ -101,7 +101,7 @@ class link {
   /// everything that arrives while it is sent.
   static constexpr std::size_t max_own_frame =
       ForwardCapacity < TransmitCapacity ? ForwardCapacity : TransmitCapacity;
-  /// The longest legal data of a message by its header's type field (PROTOCOL.md 1.5): the forwarding bound.
+  /// The longest legal data of a message by its header's type field (docs/protocol.md 1.5): the forwarding bound.
   /// Type 1 and the reserved types 5..7: the character maximum; 2: a direct variable transfer; 3, 4: one.
   static constexpr std::uint16_t longest_data[8] = {0,
                                                     MaxCharacters,
@@ -116,16 +116,16 @@ class link {
       max_own_frame - framing_length < MaxCharacters ? max_own_frame - framing_length : MaxCharacters;
 
   /// Takes one received byte and says where it went.
-  [[nodiscard]] route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
+  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
 
   /// A run of data bytes (no header or end of message among them): the same as `receive` for each, with one
   /// copy. Returns where they went; if a forwarded message is lost part-way, the byte it was lost on is
   /// `lost`, the rest `dropped`, and the result is `lost`.
-  [[nodiscard]] route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
+  [[nodiscard]] byte_route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
     return receive_data(data, n, forward_);
   }
 
-  /// The line has been idle (PROTOCOL.md 1.10): a message being forwarded has lost the rest of its bytes. It
+  /// The line has been idle (docs/protocol.md 1.10): a message being forwarded has lost the rest of its bytes. It
   /// is ended and counted (`forwards_ended_idle`; true is returned) and any later byte of it is stray data;
   /// the transmitter then goes on to the node's own messages. The rest of a lost message, if being dropped,
   /// is over too.
@@ -149,7 +149,7 @@ class link {
   };
 
   /// Takes bytes from [first, last) while they are not for the node itself: the same as `receive` for each,
-  /// in order, with runs of data copied whole, stopping before the first byte `receive` would route `local`.
+  /// in order, with runs of data copied whole, stopping before the first byte `receive` would byte_route `local`.
   TRIONET_ALWAYS_INLINE [[nodiscard]] passing receive_passing(const std::uint8_t* first,
                                                               const std::uint8_t* last) noexcept {
     return receive_passing(first, last, forward_);
@@ -280,14 +280,14 @@ class link {
     return !(sending_ == sending::forward && receiving_ == receiving::forward);
   }
 
-  /// Queues one of the node's own messages whole. `encode_error::buffer_too_small` if the transmit queue has
+  /// Queues one of the node's own messages whole. `encode_status::buffer_too_small` if the transmit queue has
   /// no room for all of it or the frame is longer than `max_own_frame` (nothing is queued), or the message's
   /// own field error.
   [[nodiscard]] encode_result queue(const message& m) noexcept {
-    const encode_error error = check(m);
-    if (error != encode_error::none) return {0, error};
+    const encode_status status = check(m);
+    if (status != encode_status::ok) return {status, 0};
     const std::size_t length = frame_length(m);
-    if (length > queue_.free() || length > max_own_frame) return {0, encode_error::buffer_too_small};
+    if (length > queue_.free() || length > max_own_frame) return {encode_status::buffer_too_small, 0};
     if (m.type == message_type::character) {  // straight into the queue: no staging copy of the text
       (void)queue_.push(make_header(m.hops, static_cast<std::uint8_t>(m.type)));
       (void)queue_.push(m.text.data(), m.text.size());
@@ -297,11 +297,11 @@ class link {
       const encode_result encoded = encode<Crc>(frame, m);
       (void)queue_.push(frame, encoded.length);
     }
-    return {length, encode_error::none};
+    return {encode_status::ok, length};
   }
 
   /// Queues `text` (checked: 0..127 each) as consecutive character messages to `hops`, each as long as an own
-  /// message may be (PROTOCOL.md 1.6: `max_own_characters`, the last one shorter), as many whole messages as
+  /// message may be (docs/protocol.md 1.6: `max_own_characters`, the last one shorter), as many whole messages as
   /// the transmit queue has room for. Returns how many characters were queued. The split depends on the text
   /// only, so a caller that goes on with the rest later sends the same messages.
   std::size_t queue_text(std::uint8_t hops, byte_view text) noexcept {
@@ -337,41 +337,41 @@ class link {
 
   // The receive side, forwarding `into` the forward buffer or a `straight_out`.
   template <class Into>
-  route receive(std::uint8_t byte, Into& into) noexcept {
-    const route r = route_byte(byte, into);
+  byte_route receive(std::uint8_t byte, Into& into) noexcept {
+    const byte_route r = route_byte(byte, into);
     ++counters_.bytes[static_cast<std::size_t>(r)];
     return r;
   }
 
   template <class Into>
-  route receive_data(const std::uint8_t* data, std::size_t n, Into& into) noexcept {
-    const auto count = [this](route r, std::size_t k) {
+  byte_route receive_data(const std::uint8_t* data, std::size_t n, Into& into) noexcept {
+    const auto count = [this](byte_route r, std::size_t k) {
       counters_.bytes[static_cast<std::size_t>(r)] += static_cast<std::uint32_t>(k);
     };
     switch (receiving_) {
       case receiving::local:
-        count(route::local, n);
-        return route::local;
+        count(byte_route::local, n);
+        return byte_route::local;
       case receiving::discard:
-        count(route::dropped, n);
-        return route::dropped;
+        count(byte_route::dropped, n);
+        return byte_route::dropped;
       case receiving::forward:
         break;
     }
     const std::size_t allowed = n < budget_ ? n : budget_;
     const std::size_t pushed = into.push(data, allowed);
-    count(route::forwarded, pushed);
+    count(byte_route::forwarded, pushed);
     budget_ = static_cast<std::uint16_t>(budget_ - pushed);
     const std::size_t incoming = incoming_ + pushed;
     incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
-    if (pushed == n) return route::forwarded;
+    if (pushed == n) return byte_route::forwarded;
     if (pushed == allowed) {
       count(cut(into), 1);  // the first byte past the longest legal message
     } else {
       count(lose(into), 1);
     }
-    count(route::dropped, n - pushed - 1);
-    return route::lost;
+    count(byte_route::dropped, n - pushed - 1);
+    return byte_route::lost;
   }
 
   template <class Into>
@@ -387,7 +387,7 @@ class link {
           p = run + 1;
           continue;
         }
-        if (run != p && receive_data(p, static_cast<std::size_t>(run - p), into) == route::lost) {
+        if (run != p && receive_data(p, static_cast<std::size_t>(run - p), into) == byte_route::lost) {
           result.events |= passing::lost;
         }
         p = run;
@@ -408,7 +408,7 @@ class link {
           }
         }
       }
-      if (receive(byte, into) == route::lost) result.events |= passing::lost;
+      if (receive(byte, into) == byte_route::lost) result.events |= passing::lost;
       ++p;
     }
     result.stop = p;
@@ -416,7 +416,7 @@ class link {
   }
 
   template <class Into>
-  route route_byte(std::uint8_t byte, Into& into) noexcept {
+  byte_route route_byte(std::uint8_t byte, Into& into) noexcept {
     if (is_data(byte)) {
       switch (receiving_) {
         case receiving::forward:
@@ -424,11 +424,11 @@ class link {
           --budget_;
           return forward(byte, into);
         case receiving::discard:
-          return route::dropped;
+          return byte_route::dropped;
         case receiving::local:
-          return route::local;
+          return byte_route::local;
       }
-      return route::local;
+      return byte_route::local;
     }
     const receiving was = receiving_;
     receiving_ = receiving::local;  // any header or end of message ends the message being forwarded
@@ -436,14 +436,14 @@ class link {
       if (was == receiving::forward) {
         return forward(decrement_hops(byte), into);
       }
-      return was == receiving::discard ? route::dropped : route::local;
+      return was == receiving::discard ? byte_route::dropped : byte_route::local;
     }
     const std::uint8_t hops = hops_of(byte);
-    if (hops <= 1) return route::local;
+    if (hops <= 1) return byte_route::local;
     if (!forwarding_) {
       receiving_ = receiving::discard;
       ++counters_.messages_dropped;
-      return route::dropped;
+      return byte_route::dropped;
     }
     receiving_ = receiving::forward;
     incoming_ = 0;
@@ -455,10 +455,10 @@ class link {
   enum class sending : std::uint8_t { idle, forward, own };
 
   template <class Into>
-  route forward(std::uint8_t byte, Into& into) noexcept {
+  byte_route forward(std::uint8_t byte, Into& into) noexcept {
     if (into.push(byte)) {
       if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity < 65535: never wraps
-      return route::forwarded;
+      return byte_route::forwarded;
     }
     return lose(into);
   }
@@ -472,7 +472,7 @@ class link {
     if (n > into.free() || n - 1 > budget_) return false;
     (void)into.push(data, n);
     into.back() = decrement_hops(*end_of_message);
-    counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
+    counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
     receiving_ = receiving::local;
     return true;
   }
@@ -488,30 +488,30 @@ class link {
     (void)into.push(header, n);
     into.at(header_at) = decrement_hops(*header);
     into.back() = decrement_hops(*end_of_message);
-    counters_.bytes[static_cast<std::size_t>(route::forwarded)] += static_cast<std::uint32_t>(n);
+    counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
     ++counters_.messages_forwarded;
     return true;
   }
 
   // The forwarded message being received does not fit: it is lost.
   template <class Into>
-  route lose(Into& into) noexcept {
+  byte_route lose(Into& into) noexcept {
     ++counters_.forwards_lost;
     return end_forward(into);
   }
 
   // The forwarded message being received is longer than any legal message of its type: it is lost.
   template <class Into>
-  TRIONET_NOINLINE route cut(Into& into) noexcept {
+  TRIONET_NOINLINE byte_route cut(Into& into) noexcept {
     ++counters_.forwards_cut;
     return end_forward(into);
   }
 
   template <class Into>
-  route end_forward(Into& into) noexcept {
+  byte_route end_forward(Into& into) noexcept {
     if (incoming_ <= into.size()) into.drop_back(incoming_);  // none of it has gone out yet
     receiving_ = receiving::discard;
-    return route::lost;
+    return byte_route::lost;
   }
 
   byte_fifo<ForwardCapacity> forward_;

@@ -1,4 +1,4 @@
-// The four messages of the fibre ring (PROTOCOL.md 1.2-1.3) and their frames.
+// The four messages of the fibre ring (docs/protocol.md 1.2-1.3) and their frames.
 //
 //   character transfer (T=1)      header | c1 c2 ... cn (n >= 1, 7-bit) | end of message
 //   direct variable transfer (T=2) header | V0 V1 X0..X9 C0 C1 | end of message
@@ -25,6 +25,20 @@ enum class message_type : std::uint8_t {
   keypad_offset = 3,  ///< SEND(n,2,offset): puts a keypad in network mode
   keypad_mode = 4,    ///< key ON only (0) or key ON and key OFF (127)
 };
+
+constexpr const char* to_string(message_type value) noexcept {
+  switch (value) {
+    case message_type::character:
+      return "character";
+    case message_type::variable:
+      return "variable";
+    case message_type::keypad_offset:
+      return "keypad_offset";
+    case message_type::keypad_mode:
+      return "keypad_mode";
+  }
+  return "unknown";
+}
 
 constexpr std::size_t variable_data_length = 14;  ///< V0 V1 X0..X9 C0 C1
 constexpr std::size_t variable_crc_length = 12;   ///< the CRC covers V0..X9

@@ -1,4 +1,4 @@
-// A Motion Coordinator on the fibre ring (PROTOCOL.md 1.5-1.6, 1.10): forwards what is not for it, keeps the
+// A Motion Coordinator on the fibre ring (docs/protocol.md 1.5-1.6, 1.10): forwards what is not for it, keeps the
 // characters sent to it in its receive buffer for KEY# and GET#, writes direct variable transfers into VR()
 // through the write policy, and sends PRINT# and SEND messages. The link, the idle line, NETSTAT and the bulk
 // paths are the ring-node core's (node.hpp).
@@ -22,6 +22,7 @@
 #include <cstring>
 
 #include "trionet/fifo.hpp"
+#include "trionet/q32.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/decoder.hpp"
@@ -29,16 +30,15 @@
 #include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/node.hpp"
-#include "trionet/ring/q32.hpp"
 #include "trionet/span.hpp"
 #include "trionet/vr.hpp"
 
 namespace trionet::ring {
 
-/// What became of a PRINT# or SEND call. Anything but `queued` means nothing was queued (but for PRINT#, see
+/// What became of a PRINT# or SEND call. Anything but `ok` means nothing was queued (but for PRINT#, see
 /// `print_result`).
-enum class send_result : std::uint8_t {
-  queued,
+enum class send_status : std::uint8_t {
+  ok,                      ///< queued whole
   bad_address,             ///< BASIC address not 10..24
   empty_text,              ///< PRINT# of nothing
   character_out_of_range,  ///< a character above 127
@@ -49,56 +49,77 @@ enum class send_result : std::uint8_t {
   queue_full,              ///< no room in the transmit queue (NETSTAT bit 0 is set)
 };
 
-constexpr const char* to_string(send_result result) noexcept {
-  switch (result) {
-    case send_result::queued:
-      return "queued";
-    case send_result::bad_address:
+constexpr const char* to_string(send_status status) noexcept {
+  switch (status) {
+    case send_status::ok:
+      return "ok";
+    case send_status::bad_address:
       return "bad_address";
-    case send_result::empty_text:
+    case send_status::empty_text:
       return "empty_text";
-    case send_result::character_out_of_range:
+    case send_status::character_out_of_range:
       return "character_out_of_range";
-    case send_result::vr_out_of_range:
+    case send_status::vr_out_of_range:
       return "vr_out_of_range";
-    case send_result::value_out_of_range:
+    case send_status::value_out_of_range:
       return "value_out_of_range";
-    case send_result::offset_out_of_range:
+    case send_status::offset_out_of_range:
       return "offset_out_of_range";
-    case send_result::mode_out_of_range:
+    case send_status::mode_out_of_range:
       return "mode_out_of_range";
-    case send_result::queue_full:
+    case send_status::queue_full:
       return "queue_full";
   }
   return "unknown";
 }
 
 /// What became of a PRINT#: `status` as for SEND, and how many characters were queued. A text longer than
-/// one message carries is sent as several (PROTOCOL.md 1.6); whole messages only, so with `queue_full`
+/// one message carries is sent as several (docs/protocol.md 1.6); whole messages only, so with `queue_full`
 /// `queued` says where to go on from.
 struct print_result {
-  send_result status;
+  send_status status;
   std::size_t queued;
-  constexpr explicit operator bool() const noexcept { return status == send_result::queued; }
+  constexpr explicit operator bool() const noexcept { return status == send_status::ok; }
 };
 
-/// GET#: a character, or nothing yet (the non-blocking form; a blocking wrapper may wait on `key`).
-struct get_result {
-  enum class status : std::uint8_t { ok, nothing_yet, bad_channel } status;
+/// What became of a GET#.
+enum class get_status : std::uint8_t {
+  ok,           ///< a character was taken
+  nothing_yet,  ///< the receive buffer holds no character (the non-blocking form; a blocking wrapper may
+                ///< wait)
+  bad_channel,  ///< a channel other than 3 or 4
+};
+
+constexpr const char* to_string(get_status status) noexcept {
+  switch (status) {
+    case get_status::ok:
+      return "ok";
+    case get_status::nothing_yet:
+      return "nothing_yet";
+    case get_status::bad_channel:
+      return "bad_channel";
+  }
+  return "unknown";
+}
+
+/// GET#: a character, or why there is none.
+struct [[nodiscard]] get_result {
+  get_status status;
   std::uint8_t value;
-  constexpr explicit operator bool() const noexcept { return status == status::ok; }
+  constexpr explicit operator bool() const noexcept { return status == get_status::ok; }
 };
 
 /// Counters of a Motion Coordinator; they only ever grow (and wrap at 2^32).
 /// (The forwarding counters are the link's: `forwarding_counters()`.)
 struct motion_coordinator_counters {
-  std::uint32_t frame_errors = 0;  ///< frame errors of PROTOCOL.md 1.4 and 1.10 (NETSTAT bit 3)
+  std::uint32_t frame_errors = 0;  ///< frame errors of docs/protocol.md 1.4 and 1.10 (NETSTAT bit 3)
   std::uint32_t crc_errors = 0;    ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
   std::uint32_t character_messages = 0;      ///< character transfers taken into the receive buffer
   std::uint32_t receive_overflows = 0;       ///< character transfers dropped whole: no room (NETSTAT bit 4)
   std::uint32_t variables_written = 0;       ///< direct variable transfers applied to VR()
   std::uint32_t variables_refused = 0;       ///< ... refused by the write policy
   std::uint32_t variables_out_of_range = 0;  ///< ... to a vr past the VR table
+  std::uint32_t variables_value_out_of_range = 0;  ///< ... whose value the VR table's type cannot hold
   std::uint32_t keypad_messages_ignored = 0;  ///< keypad offset / mode messages sent to this MC
   std::uint32_t sends_refused = 0;            ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
 };
@@ -137,7 +158,7 @@ class receive_buffer {
   std::uint16_t staged_ = 0;
 };
 
-/// `MaxCharacters` is the character maximum of PROTOCOL.md 1.4: the longest character transfer the node
+/// `MaxCharacters` is the character maximum of docs/protocol.md 1.4: the longest character transfer the node
 /// accepts, and the bound on messages it forwards. The receive buffer (`ReceiveCapacity`) may be smaller: a
 /// message that does not fit is dropped whole (NETSTAT bit 4).
 template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
@@ -164,34 +185,34 @@ class motion_coordinator final
   // ---- PRINT# and SEND (BASIC addresses 10..24) ----
 
   /// PRINT #n,text, without waiting: `text` (each character 0..127) as consecutive character messages, each
-  /// as long as fits, as many whole messages as the transmit queue has room for (PROTOCOL.md 1.6). If not
+  /// as long as fits, as many whole messages as the transmit queue has room for (docs/protocol.md 1.6). If not
   /// all of it fits, the result is `queue_full` with the number of characters queued, and NETSTAT bit 0 is
   /// set; nothing is queued unless every character is valid.
   [[nodiscard]] print_result print(int n, byte_view text) noexcept {
-    const send_result checked = check_print(n, text);
-    if (checked != send_result::queued) return {checked, 0};
+    const send_status checked = check_print(n, text);
+    if (checked != send_status::ok) return {checked, 0};
     const std::size_t queued = this->link_.queue_text(hops_of_address(n), text);
-    if (queued == text.size()) return {send_result::queued, queued};
+    if (queued == text.size()) return {send_status::ok, queued};
     refuse();
-    return {send_result::queue_full, queued};
+    return {send_status::queue_full, queued};
   }
   [[nodiscard]] print_result print(int n, const char* text) noexcept { return print(n, c_text(text)); }
 
   /// BASIC's PRINT #n,text: waits for room until all of `text` is queued. `wait()` is called whenever the
   /// transmit queue is full; it lets the link run (returns once some bytes may have gone out) and returns
-  /// false to give up, which sets NETSTAT bit 0 (PROTOCOL.md 1.6). Not for an ISR.
+  /// false to give up, which sets NETSTAT bit 0 (docs/protocol.md 1.6). Not for an ISR.
   template <class Wait>
   [[nodiscard]] print_result print_all(int n, byte_view text, Wait&& wait) noexcept(noexcept(wait())) {
-    const send_result checked = check_print(n, text);
-    if (checked != send_result::queued) return {checked, 0};
+    const send_status checked = check_print(n, text);
+    if (checked != send_status::ok) return {checked, 0};
     const std::uint8_t hops = hops_of_address(n);
     std::size_t done = 0;
     for (;;) {
       done += this->link_.queue_text(hops, byte_view(text.data() + done, text.size() - done));
-      if (done == text.size()) return {send_result::queued, done};
+      if (done == text.size()) return {send_status::ok, done};
       if (!wait()) {
         refuse();
-        return {send_result::queue_full, done};
+        return {send_status::queue_full, done};
       }
     }
   }
@@ -201,38 +222,38 @@ class motion_coordinator final
   }
 
   /// SEND(n,1,vr,value): a direct variable transfer; `value` is rounded to Q32.32.
-  [[nodiscard]] send_result send_variable(int n, std::uint16_t vr, double value) noexcept {
+  [[nodiscard]] send_status send_variable(int n, std::uint16_t vr, double value) noexcept {
     const q32_result q = q32_from_double(value);
     if (!q) {  // the same order of checks as send_variable_q32: address, vr, then value
-      if (!hops_from_basic_address(n)) return send_result::bad_address;
-      return vr > max_vr ? send_result::vr_out_of_range : send_result::value_out_of_range;
+      if (!hops_from_basic_address(n)) return send_status::bad_address;
+      return vr > max_vr ? send_status::vr_out_of_range : send_status::value_out_of_range;
     }
     return send_variable_q32(n, vr, q.raw);
   }
 
   /// SEND(n,1,vr,value) with the value already in Q32.32 (value * 2^32): no floating point.
-  [[nodiscard]] send_result send_variable_q32(int n, std::uint16_t vr, std::int64_t value) noexcept {
+  [[nodiscard]] send_status send_variable_q32(int n, std::uint16_t vr, std::int64_t value) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
-    if (vr > max_vr) return send_result::vr_out_of_range;
+    if (!hops) return send_status::bad_address;
+    if (vr > max_vr) return send_status::vr_out_of_range;
     return queue(message::variable(*hops, vr, value));
   }
 
   /// SEND(n,2,offset): tells the keypad n where to send its key presses (offset: BASIC address 10..24,
   /// counted from the keypad).
-  [[nodiscard]] send_result send_keypad_offset(int n, int offset) noexcept {
+  [[nodiscard]] send_status send_keypad_offset(int n, int offset) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
+    if (!hops) return send_status::bad_address;
     const auto offset_hops = hops_from_basic_address(offset);
-    if (!offset_hops) return send_result::offset_out_of_range;
+    if (!offset_hops) return send_status::offset_out_of_range;
     return queue(message::keypad_offset(*hops, *offset_hops));
   }
 
   /// Keypad mode: 0 = key ON only, 127 = key ON and key OFF.
-  [[nodiscard]] send_result send_keypad_mode(int n, int mode) noexcept {
+  [[nodiscard]] send_status send_keypad_mode(int n, int mode) noexcept {
     const auto hops = hops_from_basic_address(n);
-    if (!hops) return send_result::bad_address;
-    if (mode != keypad_mode_key_on && mode != keypad_mode_key_on_off) return send_result::mode_out_of_range;
+    if (!hops) return send_status::bad_address;
+    if (mode != keypad_mode_key_on && mode != keypad_mode_key_on_off) return send_status::mode_out_of_range;
     return queue(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
   }
 
@@ -245,10 +266,10 @@ class motion_coordinator final
 
   /// GET#4: the next character raw; GET#3: translated through DEFKEY.
   [[nodiscard]] get_result get(int channel) noexcept {
-    if (channel != 3 && channel != 4) return {get_result::status::bad_channel, 0};
+    if (channel != 3 && channel != 4) return {get_status::bad_channel, 0};
     std::uint8_t c = 0;
-    if (!this->decoder_.store().take(c)) return {get_result::status::nothing_yet, 0};
-    return {get_result::status::ok, channel == 3 ? (*defkey_)[c] : c};
+    if (!this->decoder_.store().take(c)) return {get_status::nothing_yet, 0};
+    return {get_status::ok, channel == 3 ? (*defkey_)[c] : c};
   }
 
   /// Characters waiting in the receive buffer.
@@ -261,11 +282,11 @@ class motion_coordinator final
   // Precondition: a valid BASIC address.
   static std::uint8_t hops_of_address(int n) noexcept { return static_cast<std::uint8_t>(n - 9); }
 
-  static send_result check_print(int n, byte_view text) noexcept {
-    if (!hops_from_basic_address(n)) return send_result::bad_address;
-    if (text.empty()) return send_result::empty_text;
-    if (find_control(text.begin(), text.end()) != text.end()) return send_result::character_out_of_range;
-    return send_result::queued;
+  static send_status check_print(int n, byte_view text) noexcept {
+    if (!hops_from_basic_address(n)) return send_status::bad_address;
+    if (text.empty()) return send_status::empty_text;
+    if (find_control(text.begin(), text.end()) != text.end()) return send_status::character_out_of_range;
+    return send_status::ok;
   }
 
   // An own message could not be put into the transmit queue: NETSTAT bit 0.
@@ -274,29 +295,29 @@ class motion_coordinator final
     this->netstat_.raise_tx_timeout();
   }
 
-  send_result queue(const message& m) noexcept {
+  send_status queue(const message& m) noexcept {
     const encode_result queued = this->link_.queue(m);
-    switch (queued.error) {
-      case encode_error::none:
-        return send_result::queued;
-      case encode_error::buffer_too_small:
+    switch (queued.status) {
+      case encode_status::ok:
+        return send_status::ok;
+      case encode_status::buffer_too_small:
         refuse();
-        return send_result::queue_full;
-      case encode_error::empty_text:
-        return send_result::empty_text;
-      case encode_error::character_out_of_range:
-        return send_result::character_out_of_range;
-      case encode_error::vr_out_of_range:
-        return send_result::vr_out_of_range;
-      case encode_error::offset_out_of_range:
-        return send_result::offset_out_of_range;
-      case encode_error::mode_out_of_range:
-        return send_result::mode_out_of_range;
-      case encode_error::hops_out_of_range:
-      case encode_error::unknown_type:
+        return send_status::queue_full;
+      case encode_status::empty_text:
+        return send_status::empty_text;
+      case encode_status::character_out_of_range:
+        return send_status::character_out_of_range;
+      case encode_status::vr_out_of_range:
+        return send_status::vr_out_of_range;
+      case encode_status::offset_out_of_range:
+        return send_status::offset_out_of_range;
+      case encode_status::mode_out_of_range:
+        return send_status::mode_out_of_range;
+      case encode_status::hops_out_of_range:
+      case encode_status::unknown_type:
         break;
     }
-    return send_result::bad_address;
+    return send_status::bad_address;
   }
 
   // A message for this node (the core has counted errors already).
@@ -312,15 +333,17 @@ class motion_coordinator final
         return;
       case message_type::variable:
         switch (vr_->write(r.msg.vr, network_value::from_q32(r.msg.value))) {
-          case vr_write::written:
+          case vr_write_status::ok:
             ++this->counters_.variables_written;
             return;
-          case vr_write::refused:
+          case vr_write_status::refused:
             ++this->counters_.variables_refused;
             return;
-          case vr_write::out_of_range:
-          case vr_write::value_out_of_range:
+          case vr_write_status::out_of_range:
             ++this->counters_.variables_out_of_range;
+            return;
+          case vr_write_status::value_out_of_range:
+            ++this->counters_.variables_value_out_of_range;
             return;
         }
         return;

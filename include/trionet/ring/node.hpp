@@ -1,4 +1,4 @@
-// The core that every node on the fibre ring shares (PROTOCOL.md 1.4-1.6, 1.10): the link (decrement and
+// The core that every node on the fibre ring shares (docs/protocol.md 1.4-1.6, 1.10): the link (decrement and
 // forward, forwarded traffic first, the forwarding bound), the destination's decoder, the idle line, NETSTAT
 // and the receive-side counters, and the bulk paths for DMA-fed links. `motion_coordinator` and `keypad` are
 // this core plus what they do with a message for them (`deliver`).
@@ -27,7 +27,7 @@
 
 namespace trionet::ring {
 
-/// NETSTAT bits (PROTOCOL.md 1.6).
+/// NETSTAT bits (docs/protocol.md 1.6).
 enum netstat_bit : std::uint8_t {
   netstat_tx_timeout = 1,       ///< an own message could not be put into the transmit queue
   netstat_tx_buffer_error = 2,  ///< a forwarded message was lost (buffer full, too long, or the line idle)
@@ -36,7 +36,23 @@ enum netstat_bit : std::uint8_t {
   netstat_rx_overflow = 16,     ///< a character transfer did not fit in the receive buffer (extension)
 };
 
-/// NETSTAT: errors since it was last cleared (PROTOCOL.md 1.6). The link side raises bits, the program side
+constexpr const char* to_string(netstat_bit bit) noexcept {
+  switch (bit) {
+    case netstat_tx_timeout:
+      return "netstat_tx_timeout";
+    case netstat_tx_buffer_error:
+      return "netstat_tx_buffer_error";
+    case netstat_rx_crc_error:
+      return "netstat_rx_crc_error";
+    case netstat_rx_frame_error:
+      return "netstat_rx_frame_error";
+    case netstat_rx_overflow:
+      return "netstat_rx_overflow";
+  }
+  return "unknown";
+}
+
+/// NETSTAT: errors since it was last cleared (docs/protocol.md 1.6). The link side raises bits, the program side
 /// reads and clears them, and each byte here is written by one side only: a raised bit is a bit in which
 /// `raised_` differs from `cleared_`, and clearing makes them equal. Bit 0 (TX timeout) is the program side's
 /// own. An error raised while NETSTAT is being cleared may be cleared with it.
@@ -70,18 +86,18 @@ class node : public byte_port {
   // ---- the link (byte_port): per byte, for a UART interrupt ----
 
   void receive(std::uint8_t byte) noexcept final {
-    const route r = link_.receive(byte);
-    if (r == route::local) {
+    const byte_route r = link_.receive(byte);
+    if (r == byte_route::local) {
       handle(decoder_.push(byte));
       return;
     }
-    if (r == route::lost) netstat_.raise(netstat_tx_buffer_error);
+    if (r == byte_route::lost) netstat_.raise(netstat_tx_buffer_error);
     if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
   }
   [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept final { return link_.transmit(byte); }
   [[nodiscard]] bool transmit_pending() const noexcept final { return link_.transmit_pending(); }
 
-  /// The idle line (PROTOCOL.md 1.10): a message open in the decoder is a frame error (NETSTAT bit 3); a
+  /// The idle line (docs/protocol.md 1.10): a message open in the decoder is a frame error (NETSTAT bit 3); a
   /// message being forwarded is ended and counted as lost (NETSTAT bit 1); the node's own messages may then
   /// be sent.
   void line_idle() noexcept final {
@@ -111,7 +127,7 @@ class node : public byte_port {
 
   // ---- state ----
 
-  /// NETSTAT: errors since it was last cleared (PROTOCOL.md 1.6); cleared only by `clear_netstat`.
+  /// NETSTAT: errors since it was last cleared (docs/protocol.md 1.6); cleared only by `clear_netstat`.
   std::uint8_t netstat() const noexcept { return netstat_.read(); }
   void clear_netstat() noexcept { netstat_.clear(); }
 
@@ -122,7 +138,7 @@ class node : public byte_port {
   /// Room left in the transmit queue, in bytes (a message takes its data + 2).
   std::size_t transmit_free() const noexcept { return link_.transmit_free(); }
 
-  /// The longest own frame the node sends, header and end of message included (PROTOCOL.md 1.5: the forward
+  /// The longest own frame the node sends, header and end of message included (docs/protocol.md 1.5: the forward
   /// buffer absorbs what arrives meanwhile).
   static constexpr std::size_t max_own_frame = Link::max_own_frame;
 
@@ -151,7 +167,7 @@ class node : public byte_port {
         netstat_.raise(netstat_rx_crc_error);
         return;
       case decode_status::no_room:
-      case decode_status::message:
+      case decode_status::ok:
         static_cast<Node*>(this)->deliver(r);
         return;
     }
@@ -202,7 +218,7 @@ class node : public byte_port {
     }
     const std::uint8_t* const run = find_control(p, end);
     const auto n = static_cast<std::size_t>(run - p);
-    (void)link_.receive_data(p, n);  // route::local: counted
+    (void)link_.receive_data(p, n);  // byte_route::local: counted
     decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
     return run;
   }
