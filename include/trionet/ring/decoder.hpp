@@ -10,11 +10,12 @@
 //   data         outside          `stray_data` once per run of such bytes
 //   end of msg   in a message     the message, a frame error, or a CRC error
 //   end of msg   outside          `stray_eom` (none when it closes a skipped A=0 message)
-//   line idle    in a message     `idle_line` (PROTOCOL.md 1.10: the rest of the message is lost)
+//   line idle    in a message     `idle_line` (docs/protocol.md 1.10: the rest of the message is lost)
 //
 // At an end of message the checks run in this order: end-of-message A equals header A (`eom_mismatch`),
 // type 1..4 (`unknown_type`), data length for the type (`bad_length`), the fields (`bad_field`), then for
-// type 2 the CRC: a CRC error is a message that is otherwise well formed (PROTOCOL.md 1.4). Whatever the input, the decoder re-synchronises at the next header.
+// type 2 the CRC: a CRC error is a message that is otherwise well formed (docs/protocol.md 1.4). Whatever
+// the input, the decoder re-synchronises at the next header.
 //
 // Cost: RAM = the character store (MaxCharacters bytes by default) + 14 bytes + 3 words; per byte O(1),
 // no allocation. `push` may be called from an ISR. A decoded message's `text` points into the decoder and is
@@ -71,7 +72,7 @@ enum class frame_error : std::uint8_t {
   bad_field,     ///< a field out of range: offset, mode, or X9 bits 6..1
   unknown_type,  ///< message type 5..7
   zero_hops,     ///< header with A = 0
-  idle_line,     ///< the line went idle before the open message's end of message (PROTOCOL.md 1.10)
+  idle_line,     ///< the line went idle before the open message's end of message (docs/protocol.md 1.10)
 };
 
 constexpr const char* to_string(frame_error error) noexcept {
@@ -243,7 +244,7 @@ class basic_decoder {
     return error(frame_error::interrupted);
   }
 
-  /// The line has been idle (PROTOCOL.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
+  /// The line has been idle (docs/protocol.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
   /// else incomplete. Either way the decoder is then between messages (a skipped A = 0 message is over too).
   [[nodiscard]] decode_result line_idle() noexcept {
     const bool was_open = state_ == state::in_message;

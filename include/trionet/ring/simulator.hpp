@@ -4,7 +4,7 @@
 //
 // Time advances in byte-times. In each step every node, in order, is asked for one byte to transmit; then
 // every byte that went onto a link is delivered to the next node; then every node whose incoming link has
-// now carried no byte for `idle_byte_times` (PROTOCOL.md 1.10, default 2) while it has a message open is told
+// now carried no byte for `idle_byte_times` (docs/protocol.md 1.10, default 2) while it has a message open is told
 // that its line is idle, as a UART's idle-line interrupt would. So a byte takes one byte-time per link, a
 // forwarded byte one byte-time per node, and the same inputs always give the same run.
 // Faults can be injected per link: drop the next byte, flip bits of the next byte, cut the link, or a hook
@@ -31,7 +31,7 @@ struct link_byte {
   bool delivered;         ///< false when the byte was dropped or the link is cut
 };
 
-/// The receiver of a link was told that its line is idle while it had a message open (PROTOCOL.md 1.10).
+/// The receiver of a link was told that its line is idle while it had a message open (docs/protocol.md 1.10).
 /// A trace callback that also accepts this type sees these events.
 struct line_idle_event {
   std::uint64_t time;  ///< the byte-time at whose end it happened
@@ -54,7 +54,7 @@ constexpr double byte_times_to_seconds(std::uint64_t byte_times, double bits_per
   return static_cast<double>(byte_times) * static_cast<double>(bits_per_byte) / bits_per_second;
 }
 
-/// The idle time after which a node's line counts as idle, by default (PROTOCOL.md 1.10).
+/// The idle time after which a node's line counts as idle, by default (docs/protocol.md 1.10).
 constexpr std::uint32_t default_idle_byte_times = 2;
 
 template <std::size_t MaxNodes = 15>
