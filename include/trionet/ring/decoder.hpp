@@ -361,16 +361,19 @@ class basic_decoder {
 
   // The checks of a direct variable transfer whose 14 data bytes are well framed: X9, then the CRC.
   static decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) noexcept {
-    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
     decode_result result;
     result.status = decode_status::ok;
     result.msg.type = message_type::variable;
     result.msg.hops = hops;
     read_variable_data(data, result.msg.vr, result.msg.value);
+    const bool bad_x9 = (data[11] & 0x7E) != 0;
     const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
     if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
+      if (bad_x9) return error(frame_error::bad_field);  // not otherwise well formed: a frame error
       result.status = decode_status::crc_error;
+      return result;
     }
+    if (bad_x9) return error(frame_error::bad_field);
     return result;
   }
 

@@ -111,6 +111,15 @@ class link {
                                                     MaxCharacters,
                                                     MaxCharacters,
                                                     MaxCharacters};
+  /// The same as whole frames, header and end of message included.
+  static constexpr std::uint16_t longest_frame[8] = {0,
+                                                     MaxCharacters + framing_length,
+                                                     variable_data_length + framing_length,
+                                                     1 + framing_length,
+                                                     1 + framing_length,
+                                                     MaxCharacters + framing_length,
+                                                     MaxCharacters + framing_length,
+                                                     MaxCharacters + framing_length};
   /// The most characters one own character message carries.
   static constexpr std::size_t max_own_characters =
       max_own_frame - framing_length < MaxCharacters ? max_own_frame - framing_length : MaxCharacters;
@@ -140,12 +149,10 @@ class link {
   /// True while a message through the node has begun and not ended (forwarded, or being dropped).
   bool passing_message() const noexcept { return receiving_ != receiving::local; }
 
-  /// What `receive_passing` took.
+  /// What `receive_passing` took (a forwarded message lost on the way shows in the counters).
   struct passing {
-    static constexpr std::uint8_t header = 1;  ///< a header was taken: a message the node was receiving ended
-    static constexpr std::uint8_t lost = 2;    ///< a forwarded message was lost
     const std::uint8_t* stop;  ///< the first byte not taken (one for the node itself), or the end
-    std::uint8_t events;       ///< `header` and `lost` bits: what happened on the way
+    bool header;               ///< a header was taken: a message the node was receiving ended
   };
 
   /// Takes bytes from [first, last) while they are not for the node itself: the same as `receive` for each,
@@ -162,7 +169,8 @@ class link {
   class straight_out {
    public:
     std::size_t size() const noexcept { return size_; }
-    static constexpr std::size_t free() noexcept { return ForwardCapacity; }  // never less than what comes
+    // Never less than what comes: `straight_through` checked that all of it fits.
+    static constexpr std::size_t free() noexcept { return static_cast<std::size_t>(-1); }
     [[nodiscard]] bool push(std::uint8_t byte) noexcept {
       data_[size_++] = byte;
       return true;
@@ -202,8 +210,9 @@ class link {
   [[nodiscard]] std::size_t transmit_after(const straight_out& straight, std::uint8_t* out,
                                            std::size_t capacity) noexcept {
     const std::size_t n = straight.size();
-    if (n != 0)
-      sending_ = classify(out[n - 1]) == byte_class::end_of_message ? sending::idle : sending::forward;
+    // Not sending an own message (`straight_through`), the transmitter is inside a forwarded message exactly
+    // when one is open on the receive side; otherwise it is between messages.
+    sending_ = receiving_ == receiving::forward ? sending::forward : sending::idle;
     if (queue_.empty()) return n;  // the forward buffer is empty too: nothing more (`transmit` would say so)
     return n + transmit(out + n, capacity - n);
   }
@@ -358,18 +367,20 @@ class link {
       case receiving::forward:
         break;
     }
-    const std::size_t allowed = n < budget_ ? n : budget_;
+    const std::size_t allowed = remaining_;
+    if (TRIONET_LIKELY(n <= allowed)) {  // the common case: not longer than legal
+      const std::size_t pushed = into.push(data, n);
+      count(byte_route::forwarded, pushed);
+      remaining_ = static_cast<std::uint16_t>(allowed - pushed);
+      if (pushed == n) return byte_route::forwarded;
+      count(lose(into), 1);
+      count(byte_route::dropped, n - pushed - 1);
+      return byte_route::lost;
+    }
     const std::size_t pushed = into.push(data, allowed);
     count(byte_route::forwarded, pushed);
-    budget_ = static_cast<std::uint16_t>(budget_ - pushed);
-    const std::size_t incoming = incoming_ + pushed;
-    incoming_ = static_cast<std::uint16_t>(incoming <= ForwardCapacity ? incoming : ForwardCapacity + 1);
-    if (pushed == n) return byte_route::forwarded;
-    if (pushed == allowed) {
-      count(cut(into), 1);  // the first byte past the longest legal message
-    } else {
-      count(lose(into), 1);
-    }
+    remaining_ = static_cast<std::uint16_t>(allowed - pushed);
+    count(pushed == allowed ? cut(into) : lose(into), 1);  // cut: the first byte past the longest legal message
     count(byte_route::dropped, n - pushed - 1);
     return byte_route::lost;
   }
@@ -377,7 +388,7 @@ class link {
   template <class Into>
   TRIONET_ALWAYS_INLINE passing receive_passing(const std::uint8_t* first, const std::uint8_t* last,
                                                 Into& into) noexcept {
-    passing result{first, 0};
+    passing result{first, false};
     const std::uint8_t* p = first;
     while (p != last) {
       if (receiving_ != receiving::local) {
@@ -387,9 +398,7 @@ class link {
           p = run + 1;
           continue;
         }
-        if (run != p && receive_data(p, static_cast<std::size_t>(run - p), into) == byte_route::lost) {
-          result.events |= passing::lost;
-        }
+        if (run != p) (void)receive_data(p, static_cast<std::size_t>(run - p), into);
         p = run;
         if (p == last) break;
       }
@@ -399,7 +408,7 @@ class link {
         if (receiving_ == receiving::local) break;  // the end of the node's own message
       } else {
         if (hops_of(byte) <= 1) break;  // a message for the node
-        result.events |= passing::header;
+        result.header = true;
         if (forwarding_ && receiving_ == receiving::local) {  // a whole message to forward?
           const std::uint8_t* const end = find_control(p + 1, last);
           if (end != last && type_of(*end) == 0 && forward_whole(p, end, into)) {
@@ -408,7 +417,7 @@ class link {
           }
         }
       }
-      if (receive(byte, into) == byte_route::lost) result.events |= passing::lost;
+      (void)receive(byte, into);
       ++p;
     }
     result.stop = p;
@@ -420,9 +429,10 @@ class link {
     if (is_data(byte)) {
       switch (receiving_) {
         case receiving::forward:
-          if (budget_ == 0) return cut(into);
-          --budget_;
-          return forward(byte, into);
+          if (remaining_ == 0) return cut(into);
+          if (!into.push(byte)) return lose(into);
+          --remaining_;
+          return byte_route::forwarded;
         case receiving::discard:
           return byte_route::dropped;
         case receiving::local:
@@ -434,7 +444,8 @@ class link {
     receiving_ = receiving::local;  // any header or end of message ends the message being forwarded
     if (type_of(byte) == 0) {  // end of message
       if (was == receiving::forward) {
-        return forward(decrement_hops(byte), into);
+        if (!into.push(decrement_hops(byte))) return lose(into);
+        return byte_route::forwarded;
       }
       return was == receiving::discard ? byte_route::dropped : byte_route::local;
     }
@@ -445,23 +456,19 @@ class link {
       ++counters_.messages_dropped;
       return byte_route::dropped;
     }
-    receiving_ = receiving::forward;
-    incoming_ = 0;
-    budget_ = longest_data[type_of(byte)];
     ++counters_.messages_forwarded;
-    return forward(decrement_hops(byte), into);
+    if (!into.push(decrement_hops(byte))) {  // nothing of it is in the buffer: nothing to remove
+      ++counters_.forwards_lost;
+      receiving_ = receiving::discard;
+      return byte_route::lost;
+    }
+    receiving_ = receiving::forward;
+    limit_ = remaining_ = longest_data[static_cast<std::size_t>(byte & 0x07)];
+    return byte_route::forwarded;
   }
 
   enum class sending : std::uint8_t { idle, forward, own };
 
-  template <class Into>
-  byte_route forward(std::uint8_t byte, Into& into) noexcept {
-    if (into.push(byte)) {
-      if (incoming_ <= ForwardCapacity) ++incoming_;  // ForwardCapacity < 65535: never wraps
-      return byte_route::forwarded;
-    }
-    return lose(into);
-  }
 
   // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
   // all fits and is not longer than legal (the same as `receive` for each byte); false, and nothing done, if
@@ -469,7 +476,7 @@ class link {
   template <class Into>
   bool forward_end(const std::uint8_t* data, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - data) + 1;
-    if (n > into.free() || n - 1 > budget_) return false;
+    if (n > into.free() || n - 1 > remaining_) return false;
     (void)into.push(data, n);
     into.back() = decrement_hops(*end_of_message);
     counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
@@ -483,10 +490,10 @@ class link {
   template <class Into>
   bool forward_whole(const std::uint8_t* header, const std::uint8_t* end_of_message, Into& into) noexcept {
     const auto n = static_cast<std::size_t>(end_of_message - header) + 1;
-    if (n > into.free() || n - framing_length > longest_data[type_of(*header)]) return false;
+    if (n > into.free() || n > longest_frame[static_cast<std::size_t>(*header & 0x07)]) return false;
     const std::size_t header_at = into.size();
     (void)into.push(header, n);
-    into.at(header_at) = decrement_hops(*header);
+    into.at(header_at) = static_cast<std::uint8_t>(*header - 0x08);  // A > 1: decrement_hops without its check
     into.back() = decrement_hops(*end_of_message);
     counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
     ++counters_.messages_forwarded;
@@ -502,14 +509,16 @@ class link {
 
   // The forwarded message being received is longer than any legal message of its type: it is lost.
   template <class Into>
-  TRIONET_NOINLINE byte_route cut(Into& into) noexcept {
+  byte_route cut(Into& into) noexcept {
     ++counters_.forwards_cut;
     return end_forward(into);
   }
 
   template <class Into>
   byte_route end_forward(Into& into) noexcept {
-    if (incoming_ <= into.size()) into.drop_back(incoming_);  // none of it has gone out yet
+    // Its header and data so far are in the buffer, if none of it has gone out.
+    const std::size_t incoming = std::size_t{limit_} - remaining_ + 1u;
+    if (incoming <= into.size()) into.drop_back(incoming);
     receiving_ = receiving::discard;
     return byte_route::lost;
   }
@@ -517,8 +526,8 @@ class link {
   byte_fifo<ForwardCapacity> forward_;
   byte_fifo<TransmitCapacity> queue_;
   link_counters counters_;
-  std::uint16_t incoming_ = 0;  // bytes of the message being forwarded now in the buffer (saturates)
-  std::uint16_t budget_ = 0;    // data bytes the message being forwarded may still carry
+  std::uint16_t limit_ = 0;      // the most data the message being forwarded may carry: longest_data
+  std::uint16_t remaining_ = 0;  // ... of which it has not carried yet
   receiving receiving_ = receiving::local;  // `forward`: a forwarded message has begun and not yet ended
   sending sending_ = sending::idle;
   bool forwarding_ = true;

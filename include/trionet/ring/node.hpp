@@ -10,7 +10,7 @@
 //   program: PRINT#, SEND, key presses --------------> transmit queue ----+
 //   idle line --> line_idle: ends an open message in the decoder and in the link (counted)
 //
-// Cost: the link's and the decoder's RAM plus 3 bytes of NETSTAT and the node's counters. Per byte O(1);
+// Cost: the link's and the decoder's RAM plus 7 bytes of NETSTAT and the node's counters. Per byte O(1);
 // the bulk forms copy runs of message data whole. `receive`, `transmit`, `relay` and `line_idle` may run in
 // an ISR.
 #pragma once
@@ -91,7 +91,6 @@ class node : public byte_port {
       handle(decoder_.push(byte));
       return;
     }
-    if (r == byte_route::lost) netstat_.raise(netstat_tx_buffer_error);
     if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
   }
   [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept final { return link_.transmit(byte); }
@@ -101,7 +100,7 @@ class node : public byte_port {
   /// message being forwarded is ended and counted as lost (NETSTAT bit 1); the node's own messages may then
   /// be sent.
   void line_idle() noexcept final {
-    if (link_.line_idle()) netstat_.raise(netstat_tx_buffer_error);
+    (void)link_.line_idle();
     handle(decoder_.line_idle());
   }
   [[nodiscard]] bool in_message() const noexcept final { return link_.passing_message() || decoder_.open(); }
@@ -128,8 +127,15 @@ class node : public byte_port {
   // ---- state ----
 
   /// NETSTAT: errors since it was last cleared (docs/protocol.md 1.6); cleared only by `clear_netstat`.
-  std::uint8_t netstat() const noexcept { return netstat_.read(); }
-  void clear_netstat() noexcept { netstat_.clear(); }
+  /// Bit 1 (a forwarded message lost) is read off the link's counters, so the forwarding paths never touch it.
+  std::uint8_t netstat() const noexcept {
+    const bool forward_lost = link_.counters().forwards_failed() != forwards_failed_at_clear_;
+    return static_cast<std::uint8_t>(netstat_.read() | (forward_lost ? netstat_tx_buffer_error : 0));
+  }
+  void clear_netstat() noexcept {
+    netstat_.clear();
+    forwards_failed_at_clear_ = link_.counters().forwards_failed();
+  }
 
   const Counters& counters() const noexcept { return counters_; }
   const link_counters& forwarding_counters() const noexcept { return link_.counters(); }
@@ -152,6 +158,7 @@ class node : public byte_port {
   Decoder decoder_;
   Counters counters_{};
   netstat_register netstat_;
+  std::uint32_t forwards_failed_at_clear_ = 0;  // the link's forwards_failed() when NETSTAT was cleared
 
  private:
   void handle(const decode_result& r) noexcept {
@@ -181,7 +188,7 @@ class node : public byte_port {
     const std::uint8_t* const end = bytes.end();
     for (;;) {
       const auto passed = link_.receive_passing(p, end, straight...);
-      if (passed.events != 0) passed_events(passed.events);
+      if (passed.header) passed_header();
       p = passed.stop;
       if (p == end) return;
       p = receive_local(p, end);
@@ -194,17 +201,14 @@ class node : public byte_port {
     return transmit(out);
   }
 
-  // What happened to traffic through the node: a header (it ends any message the node was receiving, and the
-  // decoder is then between messages) or a lost forwarded message.
-  void passed_events(std::uint8_t events) noexcept {
-    if ((events & Link::passing::header) != 0) {
-      if (decoder_.in_message()) {
-        end_local_message();
-      } else {
-        decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
-      }
+  // A header passed through the node: it ends any message the node was receiving, and the decoder is then
+  // between messages.
+  void passed_header() noexcept {
+    if (decoder_.in_message()) {
+      end_local_message();
+    } else {
+      decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
     }
-    if ((events & Link::passing::lost) != 0) netstat_.raise(netstat_tx_buffer_error);
   }
 
   // A header through the node ended the message the node was receiving.
