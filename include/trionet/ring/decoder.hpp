@@ -366,14 +366,11 @@ class basic_decoder {
     result.msg.type = message_type::variable;
     result.msg.hops = hops;
     read_variable_data(data, result.msg.vr, result.msg.value);
-    const bool bad_x9 = (data[11] & 0x7E) != 0;
     const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
     if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
-      if (bad_x9) return error(frame_error::bad_field);  // not otherwise well formed: a frame error
-      result.status = decode_status::crc_error;
-      return result;
+      result.status = decode_status::crc_error;  // if it is otherwise well formed
     }
-    if (bad_x9) return error(frame_error::bad_field);
+    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
     return result;
   }
 
