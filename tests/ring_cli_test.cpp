@@ -124,7 +124,7 @@ TEST(RingCli, SimulateExample1ShowsBothDisplays) {
   const auto r = run_cli("ring simulate example1");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const std::string box =
-      "+--------------------+\n|LENGTH:   125       |\n|SPEED:       0.2    |\n+--------------------+\n";
+      "+--------------------+\n|SPEED:    125       |\n|LENGTH:      0.2    |\n+--------------------+\n";
   EXPECT_NE(r.out.find("keypad 1:\n" + box), std::string::npos);
   EXPECT_NE(r.out.find("keypad 2:\n" + box), std::string::npos);
 }

@@ -77,11 +77,10 @@ TEST(ManualExample1, TwoKeypadsOneMotionCoordinator) {
   ASSERT_TRUE(ex.keypad2.network_mode());
   EXPECT_EQ(ex.keypad1.offset(), 2);  // SEND(10,2,11): two nodes on, round to the MC
   EXPECT_EQ(ex.keypad2.offset(), 1);  // SEND(11,2,10)
-  // PRINT without ';' ends with CR LF, and CR moves to the start of the other line (PROTOCOL.md 1.9): the
-  // first PRINT's CR leaves the cursor on the second line, so "SPEED:" lands there and "LENGTH:" on the
-  // first.
-  EXPECT_EQ(std::string(ex.keypad1.display().line(0)), "LENGTH:             ");
-  EXPECT_EQ(std::string(ex.keypad1.display().line(1)), "SPEED:              ");
+  // PRINT without ';' ends with CR LF; CR moves to the start of the other line unless the cursor is at the
+  // start of a line (protocol 1.9): "SPEED:" on line 1, "LENGTH:" on line 2.
+  EXPECT_EQ(std::string(ex.keypad1.display().line(0)), "SPEED:              ");
+  EXPECT_EQ(std::string(ex.keypad1.display().line(1)), "LENGTH:             ");
   EXPECT_FALSE(ex.keypad1.display().cursor_visible());
 
   examples::press(ex, ex.keypad1, ring::key::digit_1, no_trace);
@@ -94,8 +93,8 @@ TEST(ManualExample1, TwoKeypadsOneMotionCoordinator) {
   examples::press(ex, ex.keypad1, ring::key::down, no_trace);
   EXPECT_NEAR(ex.vr[2], 0.2, 1e-9);
   for (const keypad_node* k : {&ex.keypad1, &ex.keypad2}) {
-    EXPECT_EQ(std::string(k->display().line(0)), "LENGTH:   125       ");  // a[6,0] at position 7
-    EXPECT_EQ(std::string(k->display().line(1)), "SPEED:       0.2    ");  // VR(length)[8,1] at CURSOR(28)
+    EXPECT_EQ(std::string(k->display().line(0)), "SPEED:    125       ");  // a[6,0] at position 7
+    EXPECT_EQ(std::string(k->display().line(1)), "LENGTH:      0.2    ");  // VR(length)[8,1] at CURSOR(28)
   }
   EXPECT_EQ(ex.mc.netstat(), 0);
 }
