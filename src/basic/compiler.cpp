@@ -862,8 +862,7 @@ class compiler {
   }
 
   bool or_expression() {
-    nesting guard(*this);
-    if (!guard.ok() || !and_expression()) return false;
+    if (!and_expression()) return false;
     while (is_word("OR") || is_word("XOR")) {
       const expr_op op = next().text == "OR" ? expr_op::bit_or : expr_op::bit_xor;
       if (!and_expression()) return false;
@@ -884,9 +883,10 @@ class compiler {
 
   bool not_expression() {
     if (!is_word("NOT")) return comparison();
-    next();
     nesting guard(*this);
-    if (!guard.ok() || !not_expression()) return false;
+    if (!guard.ok()) return false;
+    next();
+    if (!not_expression()) return false;
     push(expr_op::logical_not);
     return true;
   }
@@ -928,9 +928,10 @@ class compiler {
 
   bool unary() {
     if (is_symbol("-") || is_symbol("+")) {
-      const bool minus = next().text == "-";
       nesting guard(*this);
-      if (!guard.ok() || !unary()) return false;
+      if (!guard.ok()) return false;
+      const bool minus = next().text == "-";
+      if (!unary()) return false;
       if (!minus) return true;
       if (p_.code.back().op == expr_op::constant && depth_ > 0) {
         p_.code.back().value = -p_.code.back().value;  // a negative constant
@@ -952,6 +953,8 @@ class compiler {
         return fail(compile_status::syntax_error, t.at, "a string can only be an item of PRINT");
       case token_kind::symbol:
         if (t.text == "(") {
+          nesting guard(*this);
+          if (!guard.ok()) return false;
           const source_position open = next().at;
           return or_expression() &&
                  expect_symbol(")", "')' to close the '(' at column " + std::to_string(open.column));
@@ -970,6 +973,8 @@ class compiler {
       return true;
     }
     if (word == "VR" || word == "ABS" || word == "INT") {
+      nesting guard(*this);
+      if (!guard.ok()) return false;
       next();
       if (!expect_symbol("(", "'(' after " + word) || !or_expression() ||
           !expect_symbol(")", "')' to close " + word + "(")) {
