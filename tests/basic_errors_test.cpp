@@ -143,6 +143,9 @@ TEST(BasicCompileErrors, LimitsOnUntrustedText) {
                        "test.bas:1:67: expression nested more than 64 deep");
   expect_compile_error("x=" + std::string(65, '-') + "1\n", compile_status::too_large,
                        "test.bas:1:67: expression nested more than 64 deep");
+  std::string ifs;
+  for (int i = 0; i < 65; ++i) ifs += "IF a THEN ";
+  expect_compile_error(ifs + "x=1\n", compile_status::too_large, "test.bas:1:641: IF nested more than 64 deep");
   std::string deep;
   for (int i = 0; i < 65; ++i) deep += "REPEAT\n";
   expect_compile_error(deep, compile_status::too_large, "test.bas:65:1: blocks nested more than 64 deep");

@@ -670,6 +670,8 @@ class compiler {
   }
 
   bool if_statement(source_position where, bool one_line_if) {
+    nesting guard(*this, "IF");
+    if (!guard.ok()) return false;
     next();
     std::uint32_t condition = 0;
     if (!expression(condition) || !expect_word("THEN", "THEN after the IF condition")) return false;
@@ -813,20 +815,23 @@ class compiler {
   //   product: unary { (* | / | MOD) unary }
   //   unary: - unary | + unary | value         highest
 
+  // One more level of nesting (a parenthesis, an operator, a one-line IF) while it lives; ok() says whether
+  // that is still within max_nesting, so that no text can recurse the compiler deeper.
   class nesting {
    public:
-    explicit nesting(compiler& c) : c_(c) { ++c_.nesting_; }
+    explicit nesting(compiler& c, const char* what = "expression") : c_(c), what_(what) { ++c_.nesting_; }
     ~nesting() { --c_.nesting_; }
     nesting(const nesting&) = delete;
     nesting& operator=(const nesting&) = delete;
     bool ok() {
       if (c_.nesting_ <= max_nesting) return true;
       return c_.fail(compile_status::too_large, c_.peek().at,
-                     "expression nested more than " + std::to_string(max_nesting) + " deep");
+                     std::string(what_) + " nested more than " + std::to_string(max_nesting) + " deep");
     }
 
    private:
     compiler& c_;
+    const char* what_;
   };
 
   bool expression(std::uint32_t& id) {
