@@ -18,7 +18,8 @@ constexpr const char* ring_usage =
     "  trionet ring encode offset --to N --offset M\n"
     "  trionet ring encode mode   --to N --mode 0|127\n"
     "  trionet ring decode [HEX...]          (no HEX: read standard input)\n"
-    "  trionet ring simulate example1|example2\n"
+    "  trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
+    "  trionet ring simulate --node mc:FILE.bas|mc|keypad ... [options]   (trionet ring simulate --help)\n"
     "N and M are BASIC addresses 10..24 (hops + 9); V is 0..16383; X is a real number.\n";
 
 std::string hex_line(const std::uint8_t* bytes, std::size_t length) {

@@ -1,181 +1,329 @@
-// `trionet ring simulate example1|example2`: the manual's example networks on the simulated ring, with a
-// readable trace: every message on every link with its hop count, VR changes, the keypad displays drawn as
-// 2 x 20 boxes, and NETSTAT at the end.
-#include <cinttypes>
+// `trionet ring simulate`: a ring of Motion Coordinators running BASIC programs and membrane keypads pressed
+// by a key script, on the simulated ring (ring_network.hpp). Prints what happens as it happens (key presses,
+// messages dropped and why, VRs written by the ring, program ends and errors, NETSTAT; with --trace every
+// message on every link and every display change), then every node's state; --json ends with one JSON line.
+#include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
+#include "basic/number_format.hpp"
+#include "basic/program.hpp"
 #include "cli.hpp"
+#include "embedded_files.hpp"
 #include "ring_cli.hpp"
-#include "ring_manual_examples.hpp"
+#include "ring_network.hpp"
 
 namespace trionet::cli {
 namespace {
 
-std::string readable(byte_view text) {
-  std::string out;
-  for (std::uint8_t c : text) {
-    if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c < 32 || c == 127) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\x%02x", c);
-      out += escape;
-    } else {
-      out += static_cast<char>(c);
-    }
+// The networks built into the tool: their programs are the files under examples/, built in at build time.
+struct builtin_network {
+  const char* name;
+  const char* title;
+  std::vector<const char*> nodes;  // "keypad", "mc" or "mc:FILE"
+  const char* keys;
+};
+
+const builtin_network builtins[] = {
+    {"example1", "the manual's Example 1: one Motion Coordinator and two keypads",
+     {"mc:examples/manual/example1.bas", "keypad", "keypad"},
+     "wait=200 1:1 2:2 1:5 2:up 1:up 2:up 1:down"},
+    {"example2", "the manual's Example 2: two Motion Coordinators and one keypad",
+     {"mc:examples/manual/example2_three_axis.bas", "mc:examples/manual/example2_two_axis.bas", "keypad"},
+     "wait=1000 1:up 1:up 1:up 1:y 1:up 1:up 1:y 1:start"},
+    {"example3", "the manual's warning: a second MC prints through the keypad before it is in network mode",
+     {"mc:examples/keypad_order/master.bas", "mc:examples/keypad_order/feeder.bas", "keypad"},
+     ""},
+    {"example3-fixed", "the same ring with the feeder waiting for the master's handshake",
+     {"mc:examples/keypad_order/master_fixed.bas", "mc:examples/keypad_order/feeder_fixed.bas", "keypad"},
+     ""},
+};
+
+constexpr const char* simulate_usage =
+    "usage: trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
+    "       trionet ring simulate --node mc:FILE.bas|mc|keypad ... [options]   (nodes in ring order)\n"
+    "options:\n"
+    "  --keys SCRIPT            key presses, e.g. \"wait=500 1:7 1:up 1:Y wait=2000 2:start\" (docs/basic.md)\n"
+    "  --byte-times N           stop after N byte-times (default 1000000)\n"
+    "  --bit-rate B             bits per second on every link (default 125000; 10 bits per byte)\n"
+    "  --statements-per-byte-time S   BASIC statements each program runs per byte-time (default 1)\n"
+    "  --key-gap N              byte-times each key press takes (default 1000)\n"
+    "  --trace                  also every message on every link and every display change\n"
+    "  --json                   a JSON summary as the last line (alone, unless --trace)\n";
+
+bool read_program(const std::string& path, std::string& text, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "cannot read " + path;
+    return false;
   }
+  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in.bad()) {
+    error = "cannot read " + path;
+    return false;
+  }
+  return true;
+}
+
+bool node_of(const std::string& spec, bool builtin, host::node_spec& node, std::string& error) {
+  if (spec == "keypad") {
+    node.what = host::node_spec::kind::keypad;
+    return true;
+  }
+  if (spec == "mc") {
+    node.what = host::node_spec::kind::mc;
+    return true;
+  }
+  if (spec.compare(0, 3, "mc:") != 0 || spec.size() == 3) {
+    error = "--node takes mc:FILE, mc or keypad, not '" + spec + "'";
+    return false;
+  }
+  node.what = host::node_spec::kind::mc;
+  node.program_name = spec.substr(3);
+  if (!builtin) return read_program(node.program_name, node.program_text, error);
+  const host::embedded_file* file = host::find_embedded_file(node.program_name);
+  if (file == nullptr) {
+    error = node.program_name + " is not built into this tool";
+    return false;
+  }
+  node.program_text = std::string(file->text());
+  return true;
+}
+
+std::string json_number(double v) {
+  return std::isfinite(v) ? basic::format_number(v) : "null";
+}
+
+std::string box(const std::vector<std::string>& lines, const char* indent) {
+  std::string out = std::string(indent) + "+--------------------+\n";
+  for (const std::string& line : lines) out += std::string(indent) + "|" + line + "|\n";
+  out += std::string(indent) + "+--------------------+\n";
   return out;
 }
 
-std::string event_text(const ring::decode_result& r) {
-  if (r.status == ring::decode_status::frame_error)
-    return std::string("frame error: ") + ring::to_string(r.error);
-  if (r.status == ring::decode_status::crc_error) return "CRC error (vr " + std::to_string(r.msg.vr) + ")";
-  const std::string hops = "hops " + std::to_string(r.msg.hops) + "  ";
-  switch (r.msg.type) {
-    case ring::message_type::character:
-      return hops + "PRINT   \"" + readable(r.msg.text) + "\"";
-    case ring::message_type::variable:
-      return hops + "VR(" + std::to_string(r.msg.vr) +
-             ") = " + format_real(trionet::q32_to_double(r.msg.value));
-    case ring::message_type::keypad_offset:
-      return hops + "keypad offset " + std::to_string(r.msg.offset);
-    case ring::message_type::keypad_mode:
-      return hops + "keypad mode " + std::to_string(r.msg.mode);
-  }
-  return hops;
+std::string basic_address_text(unsigned hops) {
+  return std::to_string(hops) + (hops == 1 ? " hop" : " hops") + " along (BASIC " + std::to_string(hops + 9) + ")";
 }
 
-/// Prints every message on every link as it completes, and watched VR changes.
-class tracer {
- public:
-  tracer(const char* const* names, std::size_t count) : names_(names), count_(count), decoders_(count) {}
-
-  void on_byte(const ring::link_byte& b) {
-    if (!b.delivered) return;
-    const ring::decode_result r = decoders_[b.link].push(b.received);
-    if (r.status == ring::decode_status::incomplete) return;
-    const std::string route = std::string(names_[b.link]) + " -> " + names_[(b.link + 1) % count_];
-    std::printf("t=%6" PRIu64 "  %-24s %s\n", b.time, route.c_str(), event_text(r).c_str());
-  }
-
-  struct watch {
-    const char* node;
-    const vr_table<1024>* table;
-    std::size_t vr;
-    double last;
-  };
-  void watch_vr(const char* node, const vr_table<1024>& table, std::size_t vr) {
-    watches_.push_back({node, &table, vr, table[vr]});
-  }
-  void check_vrs(std::uint64_t now) {
-    for (auto& w : watches_) {
-      const double value = (*w.table)[w.vr];
-      if (value == w.last) continue;
-      w.last = value;
-      std::printf("t=%6" PRIu64 "  %-24s VR(%zu) is now %s\n", now, w.node, w.vr, format_real(value).c_str());
+void print_summary(const host::ring_network& net) {
+  for (std::size_t i = 1; i <= net.size(); ++i) {
+    const host::node_report r = net.report(i);
+    if (r.what == host::node_spec::kind::keypad) {
+      std::printf("node %zu  keypad %zu: ", i, r.keypad_number);
+      if (r.network_mode) {
+        std::printf("network mode, keys go %s\n", basic_address_text(r.offset).c_str());
+      } else {
+        std::printf("local mode (no keypad offset received)\n");
+      }
+      std::fputs(box(r.display, "        ").c_str(), stdout);
+      if (r.dropped != 0 || r.keys_lost != 0) {
+        std::printf("        dropped in local mode: %u message(s); keys lost: %u\n", static_cast<unsigned>(r.dropped),
+                    static_cast<unsigned>(r.keys_lost));
+      }
+      continue;
     }
+    std::printf("node %zu  mc", i);
+    if (r.state == "none") {
+      std::printf(" (no program)\n");
+    } else {
+      std::printf(" %s: ", r.program.c_str());
+      if (r.state == "failed") {
+        std::printf("stopped at line %u: %s\n", static_cast<unsigned>(r.line), r.error.c_str());
+      } else if (r.state == "ended") {
+        std::printf("ended at line %u\n", static_cast<unsigned>(r.line));
+      } else if (r.state == "waiting") {
+        std::printf("waiting at line %u (%s)\n", static_cast<unsigned>(r.line), r.waiting.c_str());
+      } else {
+        std::printf("running at line %u%s\n", static_cast<unsigned>(r.line),
+                    r.idle ? ", round a loop that changes nothing" : "");
+      }
+    }
+    std::printf("        NETSTAT %u\n", static_cast<unsigned>(r.netstat));
+    const auto list = [](const char* title, const std::string& items) {
+      if (!items.empty()) std::printf("        %s:%s\n", title, items.c_str());
+    };
+    std::string text;
+    for (const auto& [vr, value] : r.vrs) text += " VR(" + std::to_string(vr) + ")=" + basic::format_number(value);
+    list("VR", text);
+    text.clear();
+    for (const auto& [name, value] : r.variables) text += " " + name + "=" + basic::format_number(value);
+    list("variables", text);
+    text.clear();
+    for (const auto& [name, value] : r.parameters) text += " " + name + "=" + basic::format_number(value);
+    list("axis parameters", text);
   }
-
- private:
-  const char* const* names_;
-  std::size_t count_;
-  std::vector<ring::decoder<>> decoders_;
-  std::vector<watch> watches_;
-};
-
-void print_box(const char* title, const ring::keypad_display& display) {
-  std::printf("%s\n%s", title, examples::draw_display(display).c_str());
 }
 
-template <class Node>
-void print_netstat(const char* name, const Node& mc) {
-  const auto& c = mc.counters();
-  std::printf("NETSTAT %-10s %u   (frame errors %u, CRC errors %u, receive overflows %u, sends refused %u)\n",
-              name, static_cast<unsigned>(mc.netstat()), static_cast<unsigned>(c.frame_errors),
-              static_cast<unsigned>(c.crc_errors), static_cast<unsigned>(c.receive_overflows),
-              static_cast<unsigned>(c.sends_refused));
-}
-
-int run_example1() {
-  examples::example1 ex;
-  tracer t(examples::example1::node_names, 3);
-  t.watch_vr("MC", ex.vr, 2);
-  const examples::trace_fn trace = [&](const ring::link_byte& b) {
-    t.on_byte(b);
-    t.check_vrs(b.time);
-  };
-  std::printf("Manual example 1: one Motion Coordinator and two keypads\n");
-  std::printf("ring: MC -> keypad 1 -> keypad 2 -> MC   (1 byte per link per byte-time)\n\n");
-  ex.settle(trace);
-  print_box("\nkeypad 1 and keypad 2 after the program's set-up:", ex.keypad1.display());
-  struct {
-    ring::keypad<>* keypad;
-    ring::key key;
-    const char* what;
-  } presses[] = {
-      {&ex.keypad1, ring::key::digit_1, "keypad 1: 1"}, {&ex.keypad2, ring::key::digit_2, "keypad 2: 2"},
-      {&ex.keypad1, ring::key::digit_5, "keypad 1: 5"}, {&ex.keypad2, ring::key::up, "keypad 2: up"},
-      {&ex.keypad1, ring::key::up, "keypad 1: up"},     {&ex.keypad2, ring::key::up, "keypad 2: up"},
-      {&ex.keypad1, ring::key::down, "keypad 1: down"}};
-  for (const auto& p : presses) {
-    std::printf("\n[key] %s\n", p.what);
-    examples::press(ex, *p.keypad, p.key, trace);
+std::string summary_json(const host::ring_network& net, host::run_end end) {
+  std::string out = "{\"byte_times\":" + std::to_string(net.now()) + ",\"seconds\":" + json_number(net.seconds()) +
+                    ",\"end\":\"" + host::to_string(end) + "\",\"nodes\":[";
+  for (std::size_t i = 1; i <= net.size(); ++i) {
+    const host::node_report r = net.report(i);
+    if (i > 1) out += ',';
+    out += "{\"node\":" + std::to_string(i);
+    if (r.what == host::node_spec::kind::keypad) {
+      out += ",\"kind\":\"keypad\",\"keypad\":" + std::to_string(r.keypad_number) +
+             ",\"network_mode\":" + (r.network_mode ? "true" : "false") + ",\"offset\":" + std::to_string(r.offset) +
+             ",\"display\":[" + json_string(r.display[0]) + "," + json_string(r.display[1]) +
+             "],\"dropped\":" + std::to_string(r.dropped) + ",\"keys_lost\":" + std::to_string(r.keys_lost) + "}";
+      continue;
+    }
+    const bool has_program = r.state != "none";
+    out += ",\"kind\":\"mc\",\"program\":" + (has_program ? json_string(r.program) : std::string("null"));
+    out += ",\"state\":" + json_string(r.state);
+    out += ",\"ended\":" + std::string(r.state == "running" || r.state == "waiting" ? "false" : "true");
+    out += ",\"line\":" + (has_program ? std::to_string(r.line) : std::string("null"));
+    out += ",\"error\":" + (r.error.empty() ? std::string("null") : json_string(r.error));
+    out += ",\"netstat\":" + std::to_string(r.netstat) + ",\"vr\":{";
+    for (std::size_t k = 0; k < r.vrs.size(); ++k) {
+      out += (k ? ",\"" : "\"") + std::to_string(r.vrs[k].first) + "\":" + json_number(r.vrs[k].second);
+    }
+    out += "},\"variables\":{";
+    for (std::size_t k = 0; k < r.variables.size(); ++k) {
+      out += (k ? "," : "") + json_string(r.variables[k].first) + ":" + json_number(r.variables[k].second);
+    }
+    out += "},\"parameters\":{";
+    for (std::size_t k = 0; k < r.parameters.size(); ++k) {
+      out += (k ? "," : "") + json_string(r.parameters[k].first) + ":" + json_number(r.parameters[k].second);
+    }
+    out += "}}";
   }
-  std::printf("\n");
-  print_box("keypad 1:", ex.keypad1.display());
-  print_box("keypad 2:", ex.keypad2.display());
-  std::printf("\nVR(length) = VR(2) = %s, a = %s\n", format_real(ex.vr[2]).c_str(),
-              format_real(ex.a).c_str());
-  print_netstat("MC", ex.mc);
-  std::printf("%" PRIu64 " byte-times (%.3f s at 125 kbit/s, 10 bits per byte)\n", ex.sim.now(),
-              ring::byte_times_to_seconds(ex.sim.now(), 125000.0));
-  return exit_ok;
-}
-
-int run_example2() {
-  examples::example2 ex;
-  tracer t(examples::example2::node_names, 3);
-  for (std::size_t vr : {0u, 1u, 200u}) t.watch_vr("3-axis MC", ex.vr_three, vr);
-  for (std::size_t vr : {0u, 1u, 200u}) t.watch_vr("2-axis MC", ex.vr_two, vr);
-  const examples::trace_fn trace = [&](const ring::link_byte& b) {
-    t.on_byte(b);
-    t.check_vrs(b.time);
-  };
-  std::printf("Manual example 2: two Motion Coordinators and one keypad\n");
-  std::printf("ring: 3-axis MC -> 2-axis MC -> keypad -> 3-axis MC   (1 byte per link per byte-time)\n\n");
-  const bool ok = ex.operate(trace, [&](const std::string& phase) {
-    std::printf("\n== %s\n", phase.c_str());
-    print_box("keypad display:", ex.keypad.display());
-    std::printf("\n");
-  });
-  print_netstat("3-axis MC", ex.three_axis);
-  print_netstat("2-axis MC", ex.two_axis);
-  std::printf("keypad: offset %u, %u display messages, %u keys sent\n",
-              static_cast<unsigned>(ex.keypad.offset()),
-              static_cast<unsigned>(ex.keypad.counters().display_messages),
-              static_cast<unsigned>(ex.keypad.counters().keys_sent));
-  std::printf("2-axis SPEED = %s\n", format_real(ex.speed).c_str());
-  std::printf("%" PRIu64 " byte-times (%.3f s at 125 kbit/s, 10 bits per byte)\n", ex.sim.now(),
-              ring::byte_times_to_seconds(ex.sim.now(), 125000.0));
-  if (!ok) {
-    std::fprintf(stderr, "trionet: example 2 did not complete its handshake\n");
-    return 1;
-  }
-  return exit_ok;
+  return out + "]}";
 }
 
 }  // namespace
 
-int ring_simulate_main(const std::vector<std::string>& args) {
-  if (args.size() != 1) return fail("ring simulate takes one example: example1 or example2");
-  if (args[0] == "example1") return run_example1();
-  if (args[0] == "example2") return run_example2();
-  return fail("unknown example '" + args[0] + "' (expected example1 or example2)");
+int ring_simulate_main(const std::vector<std::string>& words) {
+  if (!words.empty() && (words[0] == "--help" || words[0] == "-h")) {
+    std::fputs(simulate_usage, stdout);
+    return exit_ok;
+  }
+  arguments args;
+  std::string error;
+  if (!parse_arguments(words,
+                       {"--node", "--keys", "--byte-times", "--bit-rate", "--statements-per-byte-time", "--key-gap"},
+                       {"--trace", "--json"}, args, error, {"--node"})) {
+    return fail(error);
+  }
+  const builtin_network* builtin = nullptr;
+  if (args.positionals.size() > 1) return fail("ring simulate takes one built-in network name at most");
+  if (args.positionals.size() == 1) {
+    for (const builtin_network& b : builtins) {
+      if (args.positionals[0] == b.name) builtin = &b;
+    }
+    if (builtin == nullptr)
+      return fail("unknown network '" + args.positionals[0] + "' (expected example1, example2, example3 or "
+                  "example3-fixed, or --node options)");
+    if (args.has("--node")) return fail("--node cannot be used with a built-in network");
+  } else if (!args.has("--node")) {
+    return fail("ring simulate needs a built-in network (example1, example2, example3, example3-fixed) or --node "
+                "options (see trionet ring simulate --help)");
+  }
+
+  std::vector<std::string> specs;
+  if (builtin != nullptr) {
+    specs.assign(builtin->nodes.begin(), builtin->nodes.end());
+  } else {
+    const std::string& all = args.options.at("--node");
+    for (std::size_t start = 0; start <= all.size();) {
+      const std::size_t end = all.find('\n', start);
+      specs.push_back(all.substr(start, end == std::string::npos ? std::string::npos : end - start));
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+  }
+  std::vector<host::node_spec> nodes(specs.size());
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    if (!node_of(specs[i], builtin != nullptr, nodes[i], error)) return fail(error);
+  }
+
+  host::network_config config;
+  long long number = 0;
+  std::uint64_t max_byte_times = 1000000;
+  if (args.has("--byte-times")) {
+    if (!parse_integer(args.options.at("--byte-times"), 1, 1000000000000LL, number))
+      return fail("--byte-times must be a whole number 1..10^12, got '" + args.options.at("--byte-times") + "'");
+    max_byte_times = static_cast<std::uint64_t>(number);
+  }
+  if (args.has("--bit-rate")) {
+    double rate = 0;
+    if (!parse_real(args.options.at("--bit-rate"), rate) || !(rate >= 1 && rate <= 1e9))
+      return fail("--bit-rate must be a number of bits per second 1..10^9, got '" + args.options.at("--bit-rate") +
+                  "'");
+    config.bit_rate = rate;
+  }
+  if (args.has("--statements-per-byte-time")) {
+    if (!parse_integer(args.options.at("--statements-per-byte-time"), 1, 1000000, number))
+      return fail("--statements-per-byte-time must be a whole number 1..1000000, got '" +
+                  args.options.at("--statements-per-byte-time") + "'");
+    config.statements_per_byte_time = static_cast<std::uint32_t>(number);
+  }
+  if (args.has("--key-gap")) {
+    if (!parse_integer(args.options.at("--key-gap"), 0, 1000000000LL, number))
+      return fail("--key-gap must be a whole number of byte-times, got '" + args.options.at("--key-gap") + "'");
+    config.key_gap = static_cast<std::uint64_t>(number);
+  }
+
+  std::unique_ptr<host::ring_network> net = host::ring_network::build(nodes, config, error);
+  if (!net) return fail(error);
+  const std::string keys = args.has("--keys") ? args.options.at("--keys") : builtin != nullptr ? builtin->keys : "";
+  if (!net->set_keys(keys, error)) return fail(error);
+
+  const bool json = args.flags.count("--json") != 0;
+  const bool trace = args.flags.count("--trace") != 0;
+  const bool narrate = trace || !json;
+  if (narrate) {
+    if (builtin != nullptr) std::printf("%s: %s\n", builtin->name, builtin->title);
+    std::printf("ring:");
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const host::node_report r = net->report(i + 1);
+      if (r.what == host::node_spec::kind::keypad) {
+        std::printf(" %zu keypad %zu ->", i + 1, r.keypad_number);
+      } else {
+        std::printf(" %zu mc%s%s ->", i + 1, nodes[i].program_name.empty() ? "" : " ", nodes[i].program_name.c_str());
+      }
+    }
+    std::printf(" back to 1\n");
+    std::printf("clock: one byte per link per byte-time, %s us at %s bit/s (10 bits per byte); %u BASIC "
+                "statement(s) per byte-time per program\n",
+                basic::format_number(1e6 * 10 / config.bit_rate).c_str(), basic::format_number(config.bit_rate).c_str(),
+                static_cast<unsigned>(config.statements_per_byte_time));
+    if (!keys.empty()) std::printf("keys: %s\n", keys.c_str());
+    std::printf("\n");
+    net->on_event([trace](const host::network_event& e) {
+      const bool traced_only = e.kind == host::event_kind::message || e.kind == host::event_kind::frame_error ||
+                               e.kind == host::event_kind::display;
+      if (traced_only && !trace) return;
+      if (e.kind == host::event_kind::display) {
+        std::printf("t=%8llu  node %-2zu display\n%s", static_cast<unsigned long long>(e.time), e.node,
+                    box(e.display, "                      ").c_str());
+        return;
+      }
+      std::printf("t=%8llu  node %-2zu %s\n", static_cast<unsigned long long>(e.time), e.node, e.text.c_str());
+    });
+  }
+  const host::run_end end = net->run(max_byte_times);
+  if (narrate) {
+    if (end == host::run_end::settled) {
+      std::printf("t=%8llu  settled: every program has ended or waits for ever, the keys are done and the ring is "
+                  "quiet\n",
+                  static_cast<unsigned long long>(net->now()));
+    } else {
+      std::printf("t=%8llu  stopped after --byte-times %llu\n", static_cast<unsigned long long>(net->now()),
+                  static_cast<unsigned long long>(max_byte_times));
+    }
+    std::printf("\n%llu byte-times = %s s of ring time\n\n", static_cast<unsigned long long>(net->now()),
+                basic::format_number(net->seconds()).c_str());
+    print_summary(*net);
+  }
+  if (json) std::printf("%s\n", summary_json(*net, end).c_str());
+  for (std::size_t i = 1; i <= net->size(); ++i) {
+    if (net->report(i).state == "failed") return 1;
+  }
+  return exit_ok;
 }
 
 }  // namespace trionet::cli

@@ -109,27 +109,3 @@ TEST(RingCli, ErrorMessagesNameTheProblem) {
   EXPECT_NE(run_cli("ring decode", "8a zz").err.find("'z'"), std::string::npos);
   EXPECT_NE(run_cli("ring encode var --to 10 --vr 1 --value 3e9").err.find("range"), std::string::npos);
 }
-
-TEST(RingCli, SimulateExample2RunsTheHandshake) {
-  const auto r = run_cli("ring simulate example2");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("3-axis MC -> 2-axis MC   hops 1  PRINT   \"I\""), std::string::npos);
-  EXPECT_NE(r.out.find("3-axis MC                VR(200) is now 99\n"), std::string::npos);
-  EXPECT_NE(r.out.find("3-axis MC                VR(200) is now 999\n"), std::string::npos);
-  EXPECT_NE(r.out.find("|PRESS START TO RUN  |"), std::string::npos);
-  EXPECT_NE(r.out.find("NETSTAT 3-axis MC  0"), std::string::npos);
-}
-
-TEST(RingCli, SimulateExample1ShowsBothDisplays) {
-  const auto r = run_cli("ring simulate example1");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  const std::string box =
-      "+--------------------+\n|LENGTH:   125       |\n|SPEED:       0.2    |\n+--------------------+\n";
-  EXPECT_NE(r.out.find("keypad 1:\n" + box), std::string::npos);
-  EXPECT_NE(r.out.find("keypad 2:\n" + box), std::string::npos);
-}
-
-TEST(RingCli, SimulateUnknownExampleIsAUsageError) {
-  expect_usage_error("ring simulate example3");
-  expect_usage_error("ring simulate");
-}

@@ -1,18 +1,23 @@
-// The fibre-optic network chapter's own examples, end to end on the simulated ring.
+// The fibre-optic network chapter's own examples, end to end on the simulated ring. Examples 1 and 2 are the
+// manual's programs, run by the BASIC interpreter from examples/manual/.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "ring_manual_examples.hpp"
+#include "support/networks.hpp"
+#include "trionet/ring.hpp"
+#include "trionet/vr.hpp"
 
 namespace ring = trionet::ring;
-namespace examples = trionet::examples;
-using examples::keypad_node;
-using examples::mc_node;
+namespace host = trionet::host;
+using trionet::test::mc_file;
+using trionet::test::recorded_network;
+using trionet::test::variable_of;
+using trionet::test::vr_of;
+using keypad_node = ring::keypad<>;
+using mc_node = ring::motion_coordinator<>;
 
 namespace {
-
-const examples::trace_fn no_trace = [](const ring::link_byte&) {};
 
 std::string read_all(mc_node& mc) {
   std::string out;
@@ -71,54 +76,82 @@ TEST(ManualKeypadOffsetExample, KeyPressesReachMCc) {
 // Example 1: number entry and the up/down keys from either keypad change VR(length); both displays show the
 // same SPEED/LENGTH text.
 TEST(ManualExample1, TwoKeypadsOneMotionCoordinator) {
-  examples::example1 ex;
-  ex.settle(no_trace);
-  ASSERT_TRUE(ex.keypad1.network_mode());
-  ASSERT_TRUE(ex.keypad2.network_mode());
-  EXPECT_EQ(ex.keypad1.offset(), 2);  // SEND(10,2,11): two nodes on, round to the MC
-  EXPECT_EQ(ex.keypad2.offset(), 1);  // SEND(11,2,10)
-  // PRINT without ';' ends with CR LF, and CR moves to the start of the other line (docs/protocol.md 1.9):
-  // the first PRINT's CR leaves the cursor on the second line, so "SPEED:" lands there and "LENGTH:" on the
-  // first.
-  EXPECT_EQ(std::string(ex.keypad1.display().line(0)), "LENGTH:             ");
-  EXPECT_EQ(std::string(ex.keypad1.display().line(1)), "SPEED:              ");
-  EXPECT_FALSE(ex.keypad1.display().cursor_visible());
-
-  examples::press(ex, ex.keypad1, ring::key::digit_1, no_trace);
-  examples::press(ex, ex.keypad2, ring::key::digit_2, no_trace);
-  examples::press(ex, ex.keypad1, ring::key::digit_5, no_trace);
-  EXPECT_EQ(ex.a, 125);
-  examples::press(ex, ex.keypad2, ring::key::up, no_trace);
-  examples::press(ex, ex.keypad1, ring::key::up, no_trace);
-  examples::press(ex, ex.keypad2, ring::key::up, no_trace);
-  examples::press(ex, ex.keypad1, ring::key::down, no_trace);
-  EXPECT_NEAR(ex.vr[2], 0.2, 1e-9);
-  for (const keypad_node* k : {&ex.keypad1, &ex.keypad2}) {
-    EXPECT_EQ(std::string(k->display().line(0)), "LENGTH:   125       ");  // a[6,0] at position 7
-    EXPECT_EQ(std::string(k->display().line(1)), "SPEED:       0.2    ");  // VR(length)[8,1] at CURSOR(28)
+  recorded_network n({mc_file("examples/manual/example1.bas"), trionet::test::keypad(), trionet::test::keypad()});
+  ASSERT_TRUE(n.ok());
+  n.net().run(200);  // the program's set-up
+  for (std::size_t node : {2u, 3u}) {
+    const host::node_report k = n.net().report(node);
+    ASSERT_TRUE(k.network_mode);
+    // PRINT #10,"SPEED:":PRINT #10,"LENGTH:": PRINT without ';' ends with CR LF; CR moves to the start of the
+    // other line unless the cursor is at the start of a line (protocol 1.9), so SPEED: is on line 1 and
+    // LENGTH: on line 2.
+    EXPECT_EQ(k.display[0], "SPEED:              ");
+    EXPECT_EQ(k.display[1], "LENGTH:             ");
+    EXPECT_FALSE(k.cursor_visible);  // CHR(14)
   }
-  EXPECT_EQ(ex.mc.netstat(), 0);
+  EXPECT_EQ(n.net().report(2).offset, 2u);  // SEND(10,2,11): two nodes on, round to the MC
+  EXPECT_EQ(n.net().report(3).offset, 1u);  // SEND(11,2,10)
+
+  n.keys("1:1 2:2 1:5 2:up 1:up 2:up 1:down");
+  EXPECT_EQ(n.net().run(100000), host::run_end::settled);
+  const host::node_report mc = n.net().report(1);
+  EXPECT_EQ(variable_of(mc, "a"), 125);  // a=a*10+k for 1, 2, 5 from either keypad
+  EXPECT_NEAR(vr_of(mc, 2), 0.2, 1e-9);  // VR(length): +0.1 three times, -0.1 once
+  for (std::size_t node : {2u, 3u}) {
+    const host::node_report k = n.net().report(node);
+    // PRINT #10,CHR(27);CHR(72);CHR(7);a[6,0]: a in 6 characters from position 7, after "SPEED: ".
+    EXPECT_EQ(k.display[0], "SPEED:    125       ");
+    // PRINT #10,CURSOR(28);VR(length)[8,1]: 8 characters from position 28, after "LENGTH: " on line 2.
+    EXPECT_EQ(k.display[1], "LENGTH:      0.2    ");
+    EXPECT_EQ(k.dropped, 0u);
+  }
+  EXPECT_EQ(mc.netstat, 0u);
+  EXPECT_EQ(mc.state, "running");  // REPEAT ... UNTIL FALSE
+  EXPECT_TRUE(mc.idle);            // polling KEY#3 with no key left to come
 }
 
 // Example 2: the "I" handshake sets VR(200)=99 on the three-axis node, the parameters entered on the keypad
 // reach VR(0) and VR(1) on the two-axis node, "G" sets VR(200)=999.
 TEST(ManualExample2, TwoMotionCoordinatorsOneKeypad) {
-  examples::example2 ex;
-  std::vector<std::string> phases;
-  ASSERT_TRUE(ex.operate(no_trace, [&](const std::string& p) { phases.push_back(p); }));
-  EXPECT_EQ(phases.size(), 4u);
-  EXPECT_EQ(ex.vr_three[200], 999);
-  EXPECT_NEAR(ex.vr_three[0], 0.3, 1e-9);
-  EXPECT_NEAR(ex.vr_three[1], 0.02, 1e-9);
-  EXPECT_NEAR(ex.vr_two[0], 0.3, 1e-9);   // SEND(10,1,0,VR(0))
-  EXPECT_NEAR(ex.vr_two[1], 0.02, 1e-9);  // SEND(10,1,1,VR(1))
-  EXPECT_NEAR(ex.speed, 0.02, 1e-9);      // SPEED=VR(1)
-  EXPECT_EQ(ex.vr_two[100], 71);          // "G"
-  EXPECT_EQ(std::string(ex.keypad.display().line(0)), "PRESS START TO RUN  ");
-  EXPECT_EQ(ex.three_axis.netstat(), 0);
-  EXPECT_EQ(ex.two_axis.netstat(), 0);
-  EXPECT_EQ(ex.keypad.counters().dropped_in_local_mode, 0u);
-  EXPECT_EQ(ex.keypad.forwarding_counters().messages_dropped, 0u);
+  recorded_network n({mc_file("examples/manual/example2_three_axis.bas"),
+                      mc_file("examples/manual/example2_two_axis.bas"), trionet::test::keypad()});
+  ASSERT_TRUE(n.ok());
+  n.net().run(1000);
+  // PRINT #10,"I"; from the three-axis node to the next node; SEND(11,1,200,99) back through the keypad.
+  EXPECT_TRUE(n.saw(host::event_kind::message, "1 -> 2  hops 1  PRINT \"I\""));
+  EXPECT_EQ(vr_of(n.net().report(1), 200), 99);
+  EXPECT_EQ(n.net().report(1).state, "waiting");  // GET #3,VR(100) in setlen
+  // PRINT #11,CHR(12);CHR(14);"MACHINE READY" ends with CR LF: "FEED LENGTH:" starts line 2.
+  const host::node_report before = n.net().report(3);
+  EXPECT_EQ(before.display[0], "MACHINE READY       ");
+  EXPECT_EQ(before.display[1], "FEED LENGTH:   0.0  ");
+
+  n.keys("1:up 1:up 1:up 1:y 1:up 1:up 1:y 1:start");
+  EXPECT_EQ(n.net().run(100000), host::run_end::settled);
+  // PRINT#11,CHR(27);CHR(72);CHR(32);VR(0)[6.1];: position 32 is right after "FEED LENGTH:" on line 2. (The
+  // loop then prints "FEED LENGTH:" again where the cursor is, which wraps on a 2 x 20 display.)
+  bool seen = false;
+  for (const host::network_event& e : n.events()) {
+    if (e.kind == host::event_kind::display && e.display[1] == "FEED LENGTH:   0.1  ") seen = true;
+  }
+  EXPECT_TRUE(seen) << "no display showed VR(0) = 0.1 at position 32";
+
+  const host::node_report three = n.net().report(1);
+  const host::node_report two = n.net().report(2);
+  const host::node_report keypad = n.net().report(3);
+  EXPECT_EQ(vr_of(three, 200), 999);
+  EXPECT_NEAR(vr_of(three, 0), 0.3, 1e-9);
+  EXPECT_NEAR(vr_of(three, 1), 0.02, 1e-9);
+  EXPECT_NEAR(vr_of(two, 0), 0.3, 1e-9);   // SEND(10,1,0,VR(0))
+  EXPECT_NEAR(vr_of(two, 1), 0.02, 1e-9);  // SEND(10,1,1,VR(1))
+  EXPECT_NEAR(trionet::test::parameter_of(two, "SPEED"), 0.02, 1e-9);  // SPEED=VR(1)
+  EXPECT_EQ(vr_of(two, 100), 71);                                        // "G"
+  EXPECT_EQ(keypad.display[0], "PRESS START TO RUN  ");
+  EXPECT_EQ(three.netstat, 0u);
+  EXPECT_EQ(two.netstat, 0u);
+  EXPECT_EQ(keypad.dropped, 0u);
+  EXPECT_EQ(three.state, "ended");  // at the STOP of the "moves:" placeholder
+  EXPECT_EQ(two.state, "ended");
 }
 
 // "The Motion Coordinator that is not controlling the membrane keypad must not transmit anything to or via

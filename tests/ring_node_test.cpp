@@ -441,6 +441,8 @@ TEST(RingKeypadDisplay, ControlCharacters) {
   d.write(byte_view(reinterpret_cast<const std::uint8_t*>("AB\rCD\rEF"), 8));
   EXPECT_EQ(std::string(d.line(0)), "EF                  ");  // 13 goes to the start of the other line
   EXPECT_EQ(std::string(d.line(1)), "CD                  ");
+  d.write(13);  // after "EF": to the start of the second line
+  EXPECT_EQ(d.cursor(), 20u);
   const std::uint8_t to_28[] = {27, 'H', 28, 'X', 14, 20, 7};
   d.write(byte_view(to_28, sizeof to_28));
   EXPECT_EQ(std::string(d.line(1)), "CD      X           ");
@@ -459,6 +461,31 @@ TEST(RingKeypadDisplay, ControlCharacters) {
   d.write(12);
   EXPECT_EQ(std::string(d.line(0)), "                    ");
   EXPECT_EQ(d.cursor(), 0u);
+}
+
+// Protocol 1.9 as revised: 13 does nothing at the start of a line, so PRINT's CR LF ends a line without
+// skipping the next one; 10 is ignored.
+TEST(RingKeypadDisplay, CarriageReturnAtTheStartOfALineDoesNothing) {
+  ring::keypad_display d;
+  const auto write = [&](const char* text) {
+    d.write(byte_view(reinterpret_cast<const std::uint8_t*>(text), std::strlen(text)));
+  };
+  write("\r\n");  // at 0, the start of the first line: nothing
+  EXPECT_EQ(d.cursor(), 0u);
+  write("SPEED:\r\n");  // mid first line: to 20; LF ignored
+  EXPECT_EQ(d.cursor(), 20u);
+  write("\r\n\r");  // at 20, the start of the second line: nothing, however many
+  EXPECT_EQ(d.cursor(), 20u);
+  write("LENGTH:\r\n");  // mid second line: to 0
+  EXPECT_EQ(d.cursor(), 0u);
+  EXPECT_EQ(std::string(d.line(0)), "SPEED:              ");
+  EXPECT_EQ(std::string(d.line(1)), "LENGTH:             ");
+  const std::uint8_t to_20[] = {27, 'H', 20, 13, 'X'};  // placed at the start of the second line: 13 stays
+  d.write(byte_view(to_20, sizeof to_20));
+  EXPECT_EQ(std::string(d.line(1)), "XENGTH:             ");
+  const std::uint8_t line_feeds[] = {10, 10, 'Y'};
+  d.write(byte_view(line_feeds, sizeof line_feeds));
+  EXPECT_EQ(std::string(d.line(1)), "XYNGTH:             ");
 }
 
 // ---- simulator ----

@@ -3,11 +3,14 @@
 //   position  0 .. 19   first line        (row-major; CURSOR(p) = CHR(27);"H";CHR(p))
 //   position 20 .. 39   second line
 //
-//   12        clear and home the cursor        13   start of the other line
-//   14        hide the cursor                  15   show the cursor
+//   12        clear and home the cursor        13   start of the other line, unless already at the
+//   14        hide the cursor                       start of a line (then nothing)
+//   15        show the cursor                  10   ignored
 //   20        accepted and ignored             27 'H' p   cursor to p (0..39; others are ignored)
 //   other < 32 and 127: ignored                32..126: written at the cursor, which advances and wraps
 //
+// So PRINT's CR LF ends a line without skipping one: PRINT #n,"SPEED:" then PRINT #n,"LENGTH:" put SPEED: on
+// the first line and LENGTH: on the second, as the manual's Example 1 intends (protocol 1.9).
 // An escape followed by anything but 'H' is abandoned and that character is handled as usual.
 // Cost: 42 bytes of text + 3 bytes of state; O(1) per character; ISR-safe.
 #pragma once
@@ -45,7 +48,7 @@ class keypad_display {
         clear();
         return;
       case 13:
-        cursor_ = static_cast<std::uint8_t>(cursor_ < columns ? columns : 0);
+        if (cursor_ % columns != 0) cursor_ = static_cast<std::uint8_t>(cursor_ < columns ? columns : 0);
         return;
       case 14:
         cursor_visible_ = false;

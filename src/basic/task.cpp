@@ -1,0 +1,570 @@
+#include "basic/task.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "basic/number_format.hpp"
+
+namespace trionet::basic {
+namespace {
+
+constexpr double true_value = -1.0;  // TRUE in Trio BASIC; FALSE is 0
+
+double truth(bool b) {
+  return b ? true_value : 0.0;
+}
+
+// A channel, address, VR number or character: the value truncated toward zero, if it fits an int.
+bool to_int(double v, int& out) {
+  if (!(v > -2147483649.0 && v < 2147483648.0)) return false;
+  out = static_cast<int>(v);
+  return true;
+}
+
+// The integer part for AND, OR, XOR, NOT and MOD (saturating; NaN is 0).
+std::int64_t integer_of(double v) {
+  if (!(v == v)) return 0;
+  if (v >= 9.2e18) return std::numeric_limits<std::int64_t>::max();
+  if (v <= -9.2e18) return std::numeric_limits<std::int64_t>::min();
+  return static_cast<std::int64_t>(v);
+}
+
+bool same_bits(double a, double b) {
+  std::uint64_t x = 0;
+  std::uint64_t y = 0;
+  std::memcpy(&x, &a, sizeof x);
+  std::memcpy(&y, &b, sizeof y);
+  return x == y;
+}
+
+std::string text_of(double v) {
+  return format_number(v);
+}
+
+}  // namespace
+
+task::task(const program& code, controller& io, const task_config& config)
+    : code_(&code),
+      io_(&io),
+      config_(config),
+      vars_(code.slots, 0.0),
+      stack_(static_cast<std::size_t>(code.stack_depth) + 1, 0.0) {}
+
+std::uint32_t task::line() const noexcept {
+  if (state_ == task_state::ended || state_ == task_state::failed) return line_;
+  if (pc_ < code_->statements.size()) return code_->statements[pc_].line;
+  return line_;
+}
+
+const double* task::find_variable(std::string_view name) const {
+  for (std::size_t i = 0; i < code_->variable_names.size(); ++i) {
+    const std::string& known = code_->variable_names[i];
+    if (known.size() != name.size()) continue;
+    bool same = true;
+    for (std::size_t k = 0; k < name.size() && same; ++k) {
+      const char c = name[k];
+      same = known[k] == ((c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c);
+    }
+    if (same) return &vars_[i];
+  }
+  return nullptr;
+}
+
+void task::world_changed() noexcept {
+  idle_ = false;
+  snapshot_valid_ = false;
+  steps_ = 0;
+  power_ = 1;
+}
+
+// After a taken jump: has the task come back to a state it was in, with nothing changed in between? The states
+// after jumps follow each other deterministically while nothing changes, so Brent's method finds any such loop:
+// keep a snapshot, replaced after 1, 2, 4, 8 ... jumps, and compare every new state with it.
+void task::jumped() {
+  if (effects_ != watched_effects_) {
+    watched_effects_ = effects_;
+    world_changed();
+  }
+  if (idle_) return;
+  if (snapshot_valid_ && snapshot_pc_ == pc_ && snapshot_gosub_ == gosub_) {
+    idle_ = true;
+    return;
+  }
+  if (++steps_ >= power_) {
+    snapshot_pc_ = pc_;
+    snapshot_gosub_ = gosub_;
+    snapshot_valid_ = true;
+    power_ *= 2;
+    steps_ = 0;
+  }
+}
+
+bool task::fail(const std::string& message) {
+  state_ = task_state::failed;
+  wait_ = wait_reason::none;
+  error_ = message;
+  pending_ = false;
+  ++effects_;
+  return false;
+}
+
+void task::end_here(std::uint32_t line) noexcept {
+  state_ = task_state::ended;
+  wait_ = wait_reason::none;
+  line_ = line;
+  pending_ = false;
+  ++effects_;
+}
+
+bool task::store(double& slot, double value) noexcept {
+  if (same_bits(slot, value)) return false;
+  slot = value;
+  ++effects_;
+  return true;
+}
+
+bool task::vr_address(double value, std::size_t& index) {
+  const std::size_t count = io_->vr_count();
+  if (!(value >= 0) || value >= static_cast<double>(count)) {
+    return fail("VR(" + text_of(value) + "): bad address (this controller has VR(0) to VR(" +
+                std::to_string(count == 0 ? 0 : count - 1) + "))");
+  }
+  index = static_cast<std::size_t>(value);
+  return true;
+}
+
+bool task::eval(std::uint32_t id, double& out) {
+  const expression e = code_->expressions[id];
+  const expr_instr* ip = code_->code.data() + e.begin;
+  const expr_instr* const end = code_->code.data() + e.end;
+  double* sp = stack_.data();
+  for (; ip != end; ++ip) {
+    switch (ip->op) {
+      case expr_op::constant:
+        *sp++ = ip->value;
+        break;
+      case expr_op::variable:
+        *sp++ = vars_[ip->index];
+        break;
+      case expr_op::vr: {
+        std::size_t index = 0;
+        if (!vr_address(sp[-1], index)) return false;
+        sp[-1] = io_->vr(index);
+        break;
+      }
+      case expr_op::parameter:
+        *sp++ = io_->parameter(ip->index);
+        break;
+      case expr_op::key: {
+        int channel = 0;
+        const key_result k = to_int(sp[-1], channel) ? io_->key(channel) : key_result{io_status::bad_channel, false};
+        if (!k) return fail("KEY#" + text_of(sp[-1]) + ": bad channel (KEY# reads channel 3 or 4)");
+        sp[-1] = truth(k.waiting);
+        break;
+      }
+      case expr_op::netstat:
+        *sp++ = static_cast<double>(io_->netstat());
+        break;
+      case expr_op::negate:
+        sp[-1] = -sp[-1];
+        break;
+      case expr_op::logical_not:
+        sp[-1] = static_cast<double>(~integer_of(sp[-1]));
+        break;
+      case expr_op::absolute:
+        sp[-1] = std::fabs(sp[-1]);
+        break;
+      case expr_op::integer_part:
+        sp[-1] = std::trunc(sp[-1]);
+        break;
+      case expr_op::add:
+        sp[-2] = sp[-2] + sp[-1];
+        --sp;
+        break;
+      case expr_op::subtract:
+        sp[-2] = sp[-2] - sp[-1];
+        --sp;
+        break;
+      case expr_op::multiply:
+        sp[-2] = sp[-2] * sp[-1];
+        --sp;
+        break;
+      case expr_op::divide:
+        if (sp[-1] == 0) return fail("division by zero");
+        sp[-2] = sp[-2] / sp[-1];
+        --sp;
+        break;
+      case expr_op::modulo: {
+        const std::int64_t a = integer_of(sp[-2]);
+        const std::int64_t b = integer_of(sp[-1]);
+        if (b == 0) return fail("MOD by zero");
+        sp[-2] = b == -1 ? 0.0 : static_cast<double>(a % b);
+        --sp;
+        break;
+      }
+      case expr_op::equal:
+        sp[-2] = truth(sp[-2] == sp[-1]);
+        --sp;
+        break;
+      case expr_op::not_equal:
+        sp[-2] = truth(sp[-2] != sp[-1]);
+        --sp;
+        break;
+      case expr_op::less:
+        sp[-2] = truth(sp[-2] < sp[-1]);
+        --sp;
+        break;
+      case expr_op::greater:
+        sp[-2] = truth(sp[-2] > sp[-1]);
+        --sp;
+        break;
+      case expr_op::less_equal:
+        sp[-2] = truth(sp[-2] <= sp[-1]);
+        --sp;
+        break;
+      case expr_op::greater_equal:
+        sp[-2] = truth(sp[-2] >= sp[-1]);
+        --sp;
+        break;
+      case expr_op::bit_and:
+        sp[-2] = static_cast<double>(integer_of(sp[-2]) & integer_of(sp[-1]));
+        --sp;
+        break;
+      case expr_op::bit_or:
+        sp[-2] = static_cast<double>(integer_of(sp[-2]) | integer_of(sp[-1]));
+        --sp;
+        break;
+      case expr_op::bit_xor:
+        sp[-2] = static_cast<double>(integer_of(sp[-2]) ^ integer_of(sp[-1]));
+        --sp;
+        break;
+    }
+  }
+  out = sp[-1];
+  return true;
+}
+
+std::uint32_t task::run(std::uint64_t now, std::uint32_t budget) {
+  if (state_ == task_state::ended || state_ == task_state::failed) return 0;
+  now_ = now;
+  state_ = task_state::running;
+  wait_ = wait_reason::none;
+  const statement* const all = code_->statements.data();
+  const auto size = static_cast<std::uint32_t>(code_->statements.size());
+  std::uint32_t done = 0;
+  while (done < budget) {
+    if (pc_ >= size) {
+      end_here(line_);
+      break;
+    }
+    const statement& s = all[pc_];
+    line_ = s.line;
+    double v = 0;
+    switch (s.kind) {
+      case statement_kind::assign_variable:
+        if (!eval(s.expr[0], v)) goto out;
+        store(vars_[s.slot], v);
+        ++pc_;
+        break;
+      case statement_kind::assign_vr: {
+        std::size_t index = 0;
+        double value = 0;
+        if (!eval(s.expr[0], v) || !vr_address(v, index) || !eval(s.expr[1], value)) goto out;
+        if (!same_bits(io_->vr(index), value)) {
+          io_->set_vr(index, value);
+          ++effects_;
+        }
+        ++pc_;
+        break;
+      }
+      case statement_kind::assign_parameter:
+        if (!eval(s.expr[0], v)) goto out;
+        if (!same_bits(io_->parameter(s.slot), v)) {
+          io_->set_parameter(s.slot, v);
+          ++effects_;
+        }
+        ++pc_;
+        break;
+      case statement_kind::assign_netstat:
+        if (!eval(s.expr[0], v)) goto out;
+        if (v != 0) {
+          fail("NETSTAT can only be cleared: NETSTAT=0");
+          goto out;
+        }
+        if (io_->netstat() != 0) {
+          io_->clear_netstat();
+          ++effects_;
+        }
+        ++pc_;
+        break;
+      case statement_kind::jump:
+        pc_ = s.target;
+        jumped();
+        break;
+      case statement_kind::branch_unless:
+        if (!eval(s.expr[0], v)) goto out;
+        if (v != 0) {
+          ++pc_;
+        } else {
+          pc_ = s.target;
+          jumped();
+        }
+        break;
+      case statement_kind::gosub:
+        if (gosub_.size() >= config_.max_gosub_depth) {
+          fail("GOSUB nested more than " + std::to_string(config_.max_gosub_depth) + " deep");
+          goto out;
+        }
+        gosub_.push_back(pc_ + 1);
+        pc_ = s.target;
+        jumped();
+        break;
+      case statement_kind::return_from_gosub:
+        if (gosub_.empty()) {
+          fail("RETURN without GOSUB");
+          goto out;
+        }
+        pc_ = gosub_.back();
+        gosub_.pop_back();
+        jumped();
+        break;
+      case statement_kind::for_start: {
+        double last = 0;
+        double step = 1;
+        if (!eval(s.expr[0], v) || !eval(s.expr[1], last)) goto out;
+        if (s.expr[2] != no_expression && !eval(s.expr[2], step)) goto out;
+        store(vars_[s.slot], v);
+        store(vars_[s.extra], last);
+        store(vars_[s.extra + 1], step);
+        if (step >= 0 ? v <= last : v >= last) {
+          ++pc_;
+        } else {
+          pc_ = s.target;
+          jumped();
+        }
+        break;
+      }
+      case statement_kind::for_next: {
+        const double last = vars_[s.extra];
+        const double step = vars_[s.extra + 1];
+        double& variable = vars_[s.slot];
+        store(variable, variable + step);
+        if (step >= 0 ? variable <= last : variable >= last) {
+          pc_ = s.target;
+          jumped();
+        } else {
+          ++pc_;
+        }
+        break;
+      }
+      case statement_kind::wait_until:
+        if (!eval(s.expr[0], v)) goto out;
+        if (v == 0) {
+          state_ = task_state::waiting;
+          wait_ = wait_reason::wait_until;
+          goto out;
+        }
+        ++pc_;
+        break;
+      case statement_kind::wait_ms:
+        if (!pending_) {
+          if (!eval(s.expr[0], v)) goto out;
+          if (!(v >= 0)) {
+            fail("WA(" + text_of(v) + "): the time must be 0 ms or more");
+            goto out;
+          }
+          const double ticks = std::ceil(v * config_.ticks_per_ms);
+          wake_at_ = ticks >= 1e18 ? std::numeric_limits<std::uint64_t>::max() - now_ : static_cast<std::uint64_t>(ticks);
+          wake_at_ += now_;
+          pending_ = true;
+        }
+        if (now_ < wake_at_) {
+          state_ = task_state::waiting;
+          wait_ = wait_reason::wa;
+          goto out;
+        }
+        pending_ = false;
+        ++pc_;
+        break;
+      case statement_kind::print:
+        if (!print(s)) goto out;
+        ++pc_;
+        break;
+      case statement_kind::get:
+        if (!get(s)) goto out;
+        ++pc_;
+        break;
+      case statement_kind::send:
+        if (!send(s)) goto out;
+        ++pc_;
+        break;
+      case statement_kind::stop:
+        ++done;
+        end_here(s.line);
+        goto out;
+    }
+    done += s.counted ? 1u : 0u;
+  }
+out:
+  statements_ += done;
+  return done;
+}
+
+bool task::build_print_text(const statement& s) {
+  text_.clear();
+  for (std::uint32_t i = 0; i < s.count; ++i) {
+    const print_item& item = code_->print_items[s.extra + i];
+    double v = 0;
+    int c = 0;
+    switch (item.what) {
+      case print_item::kind::text:
+        text_ += code_->texts[item.source];
+        break;
+      case print_item::kind::character:
+        if (!eval(item.source, v)) return false;
+        if (!to_int(v, c) || c < 0 || c > 255) return fail("CHR(" + text_of(v) + "): a character is 0..255");
+        text_ += static_cast<char>(c);
+        break;
+      case print_item::kind::cursor:
+        if (!eval(item.source, v)) return false;
+        if (!to_int(v, c) || c < 0 || c > 255) return fail("CURSOR(" + text_of(v) + "): a position is 0..255");
+        text_ += '\x1b';
+        text_ += 'H';
+        text_ += static_cast<char>(c);
+        break;
+      case print_item::kind::number:
+        if (!eval(item.source, v)) return false;
+        append_number(text_, v);
+        break;
+      case print_item::kind::formatted_number:
+        if (!eval(item.source, v)) return false;
+        append_number(text_, v, item.width, item.decimals);
+        break;
+    }
+    if (item.separator == ',') text_ += '\t';
+  }
+  if (s.flag) text_ += "\r\n";
+  return true;
+}
+
+bool task::print(const statement& s) {
+  if (!pending_) {
+    int channel = 0;
+    if (s.expr[0] != no_expression) {
+      double c = 0;
+      if (!eval(s.expr[0], c)) return false;
+      if (!to_int(c, channel)) return fail("PRINT #" + text_of(c) + ": bad channel");
+    }
+    if (!build_print_text(s)) return false;
+    channel_ = channel;
+    text_sent_ = 0;
+    pending_ = true;
+  }
+  while (text_sent_ < text_.size()) {
+    const std::string_view rest = std::string_view(text_).substr(text_sent_);
+    const print_result r = io_->print(channel_, rest);
+    const auto where = [&] { return "PRINT #" + std::to_string(channel_); };
+    switch (r.status) {
+      case io_status::ok:
+        break;
+      case io_status::busy:
+        state_ = task_state::waiting;
+        wait_ = wait_reason::print;
+        return false;
+      case io_status::bad_address:
+        return fail(where() + ": bad address (the network's BASIC addresses are 10..24)");
+      case io_status::character_out_of_range:
+        return fail(where() + ": a character above 127 (the ring carries 0..127)");
+      default:
+        return fail(where() + ": bad channel (#0 is the terminal, #10..#24 the network)");
+    }
+    if (r.queued == 0) {
+      state_ = task_state::waiting;
+      wait_ = wait_reason::print;
+      return false;
+    }
+    text_sent_ += r.queued < rest.size() ? r.queued : rest.size();
+    ++effects_;
+  }
+  pending_ = false;
+  return true;
+}
+
+bool task::send(const statement& s) {
+  if (!pending_) {
+    for (int i = 0; i < 4; ++i) {
+      send_args_[i] = 0;
+      if (s.expr[i] != no_expression && !eval(s.expr[i], send_args_[i])) return false;
+    }
+    pending_ = true;
+  }
+  int n = 0;
+  int type = 0;
+  int data1 = 0;
+  const auto n_text = [&] { return text_of(send_args_[0]); };
+  if (!to_int(send_args_[0], n)) return fail("SEND(" + n_text() + ",...): bad address (BASIC addresses are 10..24)");
+  if (!to_int(send_args_[1], type) || (type != 1 && type != 2)) {
+    return fail("SEND(" + n_text() + "," + text_of(send_args_[1]) +
+                ",...): bad type (1 = direct variable transfer, 2 = keypad offset)");
+  }
+  const auto head = [&] {
+    return "SEND(" + n_text() + "," + std::to_string(type) + "," + text_of(send_args_[2]);
+  };
+  if (type == 1 && s.expr[3] == no_expression) return fail(head() + "): a direct variable transfer needs a value");
+  const bool data1_fits = to_int(send_args_[2], data1);
+  io_status status = io_status::ok;
+  if (type == 1) {
+    status = data1_fits ? io_->send_variable(n, data1, send_args_[3]) : io_status::vr_out_of_range;
+  } else {
+    status = data1_fits ? io_->send_keypad_offset(n, data1) : io_status::offset_out_of_range;
+  }
+  switch (status) {
+    case io_status::ok:
+      pending_ = false;
+      ++effects_;
+      return true;
+    case io_status::busy:
+      state_ = task_state::waiting;
+      wait_ = wait_reason::send;
+      return false;
+    case io_status::bad_address:
+      return fail(head() + ",...): bad address (BASIC addresses are 10..24)");
+    case io_status::vr_out_of_range:
+      return fail(head() + ",...): VR number out of range (0..16383)");
+    case io_status::value_out_of_range:
+      return fail(head() + "," + text_of(send_args_[3]) + "): value out of range for the network");
+    case io_status::offset_out_of_range:
+      return fail(head() + "): keypad offset out of range (BASIC addresses 10..24)");
+    default:
+      return fail(head() + ",...): " + to_string(status));
+  }
+}
+
+bool task::get(const statement& s) {
+  double c = 0;
+  int channel = 0;
+  if (!eval(s.expr[0], c)) return false;
+  if (!to_int(c, channel)) return fail("GET #" + text_of(c) + ": bad channel (GET # reads channel 3 or 4)");
+  std::size_t index = 0;
+  if (s.flag) {
+    double v = 0;
+    if (!eval(s.expr[1], v) || !vr_address(v, index)) return false;
+  }
+  const get_result r = io_->get(channel);
+  if (r.status == io_status::busy) {
+    state_ = task_state::waiting;
+    wait_ = wait_reason::get;
+    return false;
+  }
+  if (!r) return fail("GET #" + std::to_string(channel) + ": bad channel (GET # reads channel 3 or 4)");
+  ++effects_;
+  if (s.flag) {
+    io_->set_vr(index, r.value);
+  } else {
+    vars_[s.slot] = r.value;
+  }
+  return true;
+}
+
+}  // namespace trionet::basic

@@ -1,0 +1,684 @@
+// The simulated ring network of ring_network.hpp, and the adapter that gives a BASIC program
+// (basic/controller.hpp) a Motion Coordinator of the library (ring::motion_coordinator + a vr_table). Every use
+// of the ring nodes' API by the BASIC tools is in this file.
+#include "ring_network.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <deque>
+
+#include "basic/controller.hpp"
+#include "basic/number_format.hpp"
+#include "basic/program.hpp"
+#include "basic/task.hpp"
+#include "trionet/ring.hpp"
+#include "trionet/vr.hpp"
+
+namespace trionet::host {
+namespace {
+
+using mc_node = ring::motion_coordinator<>;
+using keypad_node = ring::keypad<>;
+using event_sink = std::function<void(const network_event&)>;
+
+constexpr std::size_t vr_table_size = 16384;  // every VR number the ring can address (14 bits)
+constexpr std::size_t max_terminal_line = 4096;
+constexpr std::size_t max_in_transit = 64;
+
+// Control characters escaped; the position after ESC 'H' always as \xNN (it is a number, not a character).
+std::string readable(byte_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const std::uint8_t c = text[i];
+    const bool position = i >= 2 && text[i - 2] == 27 && text[i - 1] == 'H';
+    if (c == '\r' && !position) {
+      out += "\\r";
+    } else if (c == '\n' && !position) {
+      out += "\\n";
+    } else if (c < 32 || c >= 127 || position) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\x%02x", c);
+      out += escape;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
+// A message without its hop count, as the trace and the drop reports show it.
+std::string describe(const ring::message& m) {
+  switch (m.type) {
+    case ring::message_type::character:
+      return "PRINT \"" + readable(m.text) + "\"";
+    case ring::message_type::variable:
+      return "VR(" + std::to_string(m.vr) + ") = " + basic::format_number(trionet::q32_to_double(m.value));
+    case ring::message_type::keypad_offset:
+      return "keypad offset " + std::to_string(m.offset) + " (keys go " + std::to_string(m.offset) +
+             (m.offset == 1 ? " hop" : " hops") + " along)";
+    case ring::message_type::keypad_mode:
+      return "keypad mode " + std::to_string(m.mode);
+  }
+  return "?";
+}
+
+std::string netstat_bits(std::uint32_t bits) {
+  static constexpr const char* names[] = {"TX timeout", "TX buffer error", "RX CRC error", "RX frame error",
+                                          "RX overflow"};
+  std::string out;
+  for (std::size_t i = 0; i < 5; ++i) {
+    if ((bits & (1u << i)) == 0) continue;
+    if (!out.empty()) out += ", ";
+    out += names[i];
+  }
+  return out;
+}
+
+const char* basic_spelling(basic::wait_reason reason) {
+  switch (reason) {
+    case basic::wait_reason::none:
+      return "";
+    case basic::wait_reason::print:
+      return "PRINT #";
+    case basic::wait_reason::send:
+      return "SEND";
+    case basic::wait_reason::get:
+      return "GET #";
+    case basic::wait_reason::wait_until:
+      return "WAIT UNTIL";
+    case basic::wait_reason::wa:
+      return "WA";
+  }
+  return "";
+}
+
+basic::io_status io_status_of(ring::send_status r) {
+  switch (r) {
+    case ring::send_status::ok:
+      return basic::io_status::ok;
+    case ring::send_status::bad_address:
+      return basic::io_status::bad_address;
+    case ring::send_status::character_out_of_range:
+    case ring::send_status::empty_text:
+      return basic::io_status::character_out_of_range;
+    case ring::send_status::vr_out_of_range:
+      return basic::io_status::vr_out_of_range;
+    case ring::send_status::value_out_of_range:
+      return basic::io_status::value_out_of_range;
+    case ring::send_status::offset_out_of_range:
+      return basic::io_status::offset_out_of_range;
+    case ring::send_status::mode_out_of_range:
+      return basic::io_status::bad_type;
+    case ring::send_status::queue_full:
+      return basic::io_status::busy;
+  }
+  return basic::io_status::bad_type;
+}
+
+struct key_name {
+  const char* name;
+  ring::key key;
+};
+// The key names of docs/protocol.md 1.8.
+constexpr key_name key_names[] = {
+    {"0", ring::key::digit_0}, {"1", ring::key::digit_1},  {"2", ring::key::digit_2},   {"3", ring::key::digit_3},
+    {"4", ring::key::digit_4}, {"5", ring::key::digit_5},  {"6", ring::key::digit_6},   {"7", ring::key::digit_7},
+    {"8", ring::key::digit_8}, {"9", ring::key::digit_9},  {"up", ring::key::up},       {"+", ring::key::up},
+    {"down", ring::key::down}, {"-", ring::key::down},     {"clr", ring::key::clear},   {"y", ring::key::yes},
+    {"enter", ring::key::yes}, {"n", ring::key::no},       {".", ring::key::point},     {"start", ring::key::start},
+    {"stop", ring::key::stop}};
+
+bool find_key(const std::string& name, ring::key& out) {
+  std::string lower = name;
+  for (char& c : lower) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+  for (const key_name& k : key_names) {
+    if (lower == k.name) {
+      out = k.key;
+      return true;
+    }
+  }
+  return false;
+}
+
+// A BASIC program's controller: a Motion Coordinator of the library with its VR table, its axis parameters
+// and its terminal.
+class mc_adapter final : public basic::controller {
+ public:
+  mc_adapter(std::size_t vr_count, std::function<void(const std::string&)> terminal_line)
+      : vr_(&mc_adapter::network_write, this),
+        node_(vr_),
+        vr_count_(vr_count),
+        terminal_line_(std::move(terminal_line)) {}
+  mc_adapter(const mc_adapter&) = delete;
+  mc_adapter& operator=(const mc_adapter&) = delete;
+
+  mc_node& node() { return node_; }
+  const mc_node& node() const { return node_; }
+
+  // Direct variable transfers applied since the last call: (vr, value).
+  std::vector<std::pair<std::uint16_t, double>> take_network_writes() { return std::exchange(network_writes_, {}); }
+
+  // A line the program printed on its terminal and did not end yet.
+  void flush_terminal() {
+    if (!terminal_.empty()) terminal_line_(std::exchange(terminal_, {}));
+  }
+
+  basic::print_result print(int channel, std::string_view text) override {
+    if (channel == 0) {
+      for (char c : text) {
+        if (c == '\n' || terminal_.size() == max_terminal_line) {
+          terminal_line_(std::exchange(terminal_, {}));
+          if (c == '\n') continue;
+        }
+        if (c != '\r') terminal_ += c;
+      }
+      return {basic::io_status::ok, text.size()};
+    }
+    if (!ring::hops_from_basic_address(channel)) return {basic::io_status::bad_channel, 0};
+    for (char c : text) {
+      if (static_cast<unsigned char>(c) > 127) return {basic::io_status::character_out_of_range, 0};
+    }
+    // BASIC's PRINT# waits for room (docs/protocol.md 1.6, long PRINT#): the node's own split into messages,
+    // each queued once there is room for it whole, so never a refused call, which would set NETSTAT bit 0.
+    const std::size_t longest = std::min(mc_node::max_own_frame - ring::framing_length, ring::default_max_characters);
+    std::size_t queued = 0;
+    while (queued < text.size()) {
+      const std::size_t n = std::min(text.size() - queued, longest);
+      if (node_.transmit_free() < n + ring::framing_length) break;
+      const auto r = node_.print(channel, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()) + queued, n));
+      if (r.status != ring::send_status::ok) {
+        if (queued == 0) return {io_status_of(r.status), 0};
+        break;
+      }
+      queued += n;
+    }
+    return {basic::io_status::ok, queued};
+  }
+
+  basic::io_status send_variable(int address, int vr, double value) override {
+    if (!ring::hops_from_basic_address(address)) return basic::io_status::bad_address;
+    if (vr < 0 || vr > static_cast<int>(ring::max_vr)) return basic::io_status::vr_out_of_range;
+    if (!trionet::q32_from_double(value)) return basic::io_status::value_out_of_range;
+    if (node_.transmit_free() < ring::framing_length + ring::variable_data_length) return basic::io_status::busy;
+    return io_status_of(node_.send_variable(address, static_cast<std::uint16_t>(vr), value));
+  }
+
+  basic::io_status send_keypad_offset(int address, int offset) override {
+    if (!ring::hops_from_basic_address(address)) return basic::io_status::bad_address;
+    if (!ring::hops_from_basic_address(offset)) return basic::io_status::offset_out_of_range;
+    if (node_.transmit_free() < ring::framing_length + 1) return basic::io_status::busy;
+    return io_status_of(node_.send_keypad_offset(address, offset));
+  }
+
+  basic::key_result key(int channel) override {
+    if (channel != 3 && channel != 4) return {basic::io_status::bad_channel, false};
+    return {basic::io_status::ok, node_.key(channel)};
+  }
+
+  basic::get_result get(int channel) override {
+    const ring::get_result r = node_.get(channel);
+    switch (r.status) {
+      case ring::get_status::ok:
+        return {basic::io_status::ok, r.value};
+      case ring::get_status::nothing_yet:
+        return {basic::io_status::busy, 0};
+      case ring::get_status::bad_channel:
+        break;
+    }
+    return {basic::io_status::bad_channel, 0};
+  }
+
+  std::uint32_t netstat() override { return node_.netstat(); }
+  void clear_netstat() override { node_.clear_netstat(); }
+
+  std::size_t vr_count() const override { return vr_count_; }
+  double vr(std::size_t index) const override { return vr_[index]; }
+  void set_vr(std::size_t index, double value) override { vr_[index] = value; }
+
+  double parameter(std::size_t index) const override { return parameters_[index]; }
+  void set_parameter(std::size_t index, double value) override { parameters_[index] = value; }
+
+ private:
+  // The VR table's write policy: a direct variable transfer to a VR this controller has is applied, and
+  // reported; one past them is refused (counted by the node).
+  static bool network_write(void* context, std::uint16_t vr, double value) noexcept {
+    auto* self = static_cast<mc_adapter*>(context);
+    if (vr >= self->vr_count_) return false;
+    self->network_writes_.emplace_back(vr, value);
+    return true;
+  }
+
+  vr_table<vr_table_size> vr_;
+  mc_node node_;
+  std::size_t vr_count_;
+  double parameters_[basic::axis_parameter_count] = {};
+  std::function<void(const std::string&)> terminal_line_;
+  std::string terminal_;
+  std::vector<std::pair<std::uint16_t, double>> network_writes_;
+};
+
+struct script_step {
+  std::size_t keypad;  // 1-based among keypads; 0: a wait
+  ring::key key;
+  std::string name;
+  std::uint64_t wait;
+};
+
+// A message on its way through a node: what it is, the hops it will carry on, and the node that sent it.
+struct transit {
+  std::string what;
+  unsigned hops;
+  std::size_t origin;
+};
+
+}  // namespace
+
+struct ring_network::state {
+  struct node_slot {
+    node_spec::kind what = node_spec::kind::mc;
+    std::string program_name;
+    std::unique_ptr<mc_adapter> mc;
+    std::unique_ptr<basic::program> program;
+    std::unique_ptr<basic::task> task;
+    std::uint32_t netstat_seen = 0;
+    std::unique_ptr<keypad_node> keypad;
+    std::size_t keypad_number = 0;
+    std::uint32_t drops_seen = 0;
+    std::uint32_t displays_seen = 0;
+    std::uint32_t drops_pending = 0;
+    std::deque<transit> in_transit;
+  };
+
+  network_config config;
+  std::vector<node_slot> nodes;
+  std::size_t keypad_count = 0;
+  ring::simulator<15> sim;
+  std::vector<ring::decoder<>> decoders;  // one per link, for the trace and the drop reports
+  std::vector<script_step> script;
+  std::size_t script_next = 0;
+  std::uint64_t script_due = 0;
+  event_sink events;
+  std::function<void(std::uint64_t, std::size_t, std::uint8_t)> link_bytes;
+  std::uint64_t bytes_this_step = 0;
+  std::uint64_t clock = 0;  // the byte-time being simulated (events during a step carry it)
+  bool settled = false;
+
+  void emit(event_kind kind, std::uint64_t time, std::size_t node, std::string text,
+            std::vector<std::string> display = {}) {
+    if (events) events(network_event{kind, time, node + 1, std::move(text), std::move(display)});
+  }
+
+  std::size_t after(std::size_t node, std::size_t hops) const { return (node + hops) % nodes.size(); }
+
+  bool script_done() const { return script_next == script.size() && clock >= script_due; }
+
+  std::string press(std::size_t keypad, ring::key k, const std::string& name) {
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      node_slot& n = nodes[i];
+      if (n.keypad_number != keypad) continue;
+      const ring::key_status r = n.keypad->press(k);
+      (void)n.keypad->release(k);
+      std::string text = "keypad " + std::to_string(keypad) + ": key " + name + " ";
+      switch (r) {
+        case ring::key_status::ok:
+          text += "sent to node " + std::to_string(after(i, n.keypad->offset()) + 1);
+          break;
+        case ring::key_status::nothing_to_send:
+          text += "not sent";
+          break;
+        case ring::key_status::local_mode:
+          text += "lost: the keypad is in local mode (no keypad offset yet), it sends nothing";
+          break;
+        case ring::key_status::queue_full:
+          text += "lost: the keypad's transmit queue is full";
+          break;
+      }
+      emit(event_kind::key, clock, i, text);
+      return text;
+    }
+    return {};
+  }
+
+  void on_link_byte(const ring::link_byte& b) {
+    ++bytes_this_step;
+    if (link_bytes) link_bytes(b.time, b.link, b.sent);
+    if (!b.delivered) return;
+    const std::size_t to = after(b.link, 1);
+    node_slot& receiver = nodes[to];
+    if (receiver.keypad) {
+      const std::uint32_t drops =
+          receiver.keypad->counters().dropped_in_local_mode + receiver.keypad->forwarding_counters().messages_dropped;
+      receiver.drops_pending += drops - receiver.drops_seen;
+      receiver.drops_seen = drops;
+    }
+    const ring::decode_result r = decoders[b.link].push(b.received);
+    if (r.status != ring::decode_status::incomplete) on_message(b, r);
+    if (receiver.keypad && receiver.keypad->counters().display_messages != receiver.displays_seen) {
+      receiver.displays_seen = receiver.keypad->counters().display_messages;
+      const ring::keypad_display& d = receiver.keypad->display();
+      emit(event_kind::display, b.time, to, "display", {d.line(0), d.line(1)});
+    }
+  }
+
+  void on_message(const ring::link_byte& b, const ring::decode_result& r) {
+    const std::size_t from = b.link;
+    const std::size_t to = after(from, 1);
+    const std::string route = std::to_string(from + 1) + " -> " + std::to_string(to + 1);
+    node_slot& receiver = nodes[to];
+    if (r.status != ring::decode_status::ok) {
+      const std::string what = r.status == ring::decode_status::crc_error
+                                   ? "CRC error (VR " + std::to_string(r.msg.vr) + ")"
+                                   : std::string("frame error: ") + ring::to_string(r.error);
+      emit(event_kind::frame_error, b.time, from, route + "  " + what);
+      if (receiver.drops_pending > 0) {
+        --receiver.drops_pending;
+        emit(event_kind::dropped, b.time, to, "dropped a damaged message: the keypad is in local mode");
+      }
+      return;
+    }
+    const ring::message& m = r.msg;
+    const std::string what = describe(m);
+    // Which node sent it: the first matching message waiting to pass through the sending node, else that node.
+    std::size_t origin = from;
+    std::deque<transit>& passing = nodes[from].in_transit;
+    const auto match = std::find_if(passing.begin(), passing.end(),
+                                    [&](const transit& t) { return t.hops == m.hops && t.what == what; });
+    if (match != passing.end()) {
+      origin = match->origin;
+      passing.erase(passing.begin(), match + 1);
+    }
+    std::string text = route + "  hops " + std::to_string(m.hops) + "  " + what;
+    if (origin != from) text += "  (from node " + std::to_string(origin + 1) + ")";
+    emit(event_kind::message, b.time, from, text);
+    if (receiver.drops_pending > 0) {
+      --receiver.drops_pending;
+      std::string why = "dropped " + what + " from node " + std::to_string(origin + 1);
+      if (m.hops == 1) {
+        why += ", sent to this keypad";
+      } else {
+        why += ", passing through to node " + std::to_string(after(to, m.hops - 1u) + 1);
+      }
+      why += ": the keypad is in local mode (it has had no keypad offset yet), in which it takes only its keypad "
+             "offset and forwards nothing (docs/protocol.md 1.7)";
+      emit(event_kind::dropped, b.time, to, why);
+      return;
+    }
+    if (m.hops > 1) {
+      receiver.in_transit.push_back({what, m.hops - 1u, origin});
+      if (receiver.in_transit.size() > max_in_transit) receiver.in_transit.pop_front();
+    }
+  }
+};
+
+ring_network::ring_network(std::unique_ptr<state> s) : s_(std::move(s)) {}
+ring_network::~ring_network() = default;
+
+std::unique_ptr<ring_network> ring_network::build(const std::vector<node_spec>& nodes, const network_config& config,
+                                                  std::string& error) {
+  if (nodes.size() < 2 || nodes.size() > 15) {
+    error = "a ring has 2 to 15 nodes, not " + std::to_string(nodes.size());
+    return nullptr;
+  }
+  if (std::none_of(nodes.begin(), nodes.end(), [](const node_spec& n) { return n.what == node_spec::kind::mc; })) {
+    error = "a ring needs at least one Motion Coordinator";
+    return nullptr;
+  }
+  if (config.vr_count == 0 || config.vr_count > vr_table_size) {
+    error = "a Motion Coordinator has 1 to 16384 VRs";
+    return nullptr;
+  }
+  if (!(config.bit_rate > 0) || config.bits_per_byte == 0 || config.statements_per_byte_time == 0) {
+    error = "the bit rate, bits per byte and statements per byte-time must be above 0";
+    return nullptr;
+  }
+  auto s = std::make_unique<state>();
+  s->config = config;
+  s->nodes.resize(nodes.size());
+  basic::task_config task_config;
+  task_config.ticks_per_ms = config.bit_rate / (1000.0 * config.bits_per_byte);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    state::node_slot& slot = s->nodes[i];
+    state* owner = s.get();
+    slot.what = nodes[i].what;
+    if (nodes[i].what == node_spec::kind::keypad) {
+      slot.keypad = std::make_unique<keypad_node>();
+      slot.keypad_number = ++s->keypad_count;
+      (void)s->sim.add(*slot.keypad);
+      continue;
+    }
+    slot.mc = std::make_unique<mc_adapter>(config.vr_count, [owner, i](const std::string& line) {
+      owner->emit(event_kind::output, owner->clock, i, "prints: " + line);
+    });
+    (void)s->sim.add(slot.mc->node());
+    if (nodes[i].program_name.empty() && nodes[i].program_text.empty()) continue;
+    basic::compile_result compiled = basic::compile(nodes[i].program_name, nodes[i].program_text);
+    if (!compiled) {
+      error = compiled.located_message();
+      return nullptr;
+    }
+    slot.program_name = nodes[i].program_name;
+    slot.program = std::make_unique<basic::program>(std::move(compiled.compiled));
+    slot.task = std::make_unique<basic::task>(*slot.program, *slot.mc, task_config);
+  }
+  s->decoders.resize(nodes.size());
+  return std::unique_ptr<ring_network>(new ring_network(std::move(s)));
+}
+
+bool ring_network::set_keys(const std::string& script, std::string& error) {
+  std::vector<script_step> steps;
+  std::size_t i = 0;
+  std::size_t word = 0;
+  while (i < script.size()) {
+    if (script[i] == ' ' || script[i] == '\t' || script[i] == '\n') {
+      ++i;
+      continue;
+    }
+    const std::size_t end = script.find_first_of(" \t\n", i);
+    const std::string w = script.substr(i, end == std::string::npos ? std::string::npos : end - i);
+    i = end == std::string::npos ? script.size() : end;
+    ++word;
+    const std::string where = "key script, word " + std::to_string(word) + " '" + w + "': ";
+    const auto whole_number = [](const std::string& digits, std::uint64_t limit, std::uint64_t& out) {
+      if (digits.empty() || digits.size() > 13 || digits.find_first_not_of("0123456789") != std::string::npos)
+        return false;
+      out = std::stoull(digits);
+      return out <= limit;
+    };
+    if (w.compare(0, 5, "wait=") == 0) {
+      std::uint64_t n = 0;
+      if (!whole_number(w.substr(5), 1000000000000ull, n)) {
+        error = where + "wait=N takes a whole number of byte-times";
+        return false;
+      }
+      steps.push_back({0, ring::key::digit_0, "", n});
+      continue;
+    }
+    const std::size_t colon = w.find(':');
+    std::uint64_t keypad = 0;
+    if (colon == std::string::npos || !whole_number(w.substr(0, colon), 15, keypad)) {
+      error = where + "expected KEYPAD:KEY (e.g. 1:up) or wait=N";
+      return false;
+    }
+    if (keypad < 1 || keypad > s_->keypad_count) {
+      error = where + "there is no keypad " + std::to_string(keypad) + " (the ring has " +
+              std::to_string(s_->keypad_count) + (s_->keypad_count == 1 ? " keypad)" : " keypads)");
+      return false;
+    }
+    ring::key k = ring::key::digit_0;
+    const std::string name = w.substr(colon + 1);
+    if (!find_key(name, k)) {
+      error = where + "no key '" + name + "' (keys: 0..9 up + down - clr y enter n . start stop)";
+      return false;
+    }
+    steps.push_back({static_cast<std::size_t>(keypad), k, name, 0});
+  }
+  s_->script = std::move(steps);
+  s_->script_next = 0;
+  s_->script_due = s_->clock;
+  return true;
+}
+
+void ring_network::on_event(std::function<void(const network_event&)> sink) {
+  s_->events = std::move(sink);
+}
+
+void ring_network::on_link_byte(std::function<void(std::uint64_t, std::size_t, std::uint8_t)> sink) {
+  s_->link_bytes = std::move(sink);
+}
+
+void ring_network::step() {
+  state& s = *s_;
+  s.clock = s.sim.now();
+  bool active = false;
+  while (s.script_next < s.script.size() && s.script_due <= s.clock) {
+    const script_step& next = s.script[s.script_next++];
+    if (next.keypad == 0) {
+      s.script_due = s.clock + next.wait;
+    } else {
+      s.press(next.keypad, next.key, next.name);
+      s.script_due = s.clock + s.config.key_gap;
+      active = true;
+    }
+  }
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    state::node_slot& n = s.nodes[i];
+    if (!n.task) continue;
+    const std::uint64_t effects = n.task->effects();
+    n.task->run(s.clock, s.config.statements_per_byte_time);
+    if (n.task->effects() == effects) continue;
+    active = true;
+    if (n.task->state() == basic::task_state::ended) {
+      s.emit(event_kind::ended, s.clock, i, "program ended at line " + std::to_string(n.task->line()));
+    } else if (n.task->state() == basic::task_state::failed) {
+      s.emit(event_kind::failed, s.clock, i,
+             "program stopped at line " + std::to_string(n.task->line()) + ": " + n.task->error());
+    }
+  }
+  s.bytes_this_step = 0;
+  s.sim.step([&s](const ring::link_byte& b) { s.on_link_byte(b); });
+  if (s.bytes_this_step != 0) active = true;
+  bool all_quiet = true;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    state::node_slot& n = s.nodes[i];
+    if (!n.mc) continue;
+    for (const auto& [vr, value] : n.mc->take_network_writes()) {
+      s.emit(event_kind::vr_from_ring, s.clock, i,
+             "VR(" + std::to_string(vr) + ") is now " + basic::format_number(value) + " (from the ring)");
+    }
+    const std::uint32_t netstat = n.mc->node().netstat();
+    if ((netstat & ~n.netstat_seen) != 0) {
+      s.emit(event_kind::netstat, s.clock, i,
+             "NETSTAT " + std::to_string(netstat) + " (" + netstat_bits(netstat & ~n.netstat_seen) + ")");
+    }
+    n.netstat_seen = netstat;
+    if (!n.task) continue;
+    if (active) n.task->world_changed();
+    switch (n.task->state()) {
+      case basic::task_state::ended:
+      case basic::task_state::failed:
+        break;
+      case basic::task_state::waiting:
+        all_quiet = all_quiet && (n.task->waiting_for() == basic::wait_reason::get ||
+                                  n.task->waiting_for() == basic::wait_reason::wait_until);
+        break;
+      case basic::task_state::running:
+        all_quiet = all_quiet && n.task->idle();
+        break;
+    }
+  }
+  s.settled = !active && all_quiet && s.script_done();
+}
+
+run_end ring_network::run(std::uint64_t max_byte_times) {
+  run_end end = run_end::limit;
+  while (s_->sim.now() < max_byte_times) {
+    step();
+    if (s_->settled) {
+      end = run_end::settled;
+      break;
+    }
+  }
+  s_->clock = s_->sim.now();
+  for (auto& n : s_->nodes) {
+    if (n.mc) n.mc->flush_terminal();
+  }
+  return end;
+}
+
+bool ring_network::settled() const {
+  return s_->settled;
+}
+
+std::uint64_t ring_network::now() const {
+  return s_->sim.now();
+}
+
+double ring_network::seconds() const {
+  return ring::byte_times_to_seconds(s_->sim.now(), s_->config.bit_rate, s_->config.bits_per_byte);
+}
+
+std::size_t ring_network::size() const {
+  return s_->nodes.size();
+}
+
+std::size_t ring_network::keypads() const {
+  return s_->keypad_count;
+}
+
+node_report ring_network::report(std::size_t node) const {
+  node_report r;
+  if (node < 1 || node > s_->nodes.size()) return r;
+  const state::node_slot& n = s_->nodes[node - 1];
+  r.what = n.what;
+  if (n.keypad) {
+    const keypad_node& k = *n.keypad;
+    r.keypad_number = n.keypad_number;
+    r.network_mode = k.network_mode();
+    r.offset = k.offset();
+    r.display = {k.display().line(0), k.display().line(1)};
+    r.cursor_visible = k.display().cursor_visible();
+    r.dropped = k.counters().dropped_in_local_mode + k.forwarding_counters().messages_dropped;
+    r.keys_sent = k.counters().keys_sent;
+    r.keys_lost = k.counters().keys_lost;
+    return r;
+  }
+  const mc_adapter& mc = *n.mc;
+  r.netstat = mc.node().netstat();
+  for (std::size_t i = 0; i < mc.vr_count(); ++i) {
+    if (mc.vr(i) != 0) r.vrs.emplace_back(i, mc.vr(i));
+  }
+  for (std::size_t i = 0; i < basic::axis_parameter_count; ++i) {
+    if (mc.parameter(i) != 0) r.parameters.emplace_back(basic::axis_parameter_names[i], mc.parameter(i));
+  }
+  if (!n.task) {
+    r.state = "none";
+    return r;
+  }
+  const basic::task& t = *n.task;
+  r.program = n.program_name;
+  r.state = basic::to_string(t.state());
+  r.waiting = basic_spelling(t.waiting_for());
+  r.idle = t.state() == basic::task_state::running && t.idle();
+  r.line = t.line();
+  r.error = t.error();
+  r.statements = t.statements();
+  for (std::size_t i = 0; i < t.variable_count(); ++i) r.variables.emplace_back(t.variable_name(i), t.variable(i));
+  return r;
+}
+
+bool ring_network::press(std::size_t keypad, const std::string& key_name, std::string& error) {
+  ring::key k = ring::key::digit_0;
+  if (keypad < 1 || keypad > s_->keypad_count) {
+    error = "there is no keypad " + std::to_string(keypad);
+    return false;
+  }
+  if (!find_key(key_name, k)) {
+    error = "no key '" + key_name + "'";
+    return false;
+  }
+  s_->clock = s_->sim.now();
+  s_->press(keypad, k, key_name);
+  return true;
+}
+
+}  // namespace trionet::host

@@ -1,0 +1,199 @@
+// `trionet ring simulate`: the built-in networks (the manual's programs and the ordering example), a user's own
+// programs from files, the JSON summary, and the usage errors.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "support/run_cli.hpp"
+
+using trionet::test::expect_usage_error;
+using trionet::test::run_cli;
+
+namespace {
+
+// A file in /tmp that goes away with the test.
+class temporary_file {
+ public:
+  temporary_file(const std::string& name, const std::string& text)
+      : path_("/tmp/trionet-simulate-" + std::to_string(::getpid()) + "-" + name) {
+    std::ofstream(path_, std::ios::binary) << text;
+  }
+  ~temporary_file() { std::remove(path_.c_str()); }
+  temporary_file(const temporary_file&) = delete;
+  temporary_file& operator=(const temporary_file&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+std::string last_line(const std::string& out) {
+  const std::size_t end = out.find_last_not_of('\n');
+  if (end == std::string::npos) return "";
+  const std::size_t start = out.rfind('\n', end);
+  return out.substr(start == std::string::npos ? 0 : start + 1, end + 1 - (start == std::string::npos ? 0 : start + 1));
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST(RingSimulateCli, Example1ShowsSpeedAndLengthOnBothDisplays) {
+  const auto r = run_cli("ring simulate example1");  // run from the build tree: the programs are built in
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string box =
+      "        +--------------------+\n"
+      "        |SPEED:    125       |\n"
+      "        |LENGTH:      0.2    |\n"
+      "        +--------------------+\n";
+  EXPECT_TRUE(has(r.out, "node 2  keypad 1: network mode, keys go 2 hops along (BASIC 11)\n" + box)) << r.out;
+  EXPECT_TRUE(has(r.out, "node 3  keypad 2: network mode, keys go 1 hop along (BASIC 10)\n" + box)) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  mc examples/manual/example1.bas: running at line ")) << r.out;
+  EXPECT_TRUE(has(r.out, "        VR: VR(2)=0.2\n")) << r.out;  // 0.1 + 0.1 + 0.1 - 0.1, printed as BASIC does
+  EXPECT_TRUE(has(r.out, "        variables: length=2 k=11 a=125\n")) << r.out;
+}
+
+TEST(RingSimulateCli, Example2RunsTheHandshake) {
+  const auto r = run_cli("ring simulate example2 --trace");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "node 1  1 -> 2  hops 1  PRINT \"I\"\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  VR(200) is now 99 (from the ring)\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 2  VR(0) is now 0.3 (from the ring)\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  VR(200) is now 999 (from the ring)\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "|PRESS START TO RUN  |")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  mc examples/manual/example2_three_axis.bas: ended at line ")) << r.out;
+  EXPECT_TRUE(has(r.out, "        axis parameters: SPEED=0.02\n")) << r.out;
+  EXPECT_FALSE(has(r.out, "NETSTAT 1")) << r.out;
+}
+
+TEST(RingSimulateCli, Example3ShowsWhatWasDroppedWhereAndWhy) {
+  const auto broken = run_cli("ring simulate example3");
+  EXPECT_EQ(broken.exit_code, 0) << broken.err;
+  EXPECT_TRUE(has(broken.out, "node 3  dropped PRINT \"\\x1bH\\x14FEEDER READY\" from node 2, sent to this keypad: "
+                              "the keypad is in local mode"))
+      << broken.out;
+  EXPECT_TRUE(has(broken.out, "node 3  dropped PRINT \"R\" from node 2, passing through to node 1: the keypad is in "
+                              "local mode"))
+      << broken.out;
+  EXPECT_TRUE(has(broken.out, "node 1  mc examples/keypad_order/master.bas: waiting at line 7 (GET #)\n"))
+      << broken.out;
+  EXPECT_TRUE(has(broken.out, "        dropped in local mode: 2 message(s); keys lost: 0\n")) << broken.out;
+
+  const auto fixed = run_cli("ring simulate example3-fixed");
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.err;
+  EXPECT_FALSE(has(fixed.out, "dropped")) << fixed.out;
+  EXPECT_TRUE(has(fixed.out, "|MASTER READY  RUN   |\n        |FEEDER READY        |\n")) << fixed.out;
+  EXPECT_TRUE(has(fixed.out, "node 1  mc examples/keypad_order/master_fixed.bas: ended at line 9\n")) << fixed.out;
+}
+
+TEST(RingSimulateCli, JsonSummaryIsTheLastLine) {
+  const auto r = run_cli("ring simulate example2 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << "only the JSON line without --trace: " << r.out;
+  const std::string json = last_line(r.out);
+  EXPECT_EQ(json.rfind("{\"byte_times\":", 0), 0u) << json;
+  EXPECT_TRUE(has(json, ",\"end\":\"settled\",\"nodes\":[{\"node\":1,\"kind\":\"mc\","
+                        "\"program\":\"examples/manual/example2_three_axis.bas\",\"state\":\"ended\",\"ended\":true,"
+                        "\"line\":40,\"error\":null,\"netstat\":0,\"vr\":{\"0\":0.3,\"1\":0.02,\"100\":20,\"200\":999},"
+                        "\"variables\":{},\"parameters\":{}}"))
+      << json;
+  EXPECT_TRUE(has(json, "{\"node\":3,\"kind\":\"keypad\",\"keypad\":1,\"network_mode\":true,\"offset\":1,"
+                        "\"display\":[\"PRESS START TO RUN  \",\"                    \"],\"dropped\":0,"
+                        "\"keys_lost\":0}]}"))
+      << json;
+  EXPECT_TRUE(has(json, "\"parameters\":{\"SPEED\":0.02}")) << json;
+
+  const auto traced = run_cli("ring simulate example1 --json --trace");
+  EXPECT_TRUE(has(traced.out, "hops 1  keypad offset 2")) << traced.out;
+  EXPECT_TRUE(has(last_line(traced.out),
+                  "\"variables\":{\"length\":2,\"k\":11,\"a\":125}"))
+      << traced.out;
+}
+
+TEST(RingSimulateCli, AUsersOwnTwoControllerProgramsFromFiles) {
+  const temporary_file counter("counter.bas",
+                               "' counts to 3 and hands each count to the other controller\n"
+                               "FOR i=1 TO 3\n"
+                               "  SEND(10,1,20,i)\n"
+                               "  WAIT UNTIL VR(21)=i   ' the other side's acknowledgement\n"
+                               "NEXT i\n");
+  const temporary_file echo("echo.bas",
+                            "REPEAT\n"
+                            "  WAIT UNTIL VR(20)<>VR(21)\n"
+                            "  SEND(10,1,21,VR(20))\n"
+                            "  VR(21)=VR(20)\n"
+                            "UNTIL VR(20)=3\n");
+  const auto r = run_cli("ring simulate --node mc:" + counter.path() + " --node mc:" + echo.path() + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string json = last_line(r.out);
+  EXPECT_TRUE(has(json, "\"end\":\"settled\"")) << json;
+  EXPECT_TRUE(has(json, "\"state\":\"ended\",\"ended\":true,\"line\":5,\"error\":null,\"netstat\":0,"
+                        "\"vr\":{\"21\":3},\"variables\":{\"i\":4}"))
+      << json;
+  EXPECT_TRUE(has(json, "\"vr\":{\"20\":3,\"21\":3}")) << json;
+}
+
+TEST(RingSimulateCli, RunsAreDeterministic) {
+  const auto first = run_cli("ring simulate example2 --trace --json");
+  const auto second = run_cli("ring simulate example2 --trace --json");
+  EXPECT_EQ(first.exit_code, 0);
+  EXPECT_GT(first.out.size(), 5000u);
+  EXPECT_EQ(first.out, second.out);
+}
+
+TEST(RingSimulateCli, ARuntimeErrorExitsWithOne) {
+  const temporary_file bad("bad.bas", "x=1\nGOSUB sub\nSTOP\nsub: y=VR(5000)\nRETURN\n");
+  const auto r = run_cli("ring simulate --node mc:" + bad.path() + " --node keypad --json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(last_line(r.out), "\"state\":\"failed\",\"ended\":true,\"line\":4,"
+                                    "\"error\":\"VR(5000): bad address (this controller has VR(0) to VR(1023))\""))
+      << r.out;
+}
+
+TEST(RingSimulateCli, OptionsSetTheClock) {
+  const temporary_file wait("wait.bas", "WA(100)\n");
+  const auto r = run_cli("ring simulate --node mc:" + wait.path() +
+                         " --node mc --bit-rate 12500 --statements-per-byte-time 3 --key-gap 5 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  // 100 ms at 12.5 kbit/s and 10 bits per byte: 125 byte-times, then the program ends and the ring settles.
+  EXPECT_EQ(last_line(r.out).rfind("{\"byte_times\":127,\"seconds\":0.1016,", 0), 0u) << r.out;
+  const auto limited = run_cli("ring simulate --node mc:" + wait.path() + " --node mc --byte-times 50 --json");
+  EXPECT_EQ(last_line(limited.out).rfind("{\"byte_times\":50,\"seconds\":0.004,\"end\":\"limit\"", 0), 0u)
+      << limited.out;
+}
+
+TEST(RingSimulateCli, CompileErrorsNameTheFileLineAndColumn) {
+  const temporary_file bad("syntax.bas", "x=1\nIF x=1 GOTO done\ndone:\n");
+  const auto r = run_cli("ring simulate --node mc:" + bad.path() + " --node keypad");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "trionet: " + bad.path() + ":2:8: expected THEN after the IF condition, found 'GOTO'\n");
+}
+
+TEST(RingSimulateCli, UsageErrors) {
+  expect_usage_error("ring simulate", "needs a built-in network");
+  expect_usage_error("ring simulate example9", "unknown network 'example9'");
+  expect_usage_error("ring simulate example1 example2", "one built-in network");
+  expect_usage_error("ring simulate example1 --node keypad", "--node cannot be used with a built-in network");
+  expect_usage_error("ring simulate --node mc", "a ring has 2 to 15 nodes, not 1");
+  expect_usage_error("ring simulate --node keypad --node keypad", "at least one Motion Coordinator");
+  expect_usage_error("ring simulate --node router --node mc", "--node takes mc:FILE, mc or keypad, not 'router'");
+  expect_usage_error("ring simulate --node mc:/nonexistent/x.bas --node mc", "cannot read /nonexistent/x.bas");
+  expect_usage_error("ring simulate example1 --keys 3:up", "there is no keypad 3");
+  expect_usage_error("ring simulate example1 --byte-times 0", "--byte-times");
+  expect_usage_error("ring simulate example1 --bit-rate 0", "--bit-rate");
+  expect_usage_error("ring simulate example1 --statements-per-byte-time x", "--statements-per-byte-time");
+  expect_usage_error("ring simulate example1 --pcap x.pcap", "unknown option --pcap");
+}
+
+TEST(RingSimulateCli, HelpDescribesTheOptions) {
+  const auto r = run_cli("ring simulate --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(has(r.out, "--node mc:FILE.bas|mc|keypad")) << r.out;
+  EXPECT_TRUE(has(r.out, "--keys SCRIPT")) << r.out;
+}
