@@ -54,7 +54,7 @@ TEST(RingRecordFields, TheGoldenVariableTransfer) {
   EXPECT_EQ(value(f, "trionet_ring.eom_hops"), "1");
   EXPECT_EQ(value(f, "trionet_ring.vr"), "200");
   EXPECT_EQ(value(f, "trionet_ring.value_raw"), std::to_string(std::int64_t{99} << 32));
-  EXPECT_EQ(value(f, "trionet_ring.value"), "99");
+  EXPECT_EQ(value(f, "trionet_ring.value"), "99.0");
   EXPECT_EQ(value(f, "trionet_ring.crc"), std::to_string(0x3e7f));
   EXPECT_EQ(value(f, "trionet_ring.crc_computed"), std::to_string(0x3e7f));
   EXPECT_EQ(value(f, "trionet_ring.crc_good"), "true");
@@ -247,7 +247,7 @@ TEST(CanRecordFields, BadSignAndFraction) {
   EXPECT_EQ(value(fraction, "trionet_can.error"), "\"fraction\"");
   EXPECT_TRUE(has(fraction, "trionet_can.expert.bad_fraction"));
   const capture_fields negative_zero = can_fields(0x028, 8, {1, 1, 0, 0, 0, 0, 0, 0});
-  EXPECT_EQ(value(negative_zero, "trionet_can.value"), "-0");
+  EXPECT_EQ(value(negative_zero, "trionet_can.value"), "-0.0");
 }
 
 // ---------------------------------------------------------------------------------------------------------
