@@ -28,6 +28,32 @@
 
 namespace trionet::host {
 
+namespace detail {
+/// The record a splitter is building: its bytes and the time of the first. `flush` hands it to the sink.
+class open_record {
+ public:
+  [[nodiscard]] bool open() const noexcept { return open_; }
+  [[nodiscard]] std::size_t size() const noexcept { return bytes_.size(); }
+  void begin(std::uint64_t time_ns) {
+    open_ = true;
+    time_ns_ = time_ns;
+    bytes_.clear();
+  }
+  void put(std::uint8_t byte) { bytes_.push_back(byte); }
+  template <class Sink>
+  void flush(Sink&& sink) {
+    if (!open_) return;
+    open_ = false;
+    sink(byte_view(bytes_.data(), bytes_.size()), time_ns_);
+  }
+
+ private:
+  bool open_ = false;
+  std::uint64_t time_ns_ = 0;
+  std::vector<std::uint8_t> bytes_;
+};
+}  // namespace detail
+
 /// Cuts the bytes that crossed one ring link into records. Feed every byte with the time it was sent; call
 /// `flush` on an idle line and at the end of the capture. `sink(byte_view record, std::uint64_t time_ns)`
 /// receives each record (the view is valid during the call).
@@ -45,49 +71,44 @@ class ring_record_splitter {
   template <class Sink>
   void push(std::uint8_t byte, std::uint64_t time_ns, Sink&& sink) {
     if (ring::is_data(byte)) {
-      if (open_ != unit::none && bytes_.size() == max_) flush(sink);
-      if (open_ == unit::none) begin(unit::stray, time_ns);
-    } else if (ring::type_of(byte) != 0 || open_ != unit::message || bytes_.size() == max_) {
-      // A header begins a message; an end of message outside one (or past the limit) stands alone.
+      if (record_.open() && record_.size() == max_) flush(sink);
+      if (!record_.open()) begin(unit::stray, time_ns);
+      record_.put(byte);
+    } else if (ring::type_of(byte) != 0) {  // a header begins a message
       flush(sink);
-      begin(ring::type_of(byte) != 0 ? unit::message : unit::stray, time_ns);
-      if (ring::type_of(byte) == 0) {
-        bytes_.push_back(byte);
-        flush(sink);
-        return;
-      }
-    } else {  // the end of the open message
-      bytes_.push_back(byte);
+      begin(unit::message, time_ns);
+      record_.put(byte);
+    } else if (kind_ == unit::message && record_.open() && record_.size() < max_) {  // its end of message
+      record_.put(byte);
       flush(sink);
-      return;
+    } else {  // an end of message outside a message (or past the limit) stands alone
+      flush(sink);
+      begin(unit::stray, time_ns);
+      record_.put(byte);
+      flush(sink);
     }
-    bytes_.push_back(byte);
   }
 
   /// Emits the open record, if any (a message cut short or a run of stray data).
   template <class Sink>
   void flush(Sink&& sink) {
-    if (open_ == unit::none) return;
-    open_ = unit::none;
-    sink(byte_view(bytes_.data(), bytes_.size()), time_ns_);
+    record_.flush(sink);
   }
 
   /// True while a record is open.
-  [[nodiscard]] bool open() const noexcept { return open_ != unit::none; }
+  [[nodiscard]] bool open() const noexcept { return record_.open(); }
 
  private:
-  enum class unit : std::uint8_t { none, message, stray };
+  enum class unit : std::uint8_t { message, stray };
 
   void begin(unit kind, std::uint64_t time_ns) {
-    open_ = kind;
-    time_ns_ = time_ns;
-    bytes_.clear();
+    kind_ = kind;
+    record_.begin(time_ns);
   }
 
   std::size_t max_;
-  unit open_ = unit::none;
-  std::uint64_t time_ns_ = 0;
-  std::vector<std::uint8_t> bytes_;
+  unit kind_ = unit::stray;
+  detail::open_record record_;
 };
 
 /// Bytes per Genius character in a record: the 11-bit word, big-endian.
@@ -120,19 +141,18 @@ class genius_record_splitter {
       return;
     }
     const bool control = (word & genius::control_bit_mask) != 0;
-    const genius::control_kind kind =
-        genius::read_control(static_cast<std::uint8_t>(word >> 2)).kind;
+    const genius::control_kind kind = genius::read_control(static_cast<std::uint8_t>(word >> 2)).kind;
     if (control && kind == genius::control_kind::start) {
       flush(sink);
       begin(unit::transmission, time_ns);
-    } else if (open_ != unit::none && bytes_.size() == max_ * genius_record_bytes_per_character) {
+    } else if (record_.open() && record_.size() == max_ * genius_record_bytes_per_character) {
       flush(sink);
       begin(unit::stray, time_ns);
-    } else if (open_ == unit::none) {
+    } else if (!record_.open()) {
       begin(unit::stray, time_ns);
     }
     put(word);
-    if (control && kind == genius::control_kind::stop && open_ == unit::transmission) flush(sink);
+    if (control && kind == genius::control_kind::stop && kind_ == unit::transmission) flush(sink);
   }
 
   /// One received character (always well framed).
@@ -144,30 +164,26 @@ class genius_record_splitter {
   /// Emits the open record, if any (a transmission cut short, or characters outside a transmission).
   template <class Sink>
   void flush(Sink&& sink) {
-    if (open_ == unit::none) return;
-    open_ = unit::none;
-    sink(byte_view(bytes_.data(), bytes_.size()), time_ns_);
+    record_.flush(sink);
   }
 
-  [[nodiscard]] bool open() const noexcept { return open_ != unit::none; }
+  [[nodiscard]] bool open() const noexcept { return record_.open(); }
 
  private:
-  enum class unit : std::uint8_t { none, transmission, stray };
+  enum class unit : std::uint8_t { transmission, stray };
 
   void begin(unit kind, std::uint64_t time_ns) {
-    open_ = kind;
-    time_ns_ = time_ns;
-    bytes_.clear();
+    kind_ = kind;
+    record_.begin(time_ns);
   }
   void put(std::uint16_t word) {
-    bytes_.push_back(static_cast<std::uint8_t>(word >> 8));
-    bytes_.push_back(static_cast<std::uint8_t>(word));
+    record_.put(static_cast<std::uint8_t>(word >> 8));
+    record_.put(static_cast<std::uint8_t>(word));
   }
 
   std::size_t max_;
-  unit open_ = unit::none;
-  std::uint64_t time_ns_ = 0;
-  std::vector<std::uint8_t> bytes_;
+  unit kind_ = unit::stray;
+  detail::open_record record_;
 };
 
 /// The words of a Genius record (a trailing odd byte is not a word and is left out).
