@@ -4,6 +4,7 @@
 //   example2.pcapng  the manual's example 2 on the simulated ring, one interface per link (125 kbit/s)
 //   can.pcapng       two CAN buses: VR frames of a 5-node exchange between several pairs, and non-VR frames
 //   genius.pcapng    a Genius line: broadcast, directed, blocks, CRC errors, framing errors, stray characters
+//   random.pcapng    a ring link, a Genius line and a CAN bus carrying random messages with random faults
 //
 // and NAME.jsonl beside each: one JSON object per record, in file order, read back from the capture with
 // pcapng_reader and printed by the record view (trionet/host/capture_view.hpp); can_3_nodes.jsonl is the view
@@ -330,6 +331,140 @@ void write_genius(const std::string& dir) {
   if (!file) die("cannot write genius.pcapng");
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// random: well-formed traffic with random faults, on all three networks, from a fixed seed
+
+class random_source {  // xorshift64: the same capture on every machine
+ public:
+  explicit random_source(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    state_ ^= state_ << 13;
+    state_ ^= state_ >> 7;
+    state_ ^= state_ << 17;
+    return state_;
+  }
+  std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(next() % n); }
+  std::uint8_t byte() { return static_cast<std::uint8_t>(next()); }
+
+ private:
+  std::uint64_t state_;
+};
+
+// A valid frame of a random message, or random bytes; then, one time in three, a random fault.
+bytes random_ring_bytes(random_source& r) {
+  bytes out;
+  const std::uint8_t hops = static_cast<std::uint8_t>(1 + r.below(15));
+  switch (r.below(6)) {
+    case 0: {
+      std::string text(1 + r.below(r.below(8) == 0 ? 300 : 12), ' ');
+      for (char& c : text) c = static_cast<char>(r.below(128));
+      out = text_message(hops, text);
+      break;
+    }
+    case 1:
+      out = encoded(ring::message::variable(hops, static_cast<std::uint16_t>(r.below(16384)),
+                                            static_cast<std::int64_t>(r.next())));
+      break;
+    case 2:
+      out = encoded(ring::message::keypad_offset(hops, static_cast<std::uint8_t>(1 + r.below(15))));
+      break;
+    case 3:
+      out = encoded(ring::message::keypad_mode(hops, r.below(2) == 0 ? 0 : 127));
+      break;
+    default:
+      out.resize(r.below(20));
+      for (std::uint8_t& b : out) b = r.byte();
+      break;
+  }
+  if (r.below(3) == 0 && !out.empty()) {
+    const std::size_t at = r.below(static_cast<std::uint32_t>(out.size()));
+    switch (r.below(3)) {
+      case 0:
+        out[at] ^= static_cast<std::uint8_t>(1u << r.below(8));
+        break;
+      case 1:
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(at));
+        break;
+      default:
+        out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), r.byte());
+        break;
+    }
+  }
+  return out;
+}
+
+std::vector<std::uint16_t> random_genius_words(random_source& r) {
+  std::vector<std::uint8_t> data(r.below(r.below(10) == 0 ? 300 : 8));
+  for (std::uint8_t& b : data) b = r.byte();
+  std::vector<genius::segment> segments;
+  std::size_t at = 0;
+  while (at < data.size()) {
+    const std::size_t n = 1 + r.below(static_cast<std::uint32_t>(data.size() - at));
+    segments.push_back({r.below(2) == 0, static_cast<std::uint8_t>(r.below(32)), byte_view(data.data() + at, n)});
+    at += n;
+  }
+  const bool broadcast = !data.empty() && r.below(2) == 0;  // a directed one may carry its destination alone
+  std::vector<std::uint16_t> out(data.size() + 2 * segments.size() + 3);
+  const genius::encode_result result = genius::encode_transmission(
+      span<std::uint16_t>(out.data(), out.size()),
+      genius::transmission{static_cast<std::uint8_t>(r.below(32)), broadcast, static_cast<std::uint8_t>(r.below(32)),
+                           span<const genius::segment>(segments.data(), segments.size())});
+  if (!result) die("genius encode");
+  out.resize(result.length);
+  if (r.below(3) == 0) {
+    const std::size_t where = r.below(static_cast<std::uint32_t>(out.size()));
+    switch (r.below(3)) {
+      case 0:
+        out[where] = static_cast<std::uint16_t>(out[where] ^ (1u << r.below(11)));  // any bit: framing errors too
+        break;
+      case 1:
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(where));
+        break;
+      default:
+        out.insert(out.begin() + static_cast<std::ptrdiff_t>(where), static_cast<std::uint16_t>(r.below(0x800)));
+        break;
+    }
+  }
+  return out;
+}
+
+can::frame random_can_frame(random_source& r) {
+  can::frame f;
+  const std::uint8_t sender = static_cast<std::uint8_t>(1 + r.below(5));
+  const std::uint8_t receiver = static_cast<std::uint8_t>(1 + (sender + r.below(4)) % 5);
+  const can::identifier_result id = can::exchange_identifier(5, sender, receiver);
+  f.id = r.below(4) != 0 && id.error == can::scheme_error::none ? id.identifier : r.below(0x800);
+  if (r.below(10) == 0) f.id |= can::frame::remote_flag;
+  if (r.below(10) == 0) f.id = can::frame::extended_flag | static_cast<std::uint32_t>(r.next() & 0x1FFFFFFF);
+  f.dlc = static_cast<std::uint8_t>(r.below(5) != 0 ? 8 : r.below(16));
+  for (std::uint8_t& d : f.data) d = r.byte();
+  f.data[1] = static_cast<std::uint8_t>(r.below(8) != 0 ? r.below(2) : r.byte());
+  if (r.below(4) != 0) f.data[6] = static_cast<std::uint8_t>(f.data[6] % 0x28);  // mostly fractions <= 10239
+  return f;
+}
+
+void write_random(const std::string& dir) {
+  std::ofstream file(dir + "/random.pcapng", std::ios::binary);
+  pcapng_writer writer(file);
+  random_source r(0x7452494F4E4554ull);
+  ring_link link(writer, "link 0: random");
+  const std::uint32_t line = writer.add_interface("genius random", capture_network::genius).id;
+  const std::uint32_t bus = writer.add_interface("can random", capture_network::can).id;
+  genius_record_splitter splitter;
+  std::uint64_t now = 0;
+  const auto sink = [&](byte_view record, std::uint64_t time_ns) { check(writer.write(line, time_ns, record)); };
+  for (int i = 0; i < 400; ++i) {
+    link.send(random_ring_bytes(r));
+    if (r.below(8) == 0) link.idle(3);
+    for (std::uint16_t w : random_genius_words(r)) splitter.push(w, epoch + (now++) * genius_character_ns, sink);
+    const auto record = socketcan_record(random_can_frame(r));
+    check(writer.write(bus, epoch + static_cast<std::uint64_t>(i) * 1000000u, byte_view(record.data(), record.size())));
+  }
+  link.flush();
+  splitter.flush(sink);
+  if (!file) die("cannot write random.pcapng");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -345,7 +480,8 @@ int main(int argc, char** argv) {
   write_example2(dir);
   write_can(dir);
   write_genius(dir);
-  for (const char* name : {"ring", "example2", "can", "genius"}) {
+  write_random(dir);
+  for (const char* name : {"ring", "example2", "can", "genius", "random"}) {
     const std::size_t records = write_view(dir + "/" + name + ".pcapng", dir + "/" + name + ".jsonl");
     std::printf("%s.pcapng: %zu records\n", name, records);
   }
