@@ -1,4 +1,4 @@
-// Fuzz harness: the host-side candump text parser and formatter (src/can_candump.hpp) on arbitrary text.
+// Fuzz harness: the host-side candump text parser and formatter (src/host/trionet/host/candump.hpp) on arbitrary text.
 //
 // Input: the text is parsed as one line, and again split at every '\n' as the lines of a candump file. The
 // last 14 bytes also make a frame (identifier word, DLC, data) that is formatted and parsed back.
@@ -15,11 +15,11 @@
 #include <string>
 #include <string_view>
 
-#include "can_candump.hpp"
+#include "trionet/host/candump.hpp"
 #include "fuzz_check.hpp"
 
 // The host adapter is compiled into the CLI, not into the header library: compile it here, as the tests do.
-#include "../src/can_candump.cpp"
+#include "../src/host/candump.cpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// BASIC programs on the simulated ring (src/ring_network.hpp): the clock, the key script, what ends a run,
+// BASIC programs on the simulated ring (src/sim/ring_network.hpp): the clock, the key script, what ends a run,
 // the manual's ordering warning (examples/keypad_order/), and determinism.
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@
 
 #include <trionet/can.hpp>
 
-#include "can_candump.hpp"
-#include "can_socketcan.hpp"
+#include "trionet/host/candump.hpp"
+#include "trionet/host/socketcan.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <string>
 
-#include "posix_link.hpp"
+#include "trionet/host/posix_link.hpp"
 #include "trionet/ring.hpp"
 
 namespace ring = trionet::ring;

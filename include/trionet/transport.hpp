@@ -17,7 +17,7 @@
 //   if (node.transmit_pending()) UART->TX_IRQ_ENABLE = 1;
 //
 // On a host, a POSIX file descriptor (a serial port, a pipe or a socket) is pumped the same way:
-// bytes from read() go to `receive`, bytes from `transmit` go to write() (see src/posix_link.hpp).
+// bytes from read() go to `receive`, bytes from `transmit` go to write() (see src/host/trionet/host/posix_link.hpp).
 //
 // The idle line (docs/protocol.md 1.10) is the only notion of time: when the receiver has seen no byte for a while
 // (most UARTs raise an idle-line interrupt one character time after the last byte; a host uses a read

@@ -1,5 +1,5 @@
 // What a BASIC program reaches outside itself: its controller. The interpreter (task.hpp) calls nothing else,
-// so a program runs the same on a simulated ring node (src/ring_network.cpp), on a test double, or on
+// so a program runs the same on a simulated ring node (src/sim/ring_network.cpp), on a test double, or on
 // anything else that implements this interface.
 //
 //   PRINT #n,...        print(n, text)              n = 0: the controller's terminal; 10..24: the network

@@ -1,5 +1,5 @@
 // candump text: see can_candump.hpp.
-#include "can_candump.hpp"
+#include "trionet/host/candump.hpp"
 
 #include <cstdio>
 

@@ -1,5 +1,5 @@
 // Linux SocketCAN port: see can_socketcan.hpp.
-#include "can_socketcan.hpp"
+#include "trionet/host/socketcan.hpp"
 
 #include <fcntl.h>
 #include <net/if.h>

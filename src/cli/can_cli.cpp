@@ -6,7 +6,7 @@
 
 #include <trionet/can.hpp>
 
-#include "can_candump.hpp"
+#include "trionet/host/candump.hpp"
 #include "cli.hpp"
 
 namespace trionet::cli {

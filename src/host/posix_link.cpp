@@ -1,4 +1,4 @@
-#include "posix_link.hpp"
+#include "trionet/host/posix_link.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
