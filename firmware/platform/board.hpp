@@ -58,7 +58,9 @@ constexpr std::uint32_t interrupt_tx = 1u << 5;                 // IMSC.TXIM
 
 inline volatile std::uint32_t& interrupt_mask() noexcept { return reg(base + 0x38u); }  // IMSC
 
-/// Transmit interrupt on or off (call with interrupts masked, or from the UART ISR).
+/// Transmit interrupt on or off. Safe without interrupt masking as the programs use it: the main loop only
+/// switches it on, the UART ISR only off; a read-modify-write of one that the other interrupts leaves the
+/// interrupt on at worst, and the ISR then finds nothing to send and switches it off.
 inline void enable_tx_interrupt(bool on) noexcept {
   if (on) {
     interrupt_mask() |= interrupt_tx;

@@ -3,8 +3,8 @@
 // The PL011 interrupt is the keypad's link (see include/trionet/transport.hpp): received bytes go to
 // `keypad.receive` (the keypad offset that puts it in network mode, display text, forwarding), and while the
 // transmitter has room it takes bytes from `keypad.transmit`. Every SysTick (10 ms) the main loop reads the
-// hardware-scanned key matrix and reports each key that went down or up (`press` / `release`), with
-// interrupts masked around the calls as transport.hpp asks.
+// hardware-scanned key matrix and reports each key that went down or up (`press` / `release`): the keypad's
+// program side, with no interrupt masking (transport.hpp).
 //
 // Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR, key
 // scan and main loop run without the library. The difference between the two images is the keypad node.
@@ -82,21 +82,17 @@ int main() {
     const std::uint32_t changed = now ^ keys_down;
     keys_down = now;
     if (changed == 0) continue;
-    board::disable_interrupts();
+    bool queued = false;
     for (unsigned k = 0; k < key_count; ++k) {
       if ((changed & (1u << k)) == 0) continue;
 #if TRIONET_FIRMWARE_BASELINE
       key_events = key_events + 1;
+      queued = true;
 #else
       const auto which = static_cast<ring::key>(k);
-      static_cast<void>((now & (1u << k)) != 0 ? node.press(which) : node.release(which));
+      if (((now & (1u << k)) != 0 ? node.press(which) : node.release(which)) == ring::key_status::ok) queued = true;
 #endif
     }
-#if TRIONET_FIRMWARE_BASELINE
-    board::uart0::enable_tx_interrupt(true);
-#else
-    if (node.transmit_pending()) board::uart0::enable_tx_interrupt(true);
-#endif
-    board::enable_interrupts();
+    if (queued) board::uart0::enable_tx_interrupt(true);  // no masking: the ISR switches it off when done
   }
 }

@@ -5,8 +5,10 @@
 // transmitter has room it takes bytes from `node.transmit`; the transmit interrupt is switched off when the
 // node has nothing to send. The main loop is the user program: every SysTick (10 ms) it updates VR(0), the
 // axis position, and sends it to the next node (SEND(10,1,0,VR(0))); it echoes any characters that arrived
-// (IF KEY#4 THEN GET#4 ... PRINT#10). The node is not internally synchronised, so the main loop masks
-// interrupts around its calls, as transport.hpp asks. Table-free CRC: the smallest firmware configuration.
+// (IF KEY#4 THEN GET#4 ... PRINT#10). The ISR is the node's link side, the main loop its program side: they
+// share the node with no lock and no interrupt masking (transport.hpp), and the main loop only switches the
+// transmit interrupt on after queuing (the ISR switches it off when nothing is left). Table-free CRC: the
+// smallest firmware configuration.
 //
 // Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR and
 // main loop move bytes without the library (and do the same integer arithmetic on the position). The
@@ -94,21 +96,17 @@ int main() {
     tick = false;
 #if TRIONET_FIRMWARE_BASELINE
     position = position + 4294967;  // the same application arithmetic as below (0.001 in Q32.32)
-    board::disable_interrupts();
     if (bytes_waiting != 0) bytes_waiting = 0;
     transmitted = 0;
     board::uart0::enable_tx_interrupt(true);
-    board::enable_interrupts();
 #else
     vr[position_vr] += step;  // the axis moves
-    board::disable_interrupts();
-    static_cast<void>(node.send_variable_q32(next_node, position_vr, vr[position_vr]));
+    bool queued = node.send_variable_q32(next_node, position_vr, vr[position_vr]) == ring::send_status::ok;
     std::uint8_t echo[16];
     std::size_t length = 0;
     while (length < sizeof echo && node.key(4)) echo[length++] = node.get(4).value;
-    if (length != 0) static_cast<void>(node.print(next_node, trionet::byte_view(echo, length)));
-    if (node.transmit_pending()) board::uart0::enable_tx_interrupt(true);
-    board::enable_interrupts();
+    if (length != 0 && node.print(next_node, trionet::byte_view(echo, length)).queued != 0) queued = true;
+    if (queued) board::uart0::enable_tx_interrupt(true);
 #endif
   }
 }

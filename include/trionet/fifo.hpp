@@ -1,11 +1,20 @@
-// A fixed-capacity byte FIFO: the buffers of the ring nodes (forward buffer, transmit queue, receive buffer).
-// Cost: Capacity bytes + 4 bytes of indices; every operation O(1) except `drop_back` (O(1) too). No heap.
-// Not synchronised: the owner decides which context (ISR or main loop) touches it.
+// The byte queue between the two sides of a node: one side produces, the other consumes, with no lock and no
+// interrupt masking (single producer, single consumer). A ring node's transmit queue (the program side
+// queues own frames, the link side sends them) and a Motion Coordinator's receive buffer (the link side
+// stores characters, the program side reads them with GET#) are such queues.
+//
+// The producer owns `tail_`, the consumer owns `head_` (`single_writer`, see single_writer.hpp). The producer
+// may stage bytes past the tail without publishing them, and publishes a whole frame or message at once with
+// `publish`, so the consumer never sees part of one. Cost: Capacity (+ Extra) bytes and two indices (one byte
+// each up to a capacity of 128, else two bytes); every operation O(1), the bulk ones O(n). No heap.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
+
+#include "trionet/single_writer.hpp"
 
 namespace trionet {
 
@@ -27,79 +36,129 @@ inline void copy_bytes(std::uint8_t* to, const std::uint8_t* from, std::size_t n
 #endif
   std::memcpy(to, from, n);
 }
+
+/// The smallest unsigned type that holds 0..Max.
+template <std::size_t Max>
+using index_for = std::conditional_t<Max <= 0xFFu, std::uint8_t, std::uint16_t>;
 }  // namespace detail
 
-template <std::size_t Capacity>
-class byte_fifo {
-  static_assert(Capacity >= 1 && Capacity <= 65535, "a byte FIFO holds 1..65535 bytes");
+/// The queues' indices are `single_writer`s. Defining TRIONET_STRESS_BREAK_QUEUE_INDEX makes them plain
+/// variables instead, which breaks the concurrency contract: it exists only so that the concurrency stress
+/// test (scripts/concurrency-test) can show that it fails, under ThreadSanitizer, when the contract is broken.
+#if defined(TRIONET_STRESS_BREAK_QUEUE_INDEX)
+namespace detail {
+template <class T>
+struct broken_index {
+  T value{};
+  T load() const noexcept { return value; }
+  T acquire() const noexcept { return value; }
+  void store(T v) noexcept { value = v; }
+  void release(T v) noexcept { value = v; }
+};
+}  // namespace detail
+#define TRIONET_QUEUE_INDEX ::trionet::detail::broken_index
+#else
+#define TRIONET_QUEUE_INDEX ::trionet::single_writer
+#endif
+
+/// A single-producer, single-consumer byte queue of `Capacity` bytes (see the file comment). `Extra` bytes
+/// after the queue's own (`slots()[Capacity ..]`) belong to the producer as scratch space.
+template <std::size_t Capacity, std::size_t Extra = 0>
+class spsc_fifo {
+  static_assert(Capacity >= 1 && Capacity <= 32767, "a queue holds 1..32767 bytes");
 
  public:
+  /// An index: the positions run over 0 .. 2 * Capacity - 1, so that full and empty differ.
+  using index = detail::index_for<2 * Capacity - 1>;
+
+  /// How many bytes the queue holds.
   static constexpr std::size_t capacity() noexcept { return Capacity; }
-  std::size_t size() const noexcept { return size_; }
-  std::size_t free() const noexcept { return Capacity - size_; }
-  bool empty() const noexcept { return size_ == 0; }
 
-  /// Appends a byte; false (and nothing changes) when full.
-  [[nodiscard]] bool push(std::uint8_t byte) noexcept {
-    if (size_ == Capacity) return false;
-    data_[wrap(head_ + size_)] = byte;
-    ++size_;
-    return true;
-  }
+  // ---- the consumer's side ----
 
-  /// Takes the oldest byte; false when empty.
+  /// Consumer: bytes published and not yet taken.
+  std::size_t available() const noexcept { return distance(head_.load(), tail_.acquire()); }
+  /// Consumer: takes the oldest byte; false when there is none.
   [[nodiscard]] bool pop(std::uint8_t& byte) noexcept {
-    if (size_ == 0) return false;
-    byte = data_[head_];
-    head_ = static_cast<std::uint16_t>(wrap(head_ + 1u));
-    --size_;
+    const index head = head_.load();
+    if (head == tail_.acquire()) return false;
+    byte = data_[slot(head)];
+    head_.release(advance(head, 1));
+    return true;
+  }
+  /// Consumer: takes up to `n` of the oldest bytes into `bytes`; returns how many.
+  std::size_t pop(std::uint8_t* bytes, std::size_t n) noexcept {
+    const index head = head_.load();
+    const std::size_t ready = distance(head, tail_.acquire());
+    if (n > ready) n = ready;
+    const std::size_t at = slot(head);
+    const std::size_t first = n < Capacity - at ? n : Capacity - at;
+    detail::copy_bytes(bytes, data_ + at, first);
+    if (n != first) detail::copy_bytes(bytes + first, data_, n - first);
+    head_.release(advance(head, n));
+    return n;
+  }
+  /// Consumer: the oldest bytes that lie contiguously in the buffer; `front_size()` says how many.
+  const std::uint8_t* front() const noexcept { return data_ + slot(head_.load()); }
+  /// Consumer: how many bytes `front()` shows.
+  std::size_t front_size() const noexcept {
+    const index head = head_.load();
+    const std::size_t ready = distance(head, tail_.acquire());
+    const std::size_t to_end = Capacity - slot(head);
+    return ready < to_end ? ready : to_end;
+  }
+  /// Consumer: removes the `n` oldest bytes. Precondition: n <= available().
+  void consume(std::size_t n) noexcept { head_.release(advance(head_.load(), n)); }
+
+  // ---- the producer's side ----
+
+  /// Producer: room for this many more bytes.
+  std::size_t free() const noexcept { return Capacity - distance(head_.acquire(), tail_.load()); }
+  /// Producer: writes `byte` `k` places after the last published byte, without publishing it.
+  /// Precondition: k < free().
+  void stage(std::size_t k, std::uint8_t byte) noexcept { data_[slot(advance(tail_.load(), k))] = byte; }
+  /// Producer: writes `n` bytes from `k` places after the last published byte on, without publishing them.
+  /// Precondition: k + n <= free().
+  void stage(std::size_t k, const std::uint8_t* bytes, std::size_t n) noexcept {
+    const std::size_t at = slot(advance(tail_.load(), k));
+    const std::size_t first = n < Capacity - at ? n : Capacity - at;
+    detail::copy_bytes(data_ + at, bytes, first);
+    if (n != first) detail::copy_bytes(data_, bytes + first, n - first);
+  }
+  /// Producer: hands the next `n` staged bytes to the consumer, all at once.
+  void publish(std::size_t n) noexcept { tail_.release(advance(tail_.load(), n)); }
+  /// Producer: appends a byte; false (and nothing changes) when full.
+  [[nodiscard]] bool push(std::uint8_t byte) noexcept {
+    if (free() == 0) return false;
+    stage(0, byte);
+    publish(1);
     return true;
   }
 
-  /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. O(n).
-  std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
-    if (n > Capacity - size_) n = Capacity - size_;
-    const std::size_t tail = wrap(head_ + size_);
-    const std::size_t first = n < Capacity - tail ? n : Capacity - tail;
-    detail::copy_bytes(data_ + tail, bytes, first);
-    if (n != first) detail::copy_bytes(data_, bytes + first, n - first);
-    size_ = static_cast<std::uint16_t>(size_ + n);
-    return n;
-  }
+  // ---- raw access for a producer that writes slots itself (the decoder's character window) ----
 
-  /// Takes up to `n` of the oldest bytes into `bytes`; returns how many. O(n).
-  std::size_t pop(std::uint8_t* bytes, std::size_t n) noexcept {
-    if (n > size_) n = size_;
-    const std::size_t first = n < Capacity - head_ ? n : Capacity - head_;
-    detail::copy_bytes(bytes, data_ + head_, first);
-    if (n != first) detail::copy_bytes(bytes + first, data_, n - first);
-    consume(n);
-    return n;
-  }
-
-  /// The oldest bytes that lie contiguously in the buffer (all of them unless they wrap round).
-  const std::uint8_t* front() const noexcept { return data_ + head_; }
-  std::size_t front_size() const noexcept { return size_ < Capacity - head_ ? size_ : Capacity - head_; }
-  /// Removes the `n` oldest bytes. Precondition: n <= size().
-  void consume(std::size_t n) noexcept {
-    head_ = static_cast<std::uint16_t>(wrap(head_ + n));
-    size_ = static_cast<std::uint16_t>(size_ - n);
-  }
-
-  /// The byte `i` places from the oldest (0 = the oldest). Precondition: i < size().
-  std::uint8_t& at(std::size_t i) noexcept { return data_[wrap(head_ + i)]; }
-  /// The most recently pushed byte. Precondition: !empty().
-  std::uint8_t& back() noexcept { return at(size_ - 1u); }
-
-  /// Removes the `n` most recently pushed bytes (at most size()).
-  void drop_back(std::size_t n) noexcept { size_ = static_cast<std::uint16_t>(n >= size_ ? 0 : size_ - n); }
+  /// The buffer: slots 0 .. Capacity - 1 are the queue's, Capacity .. Capacity + Extra - 1 the producer's.
+  std::uint8_t* slots() noexcept { return data_; }
+  /// The buffer, read-only.
+  const std::uint8_t* slots() const noexcept { return data_; }
+  /// Producer: the slot that the byte `k` places after the last published one goes into.
+  std::size_t staging_slot(std::size_t k) const noexcept { return slot(advance(tail_.load(), k)); }
 
  private:
-  static std::size_t wrap(std::size_t index) noexcept { return index >= Capacity ? index - Capacity : index; }
+  static constexpr std::size_t slot(std::size_t position) noexcept {
+    return position < Capacity ? position : position - Capacity;
+  }
+  static constexpr index advance(std::size_t position, std::size_t n) noexcept {
+    const std::size_t next = position + n;
+    return static_cast<index>(next < 2 * Capacity ? next : next - 2 * Capacity);
+  }
+  static constexpr std::size_t distance(std::size_t from, std::size_t to) noexcept {
+    return to >= from ? to - from : to + 2 * Capacity - from;
+  }
 
-  std::uint8_t data_[Capacity] = {};
-  std::uint16_t head_ = 0;
-  std::uint16_t size_ = 0;
+  std::uint8_t data_[Capacity + Extra] = {};
+  TRIONET_QUEUE_INDEX<index> head_;  // the consumer's
+  TRIONET_QUEUE_INDEX<index> tail_;  // the producer's
 };
 
 }  // namespace trionet

@@ -2,12 +2,22 @@
 //
 // Both the fibre ring (direct variable transfer, docs/protocol.md 1.6) and the CAN VR exchange (2.2) write
 // VR() through the same hook, `vr_store`, so that one write policy governs every network write.
-// Cost: `vr_table<N>` is N values plus two pointers; `write` is O(1) and may be called from an ISR
-// (the policy callback then runs in that context too).
+//
+// Sides: a node calls `write` on its link side (the interrupt that receives; the policy callback runs there
+// too), while the program reads and writes VR() in its own context. A value is 64 bits, which a 32-bit core
+// cannot store or load at once, so `vr_table` keeps each value as two 32-bit words and one sequence number
+// for the table: the link side makes it odd while it writes; the program side reads both words and then the
+// sequence number again, and reads again if the network wrote meanwhile; the program side's own write checks
+// the sequence number after its two words and writes again if the network wrote meanwhile (its value is then
+// the later one). So no value is ever seen or left half-written, without a lock or interrupt masking.
+// Cost: `vr_table<N>` is N values plus a sequence number and two pointers; `write` is O(1); a program-side
+// access is O(1), repeated only when a network write falls inside it.
 #pragma once
 
 #include <cstddef>
+#include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #include "trionet/q32.hpp"
@@ -100,7 +110,8 @@ using vr_write_policy = vr_write_policy_for<double>;
 /// A table of `Size` VRs, initially 0. Default policy: accept every vr < Size (docs/protocol.md 1.6).
 /// `Value` is `double` (the default: what BASIC's VR() holds; needs floating point) or `std::int64_t`
 /// (Q32.32, integer arithmetic only, for cores without an FPU: a CAN value of 2^31 or more is then
-/// `value_out_of_range`).
+/// `value_out_of_range`). `write` is the link side's; `get`, `set` and `[]` are the program side's (see the
+/// file comment).
 template <std::size_t Size, class Value = double>
 class vr_table final : public vr_store {
   static_assert(Size > 0 && Size <= 16384, "a VR table holds 1..16384 variables (14-bit vr on the ring)");
@@ -108,10 +119,13 @@ class vr_table final : public vr_store {
                 "VR values are double or Q32.32 (std::int64_t)");
 
  public:
+  /// All VRs 0, the default policy.
   constexpr vr_table() noexcept = default;
+  /// All VRs 0; `policy` (with `context`) decides which network writes to accept.
   constexpr explicit vr_table(vr_write_policy_for<Value> policy, void* context = nullptr) noexcept
       : policy_(policy), context_(context) {}
 
+  /// Link side: a write from the network, through the policy.
   [[nodiscard]] vr_write_status write(std::uint16_t vr, const network_value& value) noexcept override {
     if (vr >= Size) return vr_write_status::out_of_range;
     Value converted{};
@@ -123,17 +137,88 @@ class vr_table final : public vr_store {
       converted = q.raw;
     }
     if (policy_ != nullptr && !policy_(context_, vr, converted)) return vr_write_status::refused;
-    values_[vr] = converted;
+    const std::uint32_t s = sequence_.load(std::memory_order_relaxed);
+    sequence_.store(s + 1u, std::memory_order_seq_cst);  // odd: a write is under way
+    store_words(values_[vr], converted);
+    sequence_.store(s + 2u, std::memory_order_release);
     return vr_write_status::ok;
   }
 
-  /// The program's own access, as VR(vr) in BASIC. `vr` must be < Size.
-  Value& operator[](std::size_t vr) noexcept { return values_[vr]; }
-  Value operator[](std::size_t vr) const noexcept { return values_[vr]; }
+  /// Program side: VR(vr), never half-written. `vr` must be < Size.
+  Value get(std::size_t vr) const noexcept {
+    for (;;) {
+      const std::uint32_t before = sequence_.load(std::memory_order_acquire);
+      const std::uint32_t low = values_[vr].low.load(std::memory_order_acquire);
+      const std::uint32_t high = values_[vr].high.load(std::memory_order_acquire);
+      if ((before & 1u) == 0 && sequence_.load(std::memory_order_relaxed) == before) return join(low, high);
+    }
+  }
+  /// Program side: VR(vr) = value, as BASIC does; if the network writes at the same time, the value left is
+  /// one of the two, whole. `vr` must be < Size.
+  void set(std::size_t vr, Value value) noexcept {
+    for (;;) {
+      const std::uint32_t before = sequence_.load(std::memory_order_seq_cst);
+      if ((before & 1u) != 0) continue;  // another core is writing (never on one core: the ISR runs to its end)
+      store_words(values_[vr], value);
+      if (sequence_.load(std::memory_order_seq_cst) == before) return;
+    }
+  }
+
+  /// Program side: VR(vr) as BASIC writes it: `vr[i] = x`, `vr[i] += x`, `Value x = vr[i]`.
+  class reference {
+   public:
+    /// The value (`get`).
+    operator Value() const noexcept { return table_->get(vr_); }  // NOLINT: a proxy converts implicitly
+    /// Writes (`set`).
+    reference& operator=(Value value) noexcept {
+      table_->set(vr_, value);
+      return *this;
+    }
+    /// Copies another VR's value.
+    reference& operator=(const reference& other) noexcept { return *this = static_cast<Value>(other); }
+    /// Adds to the value (a read and a write: a network write between them is overwritten).
+    reference& operator+=(Value delta) noexcept { return *this = static_cast<Value>(*this) + delta; }
+    /// Subtracts from the value (a read and a write, as `+=`).
+    reference& operator-=(Value delta) noexcept { return *this = static_cast<Value>(*this) - delta; }
+    /// A copy refers to the same VR.
+    reference(const reference&) noexcept = default;
+    ~reference() = default;
+
+   private:
+    friend class vr_table;
+    reference(vr_table* table, std::size_t vr) noexcept : table_(table), vr_(vr) {}
+    vr_table* table_;
+    std::size_t vr_;
+  };
+
+  /// Program side: VR(vr), read and written through `get` and `set`. `vr` must be < Size.
+  reference operator[](std::size_t vr) noexcept { return reference(this, vr); }
+  /// Program side: VR(vr) (`get`). `vr` must be < Size.
+  Value operator[](std::size_t vr) const noexcept { return get(vr); }
+  /// The number of VRs.
   static constexpr std::size_t size() noexcept { return Size; }
 
  private:
-  Value values_[Size] = {};
+  struct words {
+    std::atomic<std::uint32_t> low{0};
+    std::atomic<std::uint32_t> high{0};
+  };
+
+  static void store_words(words& to, Value value) noexcept {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    to.low.store(static_cast<std::uint32_t>(bits), std::memory_order_seq_cst);
+    to.high.store(static_cast<std::uint32_t>(bits >> 32), std::memory_order_seq_cst);
+  }
+  static Value join(std::uint32_t low, std::uint32_t high) noexcept {
+    const std::uint64_t bits = (std::uint64_t{high} << 32) | low;
+    Value value;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+  }
+
+  words values_[Size]{};
+  std::atomic<std::uint32_t> sequence_{0};  // odd while the link side writes
   vr_write_policy_for<Value> policy_ = nullptr;
   void* context_ = nullptr;
 };

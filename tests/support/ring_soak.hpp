@@ -433,7 +433,6 @@ class harness {
     const snapshot now = n.take();
     const snapshot& was = n.before;
     const bool header = ring::classify(byte) == ring::byte_class::header;
-    const bool local = now.link.bytes[0] != was.link.bytes[0];
     // Forwarding: a forwarded header joins the forward queue; a lost one leaves it if none of it went out.
     if (now.link.messages_forwarded != was.link.messages_forwarded) {
       n.forwards.emplace_back(++n.serial, id);
@@ -447,10 +446,12 @@ class harness {
     // The node's own decoder: errors and deliveries belong to the message it had open, or to this one.
     const bool was_open = n.local_open;
     const std::size_t open_id = was_open ? n.local_id : id;
-    if (local && header && ring::hops_of(byte) != 0) {
+    // A header with A = 1 opens a message for the node; any other header ends it, and so does an end of
+    // message (while one is open for the node, nothing passes through it, so every end of message is its).
+    if (header && ring::hops_of(byte) == 1) {
       n.local_open = true;
       n.local_id = id;
-    } else if (header || (local && ring::classify(byte) == ring::byte_class::end_of_message)) {
+    } else if (header || ring::classify(byte) == ring::byte_class::end_of_message) {
       n.local_open = false;
     }
     if (now.frame_errors != was.frame_errors || now.crc_errors != was.crc_errors ||

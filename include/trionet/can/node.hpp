@@ -14,6 +14,7 @@
 #include "trionet/can/identifiers.hpp"
 #include "trionet/can/port.hpp"
 #include "trionet/can/vr_codec.hpp"
+#include "trionet/single_writer.hpp"
 #include "trionet/vr.hpp"
 
 namespace trionet::can {
@@ -135,7 +136,7 @@ struct receive_result {
   constexpr explicit operator bool() const noexcept { return status == receive_status::ok; }
 };
 
-/// Counts since construction or `clear_counters`. Each wraps at 2^32.
+/// Counts since construction or `clear_counters`, as read at one moment. Each wraps at 2^32.
 struct node_counters {
   std::uint32_t sent = 0;                ///< frames the port queued
   std::uint32_t send_busy = 0;           ///< frames the port had no room for
@@ -156,11 +157,15 @@ struct node_counters {
 };
 
 /// One controller on the exchange. Holds its address, a reference to its port and VR store, and counters.
-/// Cost: 11 counters (44 bytes), two pointers and a 2-byte address (56 bytes on a 32-bit MCU); `send_*` and
-/// `receive` are O(1) with one virtual call each (port or store).
-/// Context: `receive` may run in the CAN receive ISR if the `vr_store` may be written there; `send_*` may run
-/// in an ISR if the port allows it. `receive` and `send_*` touch disjoint counters, so one receiving context
-/// and one sending context may run concurrently; two contexts must not both send (or both receive) at once.
+/// Cost: 11 counters and their values at the last clear (88 bytes), two pointers and a 2-byte address
+/// (100 bytes on a 32-bit MCU); `send_*` and `receive` are O(1) with one virtual call each (port or store).
+///
+/// Sides, with no lock and no interrupt masking (docs/design.md, "Contexts"): `receive` is the receive side
+/// (the CAN receive ISR: the `vr_store` is written there, e.g. a `vr_table`); `send_*`, `counters` and
+/// `clear_counters` are the program side (one thread context; the port decides whether it may be called from
+/// an ISR instead). Each counter is written by one side only: `clear_counters` does not touch the receive
+/// side's, it notes their values, and `counters` reports the counts since. Two contexts must not both send
+/// (or both receive) at once.
 class vr_exchange_node {
  public:
   /// constexpr, so that a node defined at namespace scope in firmware is constant-initialized (no start-up
@@ -168,9 +173,40 @@ class vr_exchange_node {
   constexpr vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
       : address_(address), port_(&port), store_(&store) {}
 
+  /// Which node of how many this is.
   [[nodiscard]] node_address address() const noexcept { return address_; }
-  [[nodiscard]] const node_counters& counters() const noexcept { return counters_; }
-  void clear_counters() noexcept { counters_ = node_counters{}; }
+  /// Program side: the counts since construction or `clear_counters` (each read whole; not all at one
+  /// instant).
+  [[nodiscard]] node_counters counters() const noexcept {
+    node_counters c;
+    c.sent = sent_.load() - cleared_.sent;
+    c.send_busy = send_busy_.load() - cleared_.send_busy;
+    c.send_failed = send_failed_.load() - cleared_.send_failed;
+    c.written = written_.load() - cleared_.written;
+    c.refused = refused_.load() - cleared_.refused;
+    c.out_of_range = out_of_range_.load() - cleared_.out_of_range;
+    c.value_out_of_range = value_out_of_range_.load() - cleared_.value_out_of_range;
+    c.foreign = foreign_.load() - cleared_.foreign;
+    c.bad_dlc = bad_dlc_.load() - cleared_.bad_dlc;
+    c.bad_sign = bad_sign_.load() - cleared_.bad_sign;
+    c.bad_fraction = bad_fraction_.load() - cleared_.bad_fraction;
+    return c;
+  }
+  /// Program side: starts every count again from 0.
+  void clear_counters() noexcept {
+    const node_counters now = counters();
+    cleared_.sent += now.sent;
+    cleared_.send_busy += now.send_busy;
+    cleared_.send_failed += now.send_failed;
+    cleared_.written += now.written;
+    cleared_.refused += now.refused;
+    cleared_.out_of_range += now.out_of_range;
+    cleared_.value_out_of_range += now.value_out_of_range;
+    cleared_.foreign += now.foreign;
+    cleared_.bad_dlc += now.bad_dlc;
+    cleared_.bad_sign += now.bad_sign;
+    cleared_.bad_fraction += now.bad_fraction;
+  }
 
   /// Sends VR(vr) = value (rounded to 4 decimals) to node `destination`.
   [[nodiscard]] send_status send_to_node(std::uint8_t destination, std::uint16_t vr, double value) noexcept {
@@ -208,8 +244,8 @@ class vr_exchange_node {
     return send_to_node(destination.node, message);
   }
 
-  /// Accepts one frame from the bus: if it is on one of this node's receive identifiers, decodes it and
-  /// writes VR(vr) through the store; otherwise classifies and counts it. Never fails.
+  /// Receive side: accepts one frame from the bus: if it is on one of this node's receive identifiers, decodes
+  /// it and writes VR(vr) through the store; otherwise classifies and counts it. Never fails.
   receive_result receive(const frame& received) noexcept {
     receive_result result;
     // This node's receive identifiers are 10k .. 10k + N - 2 (docs/protocol.md 2.1): one unsigned comparison
@@ -218,7 +254,7 @@ class vr_exchange_node {
     const std::uint8_t k = address_.node();
     const std::uint32_t offset = received.id - 10U * k;
     if (offset >= address_.node_count() - 1U) {
-      ++counters_.foreign;
+      foreign_.increment();
       result.status = receive_status::foreign;
       return result;
     }
@@ -229,15 +265,15 @@ class vr_exchange_node {
       case decode_status::ok:
         break;
       case decode_status::bad_dlc:
-        ++counters_.bad_dlc;
+        bad_dlc_.increment();
         result.status = receive_status::bad_dlc;
         return result;
       case decode_status::bad_sign:
-        ++counters_.bad_sign;
+        bad_sign_.increment();
         result.status = receive_status::bad_sign;
         return result;
       case decode_status::bad_fraction:
-        ++counters_.bad_fraction;
+        bad_fraction_.increment();
         result.status = receive_status::bad_fraction;
         return result;
     }
@@ -247,16 +283,16 @@ class vr_exchange_node {
     const vr_write_status written = store_->write(
         decoded.message.vr, network_value::from_decimal(v.negative, v.integer_part, v.fraction));
     if (written == vr_write_status::ok) {
-      ++counters_.written;
+      written_.increment();
       result.status = receive_status::ok;
     } else if (written == vr_write_status::refused) {
-      ++counters_.refused;
+      refused_.increment();
       result.status = receive_status::refused;
     } else if (written == vr_write_status::out_of_range) {
-      ++counters_.out_of_range;
+      out_of_range_.increment();
       result.status = receive_status::out_of_range;
     } else {
-      ++counters_.value_out_of_range;
+      value_out_of_range_.increment();
       result.status = receive_status::value_out_of_range;
     }
     return result;
@@ -298,22 +334,35 @@ class vr_exchange_node {
     out.dlc = vr_message_size;
     switch (port_->send(out)) {
       case transmit_status::ok:
-        ++counters_.sent;
+        sent_.increment();
         return send_status::ok;
       case transmit_status::busy:
-        ++counters_.send_busy;
+        send_busy_.increment();
         return send_status::port_busy;
       case transmit_status::failed:
         break;
     }
-    ++counters_.send_failed;
+    send_failed_.increment();
     return send_status::port_failed;
   }
 
   node_address address_;
   port* port_;
   vr_store* store_;
-  node_counters counters_{};
+  // Written by the program side:
+  single_writer<std::uint32_t> sent_;
+  single_writer<std::uint32_t> send_busy_;
+  single_writer<std::uint32_t> send_failed_;
+  node_counters cleared_{};  // every count at the last clear_counters (program side only)
+  // Written by the receive side:
+  single_writer<std::uint32_t> written_;
+  single_writer<std::uint32_t> refused_;
+  single_writer<std::uint32_t> out_of_range_;
+  single_writer<std::uint32_t> value_out_of_range_;
+  single_writer<std::uint32_t> foreign_;
+  single_writer<std::uint32_t> bad_dlc_;
+  single_writer<std::uint32_t> bad_sign_;
+  single_writer<std::uint32_t> bad_fraction_;
 };
 
 }  // namespace trionet::can

@@ -17,9 +17,9 @@
 // type 2 the CRC: a CRC error is a message that is otherwise well formed (docs/protocol.md 1.4). Whatever
 // the input, the decoder re-synchronises at the next header.
 //
-// Cost: RAM = the character store (MaxCharacters bytes by default) + 14 bytes + 3 words; per byte O(1),
-// no allocation. `push` may be called from an ISR. A decoded message's `text` points into the decoder and is
-// valid until the next push.
+// Cost: RAM = the character store (MaxCharacters bytes by default, at least 14) + 10 bytes; per byte O(1),
+// no allocation; the per-byte path for message data is one comparison and one store. `push` may be called
+// from an ISR. A decoded message's `text` points into the decoder and is valid until the next push.
 #pragma once
 
 #include <cstddef>
@@ -127,37 +127,48 @@ inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std:
 #endif
 }
 
+/// Where a character store lets the decoder write: slots [first, end) of the store's `slots()`.
+struct store_window {
+  std::uint16_t first = 0;  ///< the first slot
+  std::uint16_t end = 0;    ///< one past the last slot (first == end: no room)
+};
+
 /// The default character store: a plain array of N characters, so a decoded message's `text` is contiguous.
 ///
-/// A character store receives the characters of a character transfer while it arrives and keeps them only
-/// if the message turns out valid:
-///   void begin();                  // a character transfer begins
-///   bool put(std::uint8_t c);      // one more character; false if there is no room
-///   std::size_t put(const std::uint8_t* c, std::size_t n);  // many: how many fitted (a prefix)
-///   byte_view commit();            // the message is valid: keep it (view of it, or empty if not contiguous)
-///   void abort();                  // the message is discarded: forget what `put` took since `begin`
+/// A character store holds the data of the message being received, in slots that the decoder writes itself
+/// (so that the per-byte path is one comparison and one store), and keeps a character transfer's characters
+/// only if the message turns out valid:
+///   std::uint8_t* slots();                      // the store's bytes
+///   static constexpr std::size_t payload_at;    // slots [payload_at, payload_at + 14): the data of a
+///                                               // message of another type (at most 14 bytes are kept)
+///   store_window begin();                       // a character transfer begins: where its characters go
+///   store_window next(std::size_t stored);      // the window is used up after `stored` characters: where
+///                                               // the next go (the store may wrap round), or no room
+///   byte_view commit(std::size_t length);       // the message is valid: keep it (a view of it, or empty if
+///                                               // the characters are not contiguous)
+///   void abort();                               // the message is discarded
 /// A node can stage characters straight into its receive buffer this way, so no message is held twice.
 template <std::size_t N>
 class character_buffer {
  public:
-  void begin() noexcept { length_ = 0; }
-  bool put(std::uint8_t c) noexcept {
-    if (length_ == N) return false;
-    data_[length_++] = c;
-    return true;
-  }
-  std::size_t put(const std::uint8_t* c, std::size_t n) noexcept {
-    if (n > N - length_) n = N - length_;
-    std::memcpy(data_ + length_, c, n);
-    length_ += n;
-    return n;
-  }
-  byte_view commit() noexcept { return byte_view(data_, length_); }
-  void abort() noexcept { length_ = 0; }
+  /// Where the data of a message of type 2..7 goes.
+  static constexpr std::size_t payload_at = 0;
+  /// The store's bytes.
+  std::uint8_t* slots() noexcept { return data_; }
+  /// The store's bytes, read-only.
+  const std::uint8_t* slots() const noexcept { return data_; }
+  /// A character transfer begins: all N slots.
+  store_window begin() noexcept { return {0, static_cast<std::uint16_t>(N)}; }
+  /// The N slots are used up: no more room.
+  static store_window next(std::size_t) noexcept { return {}; }
+  /// The first `length` slots hold the message.
+  byte_view commit(std::size_t length) noexcept { return byte_view(data_, length); }
+  /// Nothing to forget: the next message starts again at slot 0.
+  static void abort() noexcept {}
 
  private:
-  std::uint8_t data_[N] = {};
-  std::size_t length_ = 0;
+  static_assert(N >= 1 && N < 65535, "a character buffer holds 1..65534 characters");
+  std::uint8_t data_[N < variable_data_length ? variable_data_length : N] = {};
 };
 
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
@@ -167,45 +178,17 @@ class basic_decoder {
                 "a character transfer holds 1..65534 characters");
 
  public:
+  /// The longest character transfer it accepts.
   static constexpr std::size_t max_characters = MaxCharacters;
 
-  /// Feeds one byte.
-  [[nodiscard]] decode_result push(std::uint8_t byte) noexcept {
-    if (is_data(byte)) {
-      switch (state_) {
-        case state::in_message:
-          store(byte);
-          return {};
-        case state::idle:
-          state_ = state::stray;
-          return error(frame_error::stray_data);
-        case state::stray:
-        case state::skipping:
-          return {};
-      }
+  /// Feeds one byte. The fast path: a data byte of an open message with room in the store's window.
+  [[nodiscard]] TRIONET_ALWAYS_INLINE decode_result push(std::uint8_t byte) noexcept {
+    if (TRIONET_LIKELY(is_data(byte)) && at_ != end_) {
+      store_.slots()[at_] = byte;
+      ++at_;
       return {};
     }
-    if (type_of(byte) == 0) {  // end of message
-      const state was = state_;
-      state_ = state::idle;
-      if (was == state::in_message) return finish(hops_of(byte));
-      if (was == state::skipping) return {};
-      return error(frame_error::stray_eom);
-    }
-    const bool was_open = state_ == state::in_message;
-    if (was_open && type_ == 1) store_.abort();
-    const std::uint8_t hops = hops_of(byte);
-    if (hops == 0) {
-      state_ = state::skipping;
-      return error(was_open ? frame_error::interrupted : frame_error::zero_hops);
-    }
-    state_ = state::in_message;
-    hops_ = hops;
-    type_ = type_of(byte);
-    length_ = 0;
-    no_room_ = false;
-    if (type_ == 1) store_.begin();
-    return was_open ? error(frame_error::interrupted) : decode_result{};
+    return push_slow(byte);
   }
 
   /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
@@ -229,73 +212,130 @@ class basic_decoder {
         p = run;
         if (p == end) break;
       }
-      const decode_result result = push(*p++);
+      const decode_result result = push_slow(*p++);
       if (result.status != decode_status::incomplete) sink(result);
     }
   }
 
   /// A header that this decoder does not see (a node forwards it) ends any open message: `interrupted` if a
   /// message was open, else incomplete. Either way the decoder is then between messages.
-  [[nodiscard]] decode_result interrupt() noexcept {
-    const bool was_open = state_ == state::in_message;
-    state_ = state::idle;
-    if (!was_open) return {};
-    if (type_ == 1) store_.abort();
-    return error(frame_error::interrupted);
-  }
+  [[nodiscard]] decode_result interrupt() noexcept { return close(frame_error::interrupted); }
 
   /// The line has been idle (docs/protocol.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
   /// else incomplete. Either way the decoder is then between messages (a skipped A = 0 message is over too).
-  [[nodiscard]] decode_result line_idle() noexcept {
-    const bool was_open = state_ == state::in_message;
-    state_ = state::idle;
-    if (!was_open) return {};
-    if (type_ == 1) store_.abort();
-    return error(frame_error::idle_line);
-  }
+  [[nodiscard]] decode_result line_idle() noexcept { return close(frame_error::idle_line); }
 
   /// Forgets any open message (e.g. after a link reset), silently.
-  void reset() noexcept { (void)interrupt(); }
+  void reset() noexcept {
+    if (state_ == state::in_message && type_ == 1) store_.abort();
+    state_ = state::idle;
+    end_ = at_;
+  }
 
   /// True while a message has begun and not ended.
   bool in_message() const noexcept { return state_ == state::in_message; }
   /// True while a message, or a skipped A = 0 message, has begun and not ended.
   bool open() const noexcept { return state_ == state::in_message || state_ == state::skipping; }
 
+  /// The character store.
   Store& store() noexcept { return store_; }
+  /// The character store, read-only.
   const Store& store() const noexcept { return store_; }
 
  private:
   enum class state : std::uint8_t { idle, stray, in_message, skipping };
 
-  // Characters go to the store (up to MaxCharacters), other payloads to `payload_` (up to 14 bytes); past
-  // that the decoder only notes that the message is too long, so `length_` never wraps.
-  void store(std::uint8_t byte) noexcept {
-    if (type_ == 1) {
-      if (length_ < MaxCharacters) {
-        if (!no_room_ && !store_.put(byte)) no_room_ = true;
-        ++length_;
-      } else {
-        length_ = MaxCharacters + 1;
+  // Data bytes of the open message so far (saturating one past its limit).
+  std::size_t length() const noexcept { return static_cast<std::uint16_t>(base_ + at_); }
+  std::size_t limit() const noexcept { return type_ == 1 ? MaxCharacters : variable_data_length; }
+  void set_length(std::size_t length) noexcept { base_ = static_cast<std::uint16_t>(length - at_); }
+
+  // Everything but a data byte with room in the window.
+  TRIONET_NOINLINE decode_result push_slow(std::uint8_t byte) noexcept {
+    if (is_data(byte)) {
+      switch (state_) {
+        case state::in_message:
+          store(&byte, 1);
+          return {};
+        case state::idle:
+          state_ = state::stray;
+          return error(frame_error::stray_data);
+        case state::stray:
+        case state::skipping:
+          return {};
       }
-    } else if (length_ < variable_data_length) {
-      payload_[length_++] = byte;
-    } else {
-      length_ = variable_data_length + 1;
+      return {};
     }
+    end_ = at_;
+    if (type_of(byte) == 0) {  // end of message
+      const state was = state_;
+      state_ = state::idle;
+      if (was == state::in_message) return finish(hops_of(byte));
+      if (was == state::skipping) return {};
+      return error(frame_error::stray_eom);
+    }
+    const bool was_open = state_ == state::in_message;
+    if (was_open && type_ == 1) store_.abort();
+    const std::uint8_t hops = hops_of(byte);
+    if (hops == 0) {
+      state_ = state::skipping;
+      return error(was_open ? frame_error::interrupted : frame_error::zero_hops);
+    }
+    state_ = state::in_message;
+    hops_ = hops;
+    type_ = type_of(byte);
+    no_room_ = false;
+    if (type_ == 1) {
+      open_window(store_.begin(), 0);
+    } else {
+      at_ = static_cast<std::uint16_t>(Store::payload_at);
+      end_ = static_cast<std::uint16_t>(Store::payload_at + variable_data_length);
+      set_length(0);
+    }
+    return was_open ? error(frame_error::interrupted) : decode_result{};
   }
 
-  // The same as `store(byte)` for each of `n` data bytes, with one copy.
+  // Characters go to the store's windows (up to MaxCharacters), other payloads to its payload slots (up to
+  // 14 bytes); past that the decoder only counts, so that the length never wraps. The same as the bytes one
+  // at a time, with one copy per window.
   void store(const std::uint8_t* data, std::size_t n) noexcept {
-    const std::size_t limit = type_ == 1 ? MaxCharacters : variable_data_length;
-    const std::size_t room = length_ < limit ? limit - length_ : 0;
-    const std::size_t take = n < room ? n : room;
-    if (type_ == 1) {
-      if (!no_room_ && take != 0 && store_.put(data, take) != take) no_room_ = true;
-    } else if (take != 0) {
-      std::memcpy(payload_ + length_, data, take);
+    for (;;) {
+      const std::size_t room = std::size_t{end_} - at_;
+      const std::size_t k = n < room ? n : room;
+      std::memcpy(store_.slots() + at_, data, k);
+      at_ = static_cast<std::uint16_t>(at_ + k);
+      data += k;
+      n -= k;
+      if (n == 0) return;
+      const std::size_t so_far = length();
+      if (type_ != 1 || no_room_ || so_far >= MaxCharacters) break;
+      const store_window next = store_.next(so_far);
+      if (next.first == next.end) {
+        no_room_ = true;
+        break;
+      }
+      open_window(next, so_far);
     }
-    length_ = static_cast<std::uint16_t>(n > room ? limit + 1 : length_ + take);
+    const std::size_t counted = length() + n;  // no more room: count the rest
+    set_length(counted > limit() ? limit() + 1 : counted);
+  }
+
+  // The store's window `w` takes the characters from the `so_far`th on.
+  void open_window(store_window w, std::size_t so_far) noexcept {
+    at_ = w.first;
+    const std::size_t most = w.first + (MaxCharacters - so_far);
+    end_ = static_cast<std::uint16_t>(w.end < most ? w.end : most);
+    set_length(so_far);
+  }
+
+  // Ends any open message with `reason` (interrupted or idle line).
+  decode_result close(frame_error reason) noexcept {
+    const bool was_open = state_ == state::in_message;
+    state_ = state::idle;
+    end_ = at_;
+    if (!was_open) return {};
+    if (type_ == 1) store_.abort();
+    return error(reason);
   }
 
   // Out of line: one copy of the result set-up instead of one per error (smaller firmware).
@@ -311,7 +351,7 @@ class basic_decoder {
     if (type_ == 1) {
       if (result.status == decode_status::ok) {
         decode_result committed = result;
-        committed.msg.text = store_.commit();
+        committed.msg.text = store_.commit(length());
         return committed;
       }
       store_.abort();
@@ -326,25 +366,27 @@ class basic_decoder {
     result.status = decode_status::ok;
     result.msg.type = static_cast<message_type>(type_);
     result.msg.hops = hops_;
+    const std::size_t length_now = length();
+    const std::uint8_t* const payload = store_.slots() + Store::payload_at;
     switch (result.msg.type) {
       case message_type::character:
-        if (length_ == 0 || length_ > MaxCharacters) return error(frame_error::bad_length);
+        if (length_now == 0 || length_now > MaxCharacters) return error(frame_error::bad_length);
         if (no_room_) result.status = decode_status::no_room;
         return result;
       case message_type::variable:
-        if (length_ != variable_data_length) return error(frame_error::bad_length);
-        return check_variable(hops_, payload_);
+        if (length_now != variable_data_length) return error(frame_error::bad_length);
+        return check_variable(hops_, payload);
       case message_type::keypad_offset:
-        if (length_ != 1) return error(frame_error::bad_length);
-        if (!valid_hops(payload_[0])) return error(frame_error::bad_field);
-        result.msg.offset = payload_[0];
+        if (length_now != 1) return error(frame_error::bad_length);
+        if (!valid_hops(payload[0])) return error(frame_error::bad_field);
+        result.msg.offset = payload[0];
         return result;
       case message_type::keypad_mode:
-        if (length_ != 1) return error(frame_error::bad_length);
-        if (payload_[0] != keypad_mode_key_on && payload_[0] != keypad_mode_key_on_off) {
+        if (length_now != 1) return error(frame_error::bad_length);
+        if (payload[0] != keypad_mode_key_on && payload[0] != keypad_mode_key_on_off) {
           return error(frame_error::bad_field);
         }
-        result.msg.mode = payload_[0];
+        result.msg.mode = payload[0];
         return result;
     }
     return error(frame_error::unknown_type);
@@ -374,12 +416,13 @@ class basic_decoder {
     return result;
   }
 
+  std::uint16_t at_ = 0;   // the slot the next data byte goes to
+  std::uint16_t end_ = 0;  // the fast path writes while at_ != end_ (equal outside a message)
+  std::uint16_t base_ = 0;  // length() - at_ (mod 2^16)
   state state_ = state::idle;
   std::uint8_t hops_ = 0;
   std::uint8_t type_ = 0;
-  bool no_room_ = false;
-  std::uint16_t length_ = 0;  // data bytes so far, saturating one past the limit
-  std::uint8_t payload_[variable_data_length] = {};
+  bool no_room_ = false;  // a character did not fit: the message is counted, not stored
   Store store_;
 };
 

@@ -9,9 +9,10 @@
 //
 // The link, the idle line, NETSTAT and the bulk paths are the ring-node core's (node.hpp).
 // Cost (defaults): RAM = forward buffer 16 + transmit queue 16 + decoder 256 + display 45 + state and counters
-// = about 460 bytes on a 32-bit core.
-// `receive`/`transmit`/`line_idle` may run in an ISR; `press`/`release` from the key-scan context (see
-// transport.hpp).
+// = about 400 bytes on a 32-bit core.
+// Sides (node.hpp): `receive`/`transmit`/`line_idle` are the link side (the UART interrupt), and so is the
+// display (a message for the keypad writes it: read it there too); `press`/`release` are the program side
+// (the key-scan context); `network_mode`, `offset`, `mode` and the counters may be read on either side.
 #pragma once
 
 #include <cstddef>
@@ -25,6 +26,7 @@
 #include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/node.hpp"
+#include "trionet/single_writer.hpp"
 
 namespace trionet::ring {
 
@@ -56,7 +58,7 @@ struct keypad_config {
   std::uint8_t (*key_off_code)(std::uint8_t on) noexcept = default_key_off_code;
 };
 
-/// Counters of a keypad; they only ever grow (and wrap at 2^32).
+/// Counters of a keypad, as read at one moment; they only ever grow (and wrap at 2^32).
 struct keypad_counters {
   std::uint32_t frame_errors = 0;           ///< frame errors of docs/protocol.md 1.4 and 1.10 (NETSTAT bit 3)
   std::uint32_t crc_errors = 0;             ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
@@ -69,11 +71,11 @@ struct keypad_counters {
 
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
           std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>, keypad_counters,
+class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>,
                                  decoder<MaxCharacters, Crc>,
-                                 detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
-  using core = node<keypad, keypad_counters, decoder<MaxCharacters, Crc>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
+                                 detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, true>> {
+  using core = node<keypad, decoder<MaxCharacters, Crc>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, true>>;
   friend core;
 
  public:
@@ -84,74 +86,99 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
   using core::receive;
   using core::transmit;
 
-  // ---- keys ----
+  // ---- keys (program side) ----
 
+  /// Program side: a key went down: its character goes to the node `offset` hops along.
   [[nodiscard]] key_status press(key k) noexcept { return send_key((*config_.codes)[k]); }
 
+  /// Program side: a key came up: its key OFF character is sent in keypad mode 127.
   [[nodiscard]] key_status release(key k) noexcept {
-    if (mode_ != keypad_mode_key_on_off)
+    if (mode_.load() != keypad_mode_key_on_off)
       return network_mode() ? key_status::nothing_to_send : key_status::local_mode;
     return send_key(config_.key_off_code((*config_.codes)[k]));
   }
 
   // ---- state ----
 
-  bool network_mode() const noexcept { return offset_ != 0; }
-  /// Hops to where key presses go (0 in local mode).
-  std::uint8_t offset() const noexcept { return offset_; }
-  std::uint8_t mode() const noexcept { return mode_; }
+  /// Either side: true once a keypad offset has arrived.
+  bool network_mode() const noexcept { return offset_.load() != 0; }
+  /// Either side: hops to where key presses go (0 in local mode).
+  std::uint8_t offset() const noexcept { return offset_.load(); }
+  /// Either side: keypad mode, 0 (key ON only) or 127 (key ON and key OFF).
+  std::uint8_t mode() const noexcept { return mode_.load(); }
+  /// Link side: the 2 x 20 display.
   const keypad_display& display() const noexcept { return display_; }
+
+  /// Either side: the counters now (each read whole; not all at one instant).
+  keypad_counters counters() const noexcept {
+    keypad_counters c;
+    c.frame_errors = this->frame_errors();
+    c.crc_errors = this->crc_errors();
+    c.dropped_in_local_mode = dropped_in_local_mode_.load();
+    c.display_messages = display_messages_.load();
+    c.variables_ignored = variables_ignored_.load();
+    c.keys_sent = keys_sent_.load();
+    c.keys_lost = keys_lost_.load();
+    return c;
+  }
 
  private:
   key_status send_key(std::uint8_t character) noexcept {
-    if (!network_mode()) {
-      ++this->counters_.keys_lost;
+    const std::uint8_t offset = offset_.load();
+    if (offset == 0) {
+      keys_lost_.increment();
       return key_status::local_mode;
     }
     const std::uint8_t text[1] = {character};
-    if (!this->link_.queue(message::characters(offset_, byte_view(text, 1)))) {
-      ++this->counters_.keys_lost;
-      this->netstat_.raise_tx_timeout();
+    if (!this->link_.queue(message::characters(offset, byte_view(text, 1)))) {
+      keys_lost_.increment();
+      this->link_.netstat().raise_tx_timeout();
       return key_status::queue_full;
     }
-    ++this->counters_.keys_sent;
+    keys_sent_.increment();
     return key_status::ok;
   }
 
   // A message for this keypad (the core has counted errors already). In local mode the link forwards nothing
   // and the keypad never transmits: the transmit queue stays empty because keys are refused.
+  // Link side.
   void deliver(const decode_result& r) noexcept {
     if (r.status != decode_status::ok) return;  // no_room cannot happen: the store holds MaxCharacters
     if (!network_mode()) {
       if (r.msg.type == message_type::keypad_offset) {
-        offset_ = r.msg.offset;
+        offset_.store(r.msg.offset);
         this->link_.set_forwarding(true);
       } else {
-        ++this->counters_.dropped_in_local_mode;
+        dropped_in_local_mode_.increment();
       }
       return;
     }
     switch (r.msg.type) {
       case message_type::character:
         display_.write(r.msg.text);
-        ++this->counters_.display_messages;
+        display_messages_.increment();
         return;
       case message_type::variable:
-        ++this->counters_.variables_ignored;
+        variables_ignored_.increment();
         return;
       case message_type::keypad_offset:
-        offset_ = r.msg.offset;
+        offset_.store(r.msg.offset);
         return;
       case message_type::keypad_mode:
-        mode_ = r.msg.mode;
+        mode_.store(r.msg.mode);
         return;
     }
   }
 
   keypad_config config_;
-  keypad_display display_;
-  std::uint8_t offset_ = 0;
-  std::uint8_t mode_ = keypad_mode_key_on;
+  keypad_display display_;  // link side
+  single_writer<std::uint8_t> offset_;  // link side
+  single_writer<std::uint8_t> mode_{keypad_mode_key_on};  // link side
+  single_writer<std::uint32_t> dropped_in_local_mode_;  // link side
+  single_writer<std::uint32_t> display_messages_;       // link side
+  single_writer<std::uint32_t> variables_ignored_;      // link side
+  single_writer<std::uint32_t> keys_sent_;              // program side
+  single_writer<std::uint32_t> keys_lost_;              // program side
 };
 
 }  // namespace trionet::ring

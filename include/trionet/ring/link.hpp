@@ -25,9 +25,21 @@
 // (`max_own_frame`: long PRINT# text is split into several character messages): forwarded traffic is never
 // lost to the node's own sending.
 //
+// Sides (docs/design.md, "Contexts"): `receive*`, `transmit*`, `relay` pieces, `line_idle` and the state
+// queries belong to the link side (one interrupt context); `queue`, `queue_text` and `transmit_free` to the
+// program side (one thread context). The transmit queue is a single-producer, single-consumer queue between
+// them, NETSTAT a `netstat_register`, and every counter is written by one side only.
+//
+// The per-byte fast paths (a UART interrupt): a data byte of a forwarded message is appended to the forward
+// buffer while a grant lasts (the room up to the end of the buffer, within the forwarding bound), and
+// `transmit` takes the next forward-buffer byte; everything else (control bytes, the node's own frames, the
+// buffer's wrap) takes the general path. While the node sends an own frame the forward buffer's indices are
+// parked at its end, so the fast `transmit` finds nothing there and the bytes that arrive meanwhile wait in
+// the buffer's wrapped-round part.
+//
 // This is the nodes' plumbing (`motion_coordinator` and `keypad` use it through `ring::node`), not an API.
-// Cost: ForwardCapacity + TransmitCapacity bytes + about 24 bytes. Per byte O(1), the bulk calls with one copy
-// per run of data; ISR-safe.
+// Cost: ForwardCapacity + TransmitCapacity bytes + about 40 bytes. Per byte O(1), the bulk calls with one copy
+// per run of data.
 #pragma once
 
 #include <cstddef>
@@ -40,6 +52,8 @@
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/encode.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/netstat.hpp"
+#include "trionet/single_writer.hpp"
 
 namespace trionet::ring {
 
@@ -51,6 +65,7 @@ enum class byte_route : std::uint8_t {
   lost,       ///< the byte on which a forwarded message was lost (buffer full, or longer than legal)
 };
 
+/// The route's name, as spelled in `byte_route`.
 constexpr const char* to_string(byte_route r) noexcept {
   switch (r) {
     case byte_route::local:
@@ -65,16 +80,15 @@ constexpr const char* to_string(byte_route r) noexcept {
   return "unknown";
 }
 
-/// Counters of a node's link; they only ever grow (and wrap at 2^32).
+/// Counters of a node's link, as read at one moment; they only ever grow. The forwarding losses (wire
+/// errors) wrap at 2^32, the traffic counts (messages forwarded, dropped, sent) at 2^16.
 struct link_counters {
-  /// Received bytes by where they went, indexed by `byte_route`: their sum is every byte received.
-  std::uint32_t bytes[4] = {};
-  std::uint32_t messages_forwarded = 0;   ///< headers of messages passed on (A decremented)
   std::uint32_t forwards_lost = 0;        ///< forwarded messages lost to a full forward buffer
   std::uint32_t forwards_cut = 0;         ///< ... longer than the longest legal message of their type
   std::uint32_t forwards_ended_idle = 0;  ///< ... whose end of message never came: the line went idle
-  std::uint32_t messages_dropped = 0;     ///< messages through this node dropped while forwarding was off
-  std::uint32_t messages_sent = 0;        ///< own messages whose end of message has gone out
+  std::uint32_t messages_forwarded = 0;   ///< headers of messages passed on (A decremented); wraps at 2^16
+  std::uint32_t messages_dropped = 0;     ///< messages dropped while forwarding was off; wraps at 2^16
+  std::uint32_t messages_sent = 0;        ///< own messages whose end of message has gone out; wraps at 2^16
 
   /// Forwarded messages lost for any reason (each sets NETSTAT bit 1).
   constexpr std::uint32_t forwards_failed() const noexcept {
@@ -84,15 +98,183 @@ struct link_counters {
 
 namespace detail {
 
+/// The forward buffer of a node's link: link side only (no synchronisation). A buffer of Capacity bytes in
+/// two parts: [r_, w_) goes out first, then [0, o_), which fills once w_ has reached the end while bytes
+/// were still waiting (o_ > 0 only when w_ == Capacity, and o_ <= r_). The fast paths are `put_fast` (while
+/// w_ < lim_: the link's grant) and `take_fast` (while r_ < w_): one comparison each, no wrap test.
+/// While the node sends an own frame (`parked`), r_ = w_ = Capacity: every received byte goes to [0, o_).
+template <std::size_t Capacity>
+class forward_buffer {
+ public:
+  /// An index into the buffer (0 .. Capacity): a machine word on 64-bit hosts (no zero-extension on the fast
+  /// paths), the smallest type that holds Capacity on 32-bit cores (RAM).
+#if UINTPTR_MAX > 0xFFFFFFFFu
+  using index = std::size_t;
+#else
+  using index = trionet::detail::index_for<Capacity>;
+#endif
+
+  /// Appends a byte while the grant lasts; false (nothing done) when it has run out.
+  TRIONET_ALWAYS_INLINE bool put_fast(std::uint8_t byte) noexcept {
+    if (w_ == lim_) return false;
+    data_[w_] = byte;
+    ++w_;  // after the store: one add to memory
+    return true;
+  }
+  /// Takes the next byte of [r_, w_); false when that part is empty.
+  TRIONET_ALWAYS_INLINE bool take_fast(std::uint8_t& byte) noexcept {
+    if (r_ == w_) return false;
+    byte = data_[r_];
+    ++r_;
+    return true;
+  }
+
+  /// Bytes in the buffer.
+  std::size_t size() const noexcept { return std::size_t{w_} - r_ + o_; }
+  /// True when it holds no byte.
+  bool empty() const noexcept { return r_ == w_ && o_ == 0; }
+  /// Room for this many more bytes.
+  std::size_t free() const noexcept { return Capacity - size(); }
+
+  /// The grant still open: bytes `put_fast` may still append.
+  std::size_t granted() const noexcept { return std::size_t{lim_} - w_; }
+  /// Ends the grant.
+  void revoke() noexcept { lim_ = w_; }
+  /// Opens a grant of up to `most` bytes: as many as fit before the end of the buffer (none while parked or
+  /// wrapped round). Returns the grant.
+  std::size_t grant(std::size_t most) noexcept {
+    reset_if_empty();
+    const std::size_t room = Capacity - w_;  // 0 while parked or wrapped round (w_ == Capacity)
+    const std::size_t n = most < room ? most : room;
+    lim_ = static_cast<index>(w_ + n);
+    return n;
+  }
+
+  /// Appends a byte; false (nothing done) when full. Ends any grant.
+  [[nodiscard]] bool push(std::uint8_t byte) noexcept {
+    reset_if_empty();
+    if (w_ != Capacity) {
+      data_[w_] = byte;
+      lim_ = w_ = static_cast<index>(w_ + 1u);
+      return true;
+    }
+    if (o_ == r_) return false;
+    data_[o_] = byte;
+    o_ = static_cast<index>(o_ + 1u);
+    return true;
+  }
+  /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. Ends any grant.
+  std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
+    reset_if_empty();
+    std::size_t done = 0;
+    if (w_ != Capacity) {
+      const std::size_t room = Capacity - w_;
+      done = n < room ? n : room;
+      trionet::detail::copy_bytes(data_ + w_, bytes, done);
+      lim_ = w_ = static_cast<index>(w_ + done);
+      if (done == n || w_ != Capacity) return done;
+    }
+    const std::size_t room = std::size_t{r_} - o_;
+    std::size_t more = n - done;
+    if (more > room) more = room;
+    trionet::detail::copy_bytes(data_ + o_, bytes + done, more);
+    o_ = static_cast<index>(o_ + more);
+    return done + more;
+  }
+  /// Removes the `n` most recently appended bytes. Precondition: n <= size(). Ends any grant.
+  void drop_back(std::size_t n) noexcept {
+    const std::size_t wrapped = n < o_ ? n : o_;
+    o_ = static_cast<index>(o_ - wrapped);
+    lim_ = w_ = static_cast<index>(w_ - (n - wrapped));
+  }
+  /// The byte `i` places from the oldest. Precondition: i < size().
+  std::uint8_t& at(std::size_t i) noexcept {
+    const std::size_t first = std::size_t{w_} - r_;
+    return i < first ? data_[r_ + i] : data_[i - first];
+  }
+  /// The most recently appended byte. Precondition: !empty().
+  std::uint8_t& back() noexcept { return o_ != 0 ? data_[o_ - 1u] : data_[w_ - 1u]; }
+
+  /// When [r_, w_) is used up and bytes wait in [0, o_): they become [r_, w_). True if so.
+  bool next_part() noexcept {
+    if (r_ != w_ || o_ == 0 || parked_) return false;
+    r_ = 0;
+    lim_ = w_ = o_;
+    o_ = 0;
+    return true;
+  }
+  /// Takes up to `n` bytes into `out` (both parts); returns how many. Takes nothing while parked.
+  std::size_t pop(std::uint8_t* out, std::size_t n) noexcept {
+    if (parked_) return 0;
+    std::size_t done = 0;
+    for (;;) {
+      const std::size_t ready = std::size_t{w_} - r_;
+      const std::size_t k = n - done < ready ? n - done : ready;
+      trionet::detail::copy_bytes(out + done, data_ + r_, k);
+      r_ = static_cast<index>(r_ + k);
+      done += k;
+      if (done == n || !next_part()) return done;
+    }
+  }
+
+  /// The node starts an own frame (the buffer is empty): the indices go to the end, so that the bytes that
+  /// arrive meanwhile wait in [0, o_) and the fast `transmit` finds nothing.
+  void park() noexcept {
+    r_ = w_ = lim_ = static_cast<index>(Capacity);
+    parked_ = true;
+  }
+  /// The own frame has gone out.
+  void unpark() noexcept { parked_ = false; }
+  /// True while the node sends an own frame.
+  bool parked() const noexcept { return parked_; }
+
+ private:
+  // An empty buffer starts again at its beginning (not while parked: the own frame is still going out).
+  void reset_if_empty() noexcept {
+    if (w_ == Capacity && r_ == Capacity && o_ == 0 && !parked_) r_ = w_ = lim_ = 0;
+  }
+
+  std::uint8_t data_[Capacity] = {};
+  index r_ = 0;    // the next byte to send
+  index w_ = 0;    // the end of the first part, where `put_fast` appends
+  index o_ = 0;    // the end of the wrapped-round part [0, o_)
+  index lim_ = 0;  // the end of the grant: `put_fast` appends while w_ != lim_
+  bool parked_ = false;
+};
+
+/// Whether a link forwards, and the messages it dropped while it did not: only a link whose forwarding can be
+/// turned off (a keypad's) keeps them.
+template <bool Switchable>
+class forwarding_switch {
+ protected:
+  bool forwarding() const noexcept { return on_; }
+  void turn(bool on) noexcept { on_ = on; }
+  void count_drop() noexcept { dropped_.increment(); }
+  std::uint16_t drops() const noexcept { return dropped_.load(); }
+
+ private:
+  single_writer<std::uint16_t> dropped_;
+  bool on_ = true;
+};
+/// A link that always forwards (a Motion Coordinator's): nothing to keep.
+template <>
+class forwarding_switch<false> {
+ protected:
+  static constexpr bool forwarding() noexcept { return true; }
+  static void count_drop() noexcept {}
+  static constexpr std::uint16_t drops() noexcept { return 0; }
+};
+
 /// `Crc` is the CRC policy the node's own direct variable transfers are sent with; `MaxCharacters` the
 /// character maximum of docs/protocol.md 1.4 (the forwarding bound of type 1 and the reserved types).
+/// `Switchable`: whether forwarding can be turned off (a keypad); a Motion Coordinator always forwards.
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
-          class Crc = crc16_ccitt_false>
-class link {
+          class Crc = crc16_ccitt_false, bool Switchable = false>
+class link : private forwarding_switch<Switchable> {
   static_assert(ForwardCapacity >= framing_length + variable_data_length && ForwardCapacity < 65535,
                 "the forward buffer must hold a whole direct variable transfer (16 bytes): while a node sends "
                 "an own frame, as many forwarded bytes arrive as the frame has, and they must not be lost");
-  static_assert(TransmitCapacity >= framing_length + 1 && TransmitCapacity < 65535,
+  static_assert(TransmitCapacity >= framing_length + 1 && TransmitCapacity <= 32767,
                 "the transmit queue must hold at least a one-character message (3 bytes)");
   static_assert(MaxCharacters >= 1 && MaxCharacters < 65535, "a character transfer holds 1..65534 characters");
 
@@ -124,29 +306,47 @@ class link {
   static constexpr std::size_t max_own_characters =
       max_own_frame - framing_length < MaxCharacters ? max_own_frame - framing_length : MaxCharacters;
 
-  /// Takes one received byte and says where it went.
-  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept { return receive(byte, forward_); }
+  // ---- link side: receive ----
 
-  /// A run of data bytes (no header or end of message among them): the same as `receive` for each, with one
-  /// copy. Returns where they went; if a forwarded message is lost part-way, the byte it was lost on is
-  /// `lost`, the rest `dropped`, and the result is `lost`.
-  [[nodiscard]] byte_route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
-    return receive_data(data, n, forward_);
+  /// Link side, the per-byte fast path: a data byte of a forwarded message while the grant lasts (room in
+  /// the forward buffer up to its end, within the forwarding bound). True if taken; otherwise call `receive`.
+  TRIONET_ALWAYS_INLINE bool forward_fast(std::uint8_t byte) noexcept {
+    return is_data(byte) && forward_.put_fast(byte);
   }
 
-  /// The line has been idle (docs/protocol.md 1.10): a message being forwarded has lost the rest of its bytes. It
-  /// is ended and counted (`forwards_ended_idle`; true is returned) and any later byte of it is stray data;
-  /// the transmitter then goes on to the node's own messages. The rest of a lost message, if being dropped,
-  /// is over too.
+  /// Link side: takes one received byte and says where it went.
+  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept {
+    settle();
+    const byte_route r = route_byte(byte, forward_);
+    regrant();
+    return r;
+  }
+
+  /// Link side: a run of data bytes (no header or end of message among them): the same as `receive` for
+  /// each, with one copy. Returns where they went; if a forwarded message is lost part-way, the result is
+  /// `lost` (the byte it was lost on; the rest are dropped).
+  [[nodiscard]] byte_route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
+    settle();
+    const byte_route r = receive_data(data, n, forward_);
+    regrant();
+    return r;
+  }
+
+  /// Link side: the line has been idle (docs/protocol.md 1.10): a message being forwarded has lost the rest of
+  /// its bytes. It is ended and counted (`forwards_ended_idle`, NETSTAT bit 1; true is returned) and any later
+  /// byte of it is stray data; the transmitter then goes on to the node's own messages. The rest of a lost
+  /// message, if being dropped, is over too.
   bool line_idle() noexcept {
+    settle();
     const receiving was = receiving_;
     receiving_ = receiving::local;
     if (was != receiving::forward) return false;
-    ++counters_.forwards_ended_idle;
+    forwards_ended_idle_.increment();
+    netstat_.raise(netstat_tx_buffer_error);
     return true;
   }
 
-  /// True while a message through the node has begun and not ended (forwarded, or being dropped).
+  /// Link side: true while a message through the node has begun and not ended (forwarded, or being dropped).
   bool passing_message() const noexcept { return receiving_ != receiving::local; }
 
   /// What `receive_passing` took (a forwarded message lost on the way shows in the counters).
@@ -155,11 +355,15 @@ class link {
     bool header;               ///< a header was taken: a message the node was receiving ended
   };
 
-  /// Takes bytes from [first, last) while they are not for the node itself: the same as `receive` for each,
-  /// in order, with runs of data copied whole, stopping before the first byte `receive` would byte_route `local`.
+  /// Link side: takes bytes from [first, last) while they are not for the node itself: the same as `receive`
+  /// for each, in order, with runs of data copied whole, stopping before the first byte `receive` would
+  /// route `local`.
   TRIONET_ALWAYS_INLINE [[nodiscard]] passing receive_passing(const std::uint8_t* first,
                                                               const std::uint8_t* last) noexcept {
-    return receive_passing(first, last, forward_);
+    settle();
+    const passing p = receive_passing(first, last, forward_);
+    regrant();
+    return p;
   }
 
   /// The caller's transmit buffer standing in for the forward buffer while the forward buffer is empty and
@@ -168,20 +372,26 @@ class link {
   /// it by that check: so it never runs out of room, and says so (`free`), which keeps its pushes unchecked.
   class straight_out {
    public:
+    /// Bytes written so far.
     std::size_t size() const noexcept { return size_; }
-    // Never less than what comes: `straight_through` checked that all of it fits.
+    /// Never less than what comes: `straight_through` checked that all of it fits.
     static constexpr std::size_t free() noexcept { return static_cast<std::size_t>(-1); }
+    /// Appends a byte (always room).
     [[nodiscard]] bool push(std::uint8_t byte) noexcept {
       data_[size_++] = byte;
       return true;
     }
+    /// Appends `n` bytes (always room); returns n.
     std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
       trionet::detail::copy_bytes(data_ + size_, bytes, n);
       size_ += n;
       return n;
     }
+    /// The byte `i` places from the first.
     std::uint8_t& at(std::size_t i) noexcept { return data_[i]; }
+    /// The last byte written.
     std::uint8_t& back() noexcept { return data_[size_ - 1]; }
+    /// Removes the `n` last bytes (at most size()).
     void drop_back(std::size_t n) noexcept { size_ = n >= size_ ? 0 : size_ - n; }
 
    private:
@@ -191,48 +401,49 @@ class link {
     std::size_t size_ = 0;
   };
 
-  /// Whether `received` bytes and then `transmit(out, capacity)` can go straight through: the forward buffer
-  /// is empty, the node is not in the middle of its own message, and both the forward buffer and `out` have
-  /// room for every received byte (so nothing received could be lost, and everything forwarded goes out
-  /// first). If so, forwarded bytes are written into `out` (`receive_passing` with the returned stand-in),
-  /// and `transmit_after` then adds what `transmit` would give after them.
+  /// Link side: whether `received` bytes and then `transmit(out, capacity)` can go straight through: the
+  /// forward buffer is empty, the node is not in the middle of its own message, and both the forward buffer
+  /// and `out` have room for every received byte (so nothing received could be lost, and everything
+  /// forwarded goes out first). If so, forwarded bytes are written into `out` (`receive_passing` with the
+  /// returned stand-in), and `transmit_after` then adds what `transmit` would give after them.
   [[nodiscard]] bool straight_through(std::size_t received, std::size_t capacity) const noexcept {
-    return forward_.empty() && sending_ != sending::own && received <= ForwardCapacity &&
-           received <= capacity;
+    return forward_.empty() && !forward_.parked() && received <= ForwardCapacity && received <= capacity;
   }
+  /// The stand-in for the forward buffer that writes into `out`.
   [[nodiscard]] static straight_out straight_buffer(std::uint8_t* out) noexcept { return straight_out(out); }
+  /// Link side: `receive_passing` into the stand-in.
   TRIONET_ALWAYS_INLINE [[nodiscard]] passing receive_passing(const std::uint8_t* first,
                                                               const std::uint8_t* last,
                                                               straight_out& into) noexcept {
-    return receive_passing<straight_out>(first, last, into);
+    settle();
+    const passing p = receive_passing<straight_out>(first, last, into);
+    regrant();
+    return p;
   }
-  /// The bytes `transmit(out, capacity)` gives after the forwarded bytes already in `straight` (= out[0..]).
+  /// Link side: the bytes `transmit(out, capacity)` gives after the forwarded bytes already in `straight`
+  /// (= out[0..]).
   [[nodiscard]] std::size_t transmit_after(const straight_out& straight, std::uint8_t* out,
                                            std::size_t capacity) noexcept {
     const std::size_t n = straight.size();
-    // Not sending an own message (`straight_through`), the transmitter is inside a forwarded message exactly
-    // when one is open on the receive side; otherwise it is between messages.
-    sending_ = receiving_ == receiving::forward ? sending::forward : sending::idle;
-    if (queue_.empty()) return n;  // the forward buffer is empty too: nothing more (`transmit` would say so)
+    if (queue_.available() == 0) return n;  // the forward buffer is empty too: nothing more
     return n + transmit(out + n, capacity - n);
   }
 
-  /// Fills `out` with up to `capacity` bytes for the link: the same bytes as that many calls of `transmit`,
-  /// with the forward buffer's bytes copied whole (they go out first, in order, whatever they are) and runs
-  /// of the node's own message data too.
+  // ---- link side: transmit ----
+
+  /// Link side: fills `out` with up to `capacity` bytes for the link: the same bytes as that many calls of
+  /// `transmit`, with the forward buffer's bytes copied whole (they go out first, in order, whatever they
+  /// are) and runs of the node's own message data too.
   [[nodiscard]] std::size_t transmit(std::uint8_t* out, std::size_t capacity) noexcept {
     std::size_t n = 0;
     while (n < capacity) {
-      if (sending_ != sending::own && !forward_.empty()) {
-        n += forward_.pop(out + n, capacity - n);
-        sending_ = classify(out[n - 1]) == byte_class::end_of_message ? sending::idle : sending::forward;
-        continue;
-      }
-      if (queue_.empty()) {  // and the forward buffer too: nothing to send (as `transmit` would find)
-        if (sending_ == sending::forward && receiving_ != receiving::forward) sending_ = sending::idle;
-        break;
-      }
-      if (sending_ == sending::own) {  // a run of own message data up to its next control byte
+      if (!forward_.parked()) {
+        const std::size_t k = forward_.pop(out + n, capacity - n);
+        if (k != 0) {
+          n += k;
+          continue;
+        }
+      } else {  // a run of own message data up to its next control byte
         const std::size_t room = capacity - n;
         const std::size_t contiguous = queue_.front_size();
         const std::uint8_t* const front = queue_.front();
@@ -245,124 +456,154 @@ class link {
           continue;
         }
       }
-      if (!transmit(out[n])) break;  // control bytes of own messages, message boundaries, waiting
-      ++n;
+      const int next = transmit_slow();  // control bytes of own messages, message boundaries, waiting
+      if (next < 0) break;
+      out[n++] = static_cast<std::uint8_t>(next);
     }
     return n;
   }
 
-  /// The next byte for the link, if any.
-  [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept {
-    if (sending_ == sending::forward) {
-      if (forward_.pop(byte)) {
-        if (classify(byte) == byte_class::end_of_message) sending_ = sending::idle;
-        return true;
-      }
-      if (receiving_ == receiving::forward) return false;  // cut-through: the next byte has not arrived yet
-      sending_ = sending::idle;         // the message was cut short upstream or here
-    } else if (sending_ == sending::own) {
-      if (!queue_.pop(byte)) {  // cannot happen: own frames are queued whole
-        sending_ = sending::idle;
-        return false;
-      }
-      if (classify(byte) == byte_class::end_of_message) {
-        sending_ = sending::idle;
-        ++counters_.messages_sent;
-      }
-      return true;
-    }
-    if (forward_.pop(byte)) {
-      sending_ = classify(byte) == byte_class::end_of_message ? sending::idle : sending::forward;
-      return true;
-    }
-    if (queue_.pop(byte)) {
-      sending_ = sending::own;
-      return true;
-    }
-    return false;
+  /// Link side: the next byte for the link, if any. The fast path takes the next forwarded byte.
+  [[nodiscard]] TRIONET_ALWAYS_INLINE bool transmit(std::uint8_t& byte) noexcept {
+    if (TRIONET_LIKELY(forward_.take_fast(byte))) return true;
+    const int next = transmit_slow();  // in a register: `byte` need not be in memory
+    if (next < 0) return false;
+    byte = static_cast<std::uint8_t>(next);
+    return true;
   }
 
-  /// True when `transmit` would give a byte now.
+  /// Link side: true when `transmit` would give a byte now.
   bool transmit_pending() const noexcept {
-    if (!forward_.empty()) return true;
-    if (queue_.empty()) return false;
-    return !(sending_ == sending::forward && receiving_ == receiving::forward);
+    if (forward_.parked() || !forward_.empty()) return true;
+    return receiving_ != receiving::forward && queue_.available() != 0;
   }
 
-  /// Queues one of the node's own messages whole. `encode_status::buffer_too_small` if the transmit queue has
-  /// no room for all of it or the frame is longer than `max_own_frame` (nothing is queued), or the message's
-  /// own field error.
+  // ---- program side ----
+
+  /// Program side: queues one of the node's own messages whole. `encode_status::buffer_too_small` if the
+  /// transmit queue has no room for all of it or the frame is longer than `max_own_frame` (nothing is
+  /// queued), or the message's own field error.
   [[nodiscard]] encode_result queue(const message& m) noexcept {
     const encode_status status = check(m);
     if (status != encode_status::ok) return {status, 0};
     const std::size_t length = frame_length(m);
     if (length > queue_.free() || length > max_own_frame) return {encode_status::buffer_too_small, 0};
     if (m.type == message_type::character) {  // straight into the queue: no staging copy of the text
-      (void)queue_.push(make_header(m.hops, static_cast<std::uint8_t>(m.type)));
-      (void)queue_.push(m.text.data(), m.text.size());
-      (void)queue_.push(make_end_of_message(m.hops));
+      queue_.stage(0, make_header(m.hops, static_cast<std::uint8_t>(m.type)));
+      queue_.stage(1, m.text.data(), m.text.size());
+      queue_.stage(1 + m.text.size(), make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
       const encode_result encoded = encode<Crc>(frame, m);
-      (void)queue_.push(frame, encoded.length);
+      queue_.stage(0, frame, encoded.length);
     }
+    queue_.publish(length);
     return {encode_status::ok, length};
   }
 
-  /// Queues `text` (checked: 0..127 each) as consecutive character messages to `hops`, each as long as an own
-  /// message may be (docs/protocol.md 1.6: `max_own_characters`, the last one shorter), as many whole messages as
-  /// the transmit queue has room for. Returns how many characters were queued. The split depends on the text
-  /// only, so a caller that goes on with the rest later sends the same messages.
+  /// Program side: queues `text` (checked: 0..127 each) as consecutive character messages to `hops`, each as
+  /// long as an own message may be (docs/protocol.md 1.6: `max_own_characters`, the last one shorter), as many
+  /// whole messages as the transmit queue has room for. Returns how many characters were queued. The split
+  /// depends on the text only, so a caller that goes on with the rest later sends the same messages.
   std::size_t queue_text(std::uint8_t hops, byte_view text) noexcept {
     std::size_t done = 0;
     while (done < text.size()) {
       std::size_t n = text.size() - done;
       if (n > max_own_characters) n = max_own_characters;
       if (n + framing_length > queue_.free()) break;
-      (void)queue_.push(make_header(hops, static_cast<std::uint8_t>(message_type::character)));
-      (void)queue_.push(text.data() + done, n);
-      (void)queue_.push(make_end_of_message(hops));
+      queue_.stage(0, make_header(hops, static_cast<std::uint8_t>(message_type::character)));
+      queue_.stage(1, text.data() + done, n);
+      queue_.stage(1 + n, make_end_of_message(hops));
+      queue_.publish(n + framing_length);
       done += n;
     }
     return done;
   }
 
-  /// Free bytes in the transmit queue (a frame is its message plus header and end of message).
+  /// Program side: free bytes in the transmit queue (a frame is its message plus header and end of message).
   std::size_t transmit_free() const noexcept { return queue_.free(); }
-  /// Bytes waiting in the forward buffer.
+
+  // ---- state ----
+
+  /// Link side: bytes waiting in the forward buffer.
   std::size_t forward_backlog() const noexcept { return forward_.size(); }
 
-  /// Forwarding on (a Motion Coordinator, a keypad in network mode) or off (a keypad in local mode: messages
-  /// through the node are dropped and counted).
-  constexpr void set_forwarding(bool on) noexcept { forwarding_ = on; }
+  /// Link side: forwarding on (a Motion Coordinator, a keypad in network mode) or off (a keypad in local mode:
+  /// messages through the node are dropped and counted).
+  void set_forwarding(bool on) noexcept {
+    static_assert(Switchable, "this link always forwards");
+    this->turn(on);
+  }
 
-  const link_counters& counters() const noexcept { return counters_; }
+  /// Either side: the counters now (each read on its own: not one instant).
+  link_counters counters() const noexcept {
+    link_counters c;
+    c.forwards_lost = forwards_lost_.load();
+    c.forwards_cut = forwards_cut_.load();
+    c.forwards_ended_idle = forwards_ended_idle_.load();
+    c.messages_forwarded = messages_forwarded_.load();
+    c.messages_dropped = this->drops();
+    c.messages_sent = messages_sent_.load();
+    return c;
+  }
 
+  /// NETSTAT: the link side raises bits 1..4 here, the program side reads, clears and raises bit 0.
+  netstat_register& netstat() noexcept { return netstat_; }
+  /// NETSTAT, read-only.
+  const netstat_register& netstat() const noexcept { return netstat_; }
+
+  /// The forward buffer's capacity.
   static constexpr std::size_t forward_capacity = ForwardCapacity;
+  /// The transmit queue's capacity.
   static constexpr std::size_t transmit_capacity = TransmitCapacity;
 
  private:
   enum class receiving : std::uint8_t { local, forward, discard };
 
-  // The receive side, forwarding `into` the forward buffer or a `straight_out`.
-  template <class Into>
-  byte_route receive(std::uint8_t byte, Into& into) noexcept {
-    const byte_route r = route_byte(byte, into);
-    ++counters_.bytes[static_cast<std::size_t>(r)];
-    return r;
+  // The grant of the fast path goes back into the forwarding bound: `remaining_` is exact again.
+  void settle() noexcept {
+    remaining_ = static_cast<std::uint16_t>(remaining_ + forward_.granted());
+    forward_.revoke();
+  }
+  // A new grant for the fast path, while a forwarded message is open.
+  void regrant() noexcept {
+    if (receiving_ != receiving::forward) return;
+    remaining_ = static_cast<std::uint16_t>(remaining_ - forward_.grant(remaining_));
   }
 
+  // The general link side of transmit: own frames, the wrapped-round part of the forward buffer, message
+  // boundaries. The next byte, or -1 for none.
+  TRIONET_NOINLINE int transmit_slow() noexcept {
+    std::uint8_t byte = 0;
+    if (forward_.parked()) {  // in an own frame, which was queued whole
+      if (!queue_.pop(byte)) {  // cannot happen
+        forward_.unpark();
+        return -1;
+      }
+      if (classify(byte) == byte_class::end_of_message) {
+        forward_.unpark();
+        messages_sent_.increment();
+      }
+      return byte;
+    }
+    if (forward_.next_part()) {  // bytes that arrived meanwhile
+      (void)forward_.take_fast(byte);
+      return byte;
+    }
+    // The forward buffer is empty. A forwarded message open on the receive side has gone out so far
+    // (cut-through): its next byte has not arrived. Otherwise the transmitter is between messages.
+    if (receiving_ == receiving::forward || !queue_.pop(byte)) return -1;
+    forward_.park();
+    return byte;
+  }
+
+  // The receive side, forwarding `into` the forward buffer or a `straight_out`.
   template <class Into>
   byte_route receive_data(const std::uint8_t* data, std::size_t n, Into& into) noexcept {
-    const auto count = [this](byte_route r, std::size_t k) {
-      counters_.bytes[static_cast<std::size_t>(r)] += static_cast<std::uint32_t>(k);
-    };
     switch (receiving_) {
       case receiving::local:
-        count(byte_route::local, n);
         return byte_route::local;
       case receiving::discard:
-        count(byte_route::dropped, n);
         return byte_route::dropped;
       case receiving::forward:
         break;
@@ -370,19 +611,13 @@ class link {
     const std::size_t allowed = remaining_;
     if (TRIONET_LIKELY(n <= allowed)) {  // the common case: not longer than legal
       const std::size_t pushed = into.push(data, n);
-      count(byte_route::forwarded, pushed);
       remaining_ = static_cast<std::uint16_t>(allowed - pushed);
       if (pushed == n) return byte_route::forwarded;
-      count(lose(into), 1);
-      count(byte_route::dropped, n - pushed - 1);
-      return byte_route::lost;
+      return lose(into);
     }
     const std::size_t pushed = into.push(data, allowed);
-    count(byte_route::forwarded, pushed);
     remaining_ = static_cast<std::uint16_t>(allowed - pushed);
-    count(pushed == allowed ? cut(into) : lose(into), 1);  // cut: the first byte past the longest legal message
-    count(byte_route::dropped, n - pushed - 1);
-    return byte_route::lost;
+    return pushed == allowed ? cut(into) : lose(into);  // cut: the first byte past the longest legal message
   }
 
   template <class Into>
@@ -409,7 +644,7 @@ class link {
       } else {
         if (hops_of(byte) <= 1) break;  // a message for the node
         result.header = true;
-        if (forwarding_ && receiving_ == receiving::local) {  // a whole message to forward?
+        if (this->forwarding() && receiving_ == receiving::local) {  // a whole message to forward?
           const std::uint8_t* const end = find_control(p + 1, last);
           if (end != last && type_of(*end) == 0 && forward_whole(p, end, into)) {
             p = end + 1;
@@ -417,7 +652,7 @@ class link {
           }
         }
       }
-      (void)receive(byte, into);
+      (void)route_byte(byte, into);
       ++p;
     }
     result.stop = p;
@@ -451,24 +686,23 @@ class link {
     }
     const std::uint8_t hops = hops_of(byte);
     if (hops <= 1) return byte_route::local;
-    if (!forwarding_) {
+    if (!this->forwarding()) {
       receiving_ = receiving::discard;
-      ++counters_.messages_dropped;
+      this->count_drop();
       return byte_route::dropped;
     }
-    ++counters_.messages_forwarded;
+    messages_forwarded_.increment();
     if (!into.push(decrement_hops(byte))) {  // nothing of it is in the buffer: nothing to remove
-      ++counters_.forwards_lost;
+      forwards_lost_.increment();
+      netstat_.raise(netstat_tx_buffer_error);
       receiving_ = receiving::discard;
       return byte_route::lost;
     }
     receiving_ = receiving::forward;
-    limit_ = remaining_ = longest_data[static_cast<std::size_t>(byte & 0x07)];
+    type_ = static_cast<std::uint8_t>(byte & 0x07);
+    remaining_ = longest_data[type_];
     return byte_route::forwarded;
   }
-
-  enum class sending : std::uint8_t { idle, forward, own };
-
 
   // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
   // all fits and is not longer than legal (the same as `receive` for each byte); false, and nothing done, if
@@ -479,7 +713,6 @@ class link {
     if (n > into.free() || n - 1 > remaining_) return false;
     (void)into.push(data, n);
     into.back() = decrement_hops(*end_of_message);
-    counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
     receiving_ = receiving::local;
     return true;
   }
@@ -495,42 +728,45 @@ class link {
     (void)into.push(header, n);
     into.at(header_at) = static_cast<std::uint8_t>(*header - 0x08);  // A > 1: decrement_hops without its check
     into.back() = decrement_hops(*end_of_message);
-    counters_.bytes[static_cast<std::size_t>(byte_route::forwarded)] += static_cast<std::uint32_t>(n);
-    ++counters_.messages_forwarded;
+    messages_forwarded_.increment();
     return true;
   }
 
   // The forwarded message being received does not fit: it is lost.
   template <class Into>
   byte_route lose(Into& into) noexcept {
-    ++counters_.forwards_lost;
+    forwards_lost_.increment();
     return end_forward(into);
   }
 
   // The forwarded message being received is longer than any legal message of its type: it is lost.
   template <class Into>
   byte_route cut(Into& into) noexcept {
-    ++counters_.forwards_cut;
+    forwards_cut_.increment();
     return end_forward(into);
   }
 
   template <class Into>
   byte_route end_forward(Into& into) noexcept {
+    netstat_.raise(netstat_tx_buffer_error);
     // Its header and data so far are in the buffer, if none of it has gone out.
-    const std::size_t incoming = std::size_t{limit_} - remaining_ + 1u;
+    const std::size_t incoming = std::size_t{longest_data[type_]} - remaining_ + 1u;
     if (incoming <= into.size()) into.drop_back(incoming);
     receiving_ = receiving::discard;
     return byte_route::lost;
   }
 
-  byte_fifo<ForwardCapacity> forward_;
-  byte_fifo<TransmitCapacity> queue_;
-  link_counters counters_;
-  std::uint16_t limit_ = 0;      // the most data the message being forwarded may carry: longest_data
-  std::uint16_t remaining_ = 0;  // ... of which it has not carried yet
+  forward_buffer<ForwardCapacity> forward_;
+  spsc_fifo<TransmitCapacity> queue_;  // the program side produces, the link side consumes
+  std::uint16_t remaining_ = 0;        // data the forwarded message may still carry, less the grant
   receiving receiving_ = receiving::local;  // `forward`: a forwarded message has begun and not yet ended
-  sending sending_ = sending::idle;
-  bool forwarding_ = true;
+  std::uint8_t type_ = 0;                   // the type field of the message being forwarded
+  netstat_register netstat_;
+  single_writer<std::uint32_t> forwards_lost_;
+  single_writer<std::uint32_t> forwards_cut_;
+  single_writer<std::uint32_t> forwards_ended_idle_;
+  single_writer<std::uint16_t> messages_forwarded_;
+  single_writer<std::uint16_t> messages_sent_;
 };
 
 }  // namespace detail

@@ -22,6 +22,7 @@
 #include <cstring>
 
 #include "trionet/fifo.hpp"
+#include "trionet/single_writer.hpp"
 #include "trionet/q32.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
@@ -109,53 +110,65 @@ struct [[nodiscard]] get_result {
   constexpr explicit operator bool() const noexcept { return status == get_status::ok; }
 };
 
-/// Counters of a Motion Coordinator; they only ever grow (and wrap at 2^32).
-/// (The forwarding counters are the link's: `forwarding_counters()`.)
+/// Counters of a Motion Coordinator, as read at one moment; they only ever grow. The wire errors (frame, CRC,
+/// receive overflow) wrap at 2^32; the others, traffic and the outcomes of VR writes, at 2^16. (The
+/// forwarding counters are the link's: `forwarding_counters()`.)
 struct motion_coordinator_counters {
-  std::uint32_t frame_errors = 0;  ///< frame errors of docs/protocol.md 1.4 and 1.10 (NETSTAT bit 3)
-  std::uint32_t crc_errors = 0;    ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
-  std::uint32_t character_messages = 0;      ///< character transfers taken into the receive buffer
-  std::uint32_t receive_overflows = 0;       ///< character transfers dropped whole: no room (NETSTAT bit 4)
-  std::uint32_t variables_written = 0;       ///< direct variable transfers applied to VR()
-  std::uint32_t variables_refused = 0;       ///< ... refused by the write policy
-  std::uint32_t variables_out_of_range = 0;  ///< ... to a vr past the VR table
-  std::uint32_t variables_value_out_of_range = 0;  ///< ... whose value the VR table's type cannot hold
-  std::uint32_t keypad_messages_ignored = 0;  ///< keypad offset / mode messages sent to this MC
-  std::uint32_t sends_refused = 0;            ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0)
+  std::uint32_t frame_errors = 0;        ///< frame errors of docs/protocol.md 1.4 and 1.10 (NETSTAT bit 3)
+  std::uint32_t crc_errors = 0;          ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
+  std::uint32_t character_messages = 0;  ///< character transfers taken into the receive buffer (2^16)
+  std::uint32_t receive_overflows = 0;   ///< character transfers dropped whole: no room (NETSTAT bit 4)
+  std::uint32_t variables_written = 0;   ///< direct variable transfers applied to VR() (2^16)
+  std::uint32_t variables_refused = 0;   ///< ... refused by the write policy (2^16)
+  std::uint32_t variables_out_of_range = 0;        ///< ... to a vr past the VR table (2^16)
+  std::uint32_t variables_value_out_of_range = 0;  ///< ... whose value the VR table's type cannot hold (2^16)
+  std::uint32_t keypad_messages_ignored = 0;       ///< keypad offset / mode messages sent to this MC (2^16)
+  std::uint32_t sends_refused = 0;  ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0) (2^16)
 };
 
-/// The receive buffer as the decoder's character store: a message's characters are staged at its end and
-/// kept only if the whole message is valid and fits (all or nothing).
+/// The receive buffer as the decoder's character store (see `character_buffer`): a single-producer,
+/// single-consumer queue from the link side (the decoder stages a message's characters past its tail and
+/// publishes them only if the whole message is valid and fits: all or nothing) to the program side (KEY#,
+/// GET#). The 14 bytes after the queue hold the data of the other message types.
 template <std::size_t Capacity>
 class receive_buffer {
  public:
-  void begin() noexcept { staged_ = 0; }
-  bool put(std::uint8_t c) noexcept {
-    if (!fifo_.push(c)) return false;
-    ++staged_;  // at most Capacity <= 65535
-    return true;
-  }
-  std::size_t put(const std::uint8_t* c, std::size_t n) noexcept {
-    const std::size_t pushed = fifo_.push(c, n);
-    staged_ = static_cast<std::uint16_t>(staged_ + pushed);
-    return pushed;
-  }
-  byte_view commit() noexcept {  // the characters may wrap round the buffer: no contiguous view
-    staged_ = 0;
-    return {};
-  }
-  void abort() noexcept {
-    fifo_.drop_back(staged_);
-    staged_ = 0;
-  }
+  /// Where the data of a message of type 2..7 goes.
+  static constexpr std::size_t payload_at = Capacity;
 
-  /// Characters of whole messages waiting to be read.
-  std::size_t waiting() const noexcept { return fifo_.size() - staged_; }
-  bool take(std::uint8_t& c) noexcept { return waiting() != 0 && fifo_.pop(c); }
+  /// Link side: the store's bytes.
+  std::uint8_t* slots() noexcept { return fifo_.slots(); }
+  /// Link side: the store's bytes, read-only.
+  const std::uint8_t* slots() const noexcept { return fifo_.slots(); }
+  /// Link side: a character transfer begins: the free slots from the queue's tail up to its wrap.
+  store_window begin() const noexcept { return window(0); }
+  /// Link side: `stored` characters are staged: the free slots after them (the program side may have made
+  /// more room meanwhile).
+  store_window next(std::size_t stored) const noexcept { return window(stored); }
+  /// Link side: the message's `length` characters go to the program side, all at once.
+  byte_view commit(std::size_t length) noexcept {
+    fifo_.publish(length);
+    return {};  // the characters may wrap round the buffer: no contiguous view
+  }
+  /// Link side: nothing was published, so there is nothing to take back.
+  static void abort() noexcept {}
+
+  /// Program side: characters of whole messages waiting to be read.
+  std::size_t waiting() const noexcept { return fifo_.available(); }
+  /// Program side: takes the oldest character; false when there is none.
+  bool take(std::uint8_t& c) noexcept { return fifo_.pop(c); }
 
  private:
-  byte_fifo<Capacity> fifo_;
-  std::uint16_t staged_ = 0;
+  store_window window(std::size_t stored) const noexcept {
+    const std::size_t free = fifo_.free();
+    if (stored >= free) return {};
+    const std::size_t first = fifo_.staging_slot(stored);
+    const std::size_t room = free - stored;
+    const std::size_t end = room < Capacity - first ? first + room : Capacity;
+    return {static_cast<std::uint16_t>(first), static_cast<std::uint16_t>(end)};
+  }
+
+  spsc_fifo<Capacity, variable_data_length> fifo_;
 };
 
 /// `MaxCharacters` is the character maximum of docs/protocol.md 1.4: the longest character transfer the node
@@ -166,16 +179,15 @@ template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
           std::size_t MaxCharacters = default_max_characters>
 class motion_coordinator final
     : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters>,
-                  motion_coordinator_counters,
                   basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
                   detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
-  using core = node<motion_coordinator, motion_coordinator_counters,
-                    basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
+  using core = node<motion_coordinator, basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
                     detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
   friend core;
 
  public:
-  /// `vr` receives direct variable transfers (through its write policy); `defkey` translates GET#3.
+  /// `vr` receives direct variable transfers (through its write policy, on the link side); `defkey`
+  /// translates GET#3.
   explicit motion_coordinator(vr_store& vr, const defkey_table& defkey = default_defkey) noexcept
       : vr_(&vr), defkey_(&defkey) {}
 
@@ -257,7 +269,7 @@ class motion_coordinator final
     return queue(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
   }
 
-  // ---- KEY# and GET# ----
+  // ---- KEY# and GET# (program side) ----
 
   /// KEY#3 / KEY#4: true if at least one character is waiting; nothing is consumed.
   bool key(int channel) const noexcept {
@@ -272,8 +284,24 @@ class motion_coordinator final
     return {get_status::ok, channel == 3 ? (*defkey_)[c] : c};
   }
 
-  /// Characters waiting in the receive buffer.
+  /// Program side: characters waiting in the receive buffer.
   std::size_t characters_waiting() const noexcept { return this->decoder_.store().waiting(); }
+
+  /// Either side: the counters now (each read whole; not all at one instant).
+  motion_coordinator_counters counters() const noexcept {
+    motion_coordinator_counters c;
+    c.frame_errors = this->frame_errors();
+    c.crc_errors = this->crc_errors();
+    c.receive_overflows = receive_overflows_.load();
+    c.character_messages = character_messages_.load();
+    c.variables_written = variables_written_.load();
+    c.variables_refused = variables_refused_.load();
+    c.variables_out_of_range = variables_out_of_range_.load();
+    c.variables_value_out_of_range = variables_value_out_of_range_.load();
+    c.keypad_messages_ignored = keypad_messages_ignored_.load();
+    c.sends_refused = sends_refused_.load();
+    return c;
+  }
 
  private:
   static byte_view c_text(const char* text) noexcept {
@@ -289,10 +317,10 @@ class motion_coordinator final
     return send_status::ok;
   }
 
-  // An own message could not be put into the transmit queue: NETSTAT bit 0.
+  // Program side: an own message could not be put into the transmit queue: NETSTAT bit 0.
   void refuse() noexcept {
-    ++this->counters_.sends_refused;
-    this->netstat_.raise_tx_timeout();
+    sends_refused_.increment();
+    this->link_.netstat().raise_tx_timeout();
   }
 
   send_status queue(const message& m) noexcept {
@@ -320,42 +348,52 @@ class motion_coordinator final
     return send_status::bad_address;
   }
 
-  // A message for this node (the core has counted errors already).
+  // Link side: a message for this node (the core has counted errors already).
   void deliver(const decode_result& r) noexcept {
     if (r.status == decode_status::no_room) {
-      ++this->counters_.receive_overflows;
-      this->netstat_.raise(netstat_rx_overflow);
+      receive_overflows_.increment();
+      this->link_.netstat().raise(netstat_rx_overflow);
       return;
     }
     switch (r.msg.type) {
       case message_type::character:
-        ++this->counters_.character_messages;
+        character_messages_.increment();
         return;
       case message_type::variable:
         switch (vr_->write(r.msg.vr, network_value::from_q32(r.msg.value))) {
           case vr_write_status::ok:
-            ++this->counters_.variables_written;
+            variables_written_.increment();
             return;
           case vr_write_status::refused:
-            ++this->counters_.variables_refused;
+            variables_refused_.increment();
             return;
           case vr_write_status::out_of_range:
-            ++this->counters_.variables_out_of_range;
+            variables_out_of_range_.increment();
             return;
           case vr_write_status::value_out_of_range:
-            ++this->counters_.variables_value_out_of_range;
+            variables_value_out_of_range_.increment();
             return;
         }
         return;
       case message_type::keypad_offset:
       case message_type::keypad_mode:
-        ++this->counters_.keypad_messages_ignored;
+        keypad_messages_ignored_.increment();
         return;
     }
   }
 
   vr_store* vr_;
   const defkey_table* defkey_;
+  // Written by the link side:
+  single_writer<std::uint32_t> receive_overflows_;
+  single_writer<std::uint16_t> character_messages_;
+  single_writer<std::uint16_t> variables_written_;
+  single_writer<std::uint16_t> variables_refused_;
+  single_writer<std::uint16_t> variables_out_of_range_;
+  single_writer<std::uint16_t> variables_value_out_of_range_;
+  single_writer<std::uint16_t> keypad_messages_ignored_;
+  // Written by the program side:
+  single_writer<std::uint16_t> sends_refused_;
 };
 
 }  // namespace trionet::ring

@@ -10,9 +10,20 @@
 //   program: PRINT#, SEND, key presses --------------> transmit queue ----+
 //   idle line --> line_idle: ends an open message in the decoder and in the link (counted)
 //
-// Cost: the link's and the decoder's RAM plus 7 bytes of NETSTAT and the node's counters. Per byte O(1);
-// the bulk forms copy runs of message data whole. `receive`, `transmit`, `relay` and `line_idle` may run in
-// an ISR.
+// Two sides, no lock (docs/design.md, "Contexts"; transport.hpp shows the wiring):
+//   link side (one interrupt context: the UART ISR, or a host's I/O loop)
+//     receive (per byte and bulk), transmit (per byte and bulk), relay, line_idle, transmit_pending,
+//     in_message, forward_backlog; and everything that a delivered message does (deliver: the receive
+//     buffer, VR() through its vr_store, the keypad's display and mode)
+//   program side (one thread context: the main loop or one RTOS task)
+//     PRINT#, SEND, GET#, KEY#, key presses, transmit_free, netstat, clear_netstat
+//   either side: counters, forwarding_counters (each counter is read whole; not all at one instant)
+// The link side may interrupt the program side at any instruction; neither masks the other. The buffers
+// between them are single-producer, single-consumer queues (the transmit queue, the receive buffer), NETSTAT
+// is a `netstat_register`, and every counter is written by one side only.
+//
+// Cost: the link's and the decoder's RAM plus 8 bytes of counters. Per byte O(1); a data byte of a message
+// passing through takes the link's fast path. The bulk forms copy runs of message data whole.
 #pragma once
 
 #include <cstddef>
@@ -22,101 +33,54 @@
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/link.hpp"
+#include "trionet/ring/netstat.hpp"
+#include "trionet/single_writer.hpp"
 #include "trionet/span.hpp"
 #include "trionet/transport.hpp"
 
 namespace trionet::ring {
 
-/// NETSTAT bits (docs/protocol.md 1.6).
-enum netstat_bit : std::uint8_t {
-  netstat_tx_timeout = 1,       ///< an own message could not be put into the transmit queue
-  netstat_tx_buffer_error = 2,  ///< a forwarded message was lost (buffer full, too long, or the line idle)
-  netstat_rx_crc_error = 4,     ///< a direct variable transfer failed its CRC
-  netstat_rx_frame_error = 8,   ///< an incomplete or corrupt message was received
-  netstat_rx_overflow = 16,     ///< a character transfer did not fit in the receive buffer (extension)
-};
-
-constexpr const char* to_string(netstat_bit bit) noexcept {
-  switch (bit) {
-    case netstat_tx_timeout:
-      return "netstat_tx_timeout";
-    case netstat_tx_buffer_error:
-      return "netstat_tx_buffer_error";
-    case netstat_rx_crc_error:
-      return "netstat_rx_crc_error";
-    case netstat_rx_frame_error:
-      return "netstat_rx_frame_error";
-    case netstat_rx_overflow:
-      return "netstat_rx_overflow";
-  }
-  return "unknown";
-}
-
-/// NETSTAT: errors since it was last cleared (docs/protocol.md 1.6). The link side raises bits, the program side
-/// reads and clears them, and each byte here is written by one side only: a raised bit is a bit in which
-/// `raised_` differs from `cleared_`, and clearing makes them equal. Bit 0 (TX timeout) is the program side's
-/// own. An error raised while NETSTAT is being cleared may be cleared with it.
-class netstat_register {
- public:
-  /// Link side: sets `bits` (not bit 0).
-  void raise(std::uint8_t bits) noexcept {
-    raised_ = static_cast<std::uint8_t>(raised_ ^ (bits & ~(raised_ ^ cleared_)));
-  }
-  /// Program side: sets bit 0.
-  void raise_tx_timeout() noexcept { program_ = netstat_tx_timeout; }
-  std::uint8_t read() const noexcept { return static_cast<std::uint8_t>((raised_ ^ cleared_) | program_); }
-  void clear() noexcept {
-    cleared_ = raised_;
-    program_ = 0;
-  }
-
- private:
-  std::uint8_t raised_ = 0;
-  std::uint8_t cleared_ = 0;
-  std::uint8_t program_ = 0;
-};
-
 /// The ring-node core. `Node` (the derived node, CRTP) provides
-///   void deliver(const decode_result&)   // a valid message for it (`message`), or one with no room (`no_room`)
-/// `Counters` has at least `frame_errors` and `crc_errors`; `Decoder` is a `basic_decoder`; `Link` a
-/// `detail::link`.
-template <class Node, class Counters, class Decoder, class Link>
+///   void deliver(const decode_result&)   // a valid message for it (`ok`), or one with no room (`no_room`)
+/// which runs on the link side. `Decoder` is a `basic_decoder`; `Link` a `detail::link`.
+template <class Node, class Decoder, class Link>
 class node : public byte_port {
  public:
-  // ---- the link (byte_port): per byte, for a UART interrupt ----
+  // ---- the link side (byte_port): per byte, for a UART interrupt ----
 
+  /// Link side: a byte arrived. A data byte of a message passing through takes the fast path.
   void receive(std::uint8_t byte) noexcept final {
-    const byte_route r = link_.receive(byte);
-    if (r == byte_route::local) {
-      handle(decoder_.push(byte));
-      return;
-    }
-    if (classify(byte) == byte_class::header) handle(decoder_.interrupt());
+    if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
+    receive_slow(byte);
   }
+  /// Link side: the next byte to send, if there is one now.
   [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept final { return link_.transmit(byte); }
+  /// Link side: true when `transmit` would give a byte now.
   [[nodiscard]] bool transmit_pending() const noexcept final { return link_.transmit_pending(); }
 
-  /// The idle line (docs/protocol.md 1.10): a message open in the decoder is a frame error (NETSTAT bit 3); a
-  /// message being forwarded is ended and counted as lost (NETSTAT bit 1); the node's own messages may then
-  /// be sent.
+  /// Link side: the idle line (docs/protocol.md 1.10): a message open in the decoder is a frame error
+  /// (NETSTAT bit 3); a message being forwarded is ended and counted as lost (NETSTAT bit 1); the node's own
+  /// messages may then be sent.
   void line_idle() noexcept final {
     (void)link_.line_idle();
     handle(decoder_.line_idle());
   }
+  /// Link side: true while a message has begun on the receive side and not ended.
   [[nodiscard]] bool in_message() const noexcept final { return link_.passing_message() || decoder_.open(); }
 
-  // ---- the link in bulk: a DMA-fed UART or a host ----
+  // ---- the link side in bulk: a DMA-fed UART or a host ----
 
-  /// Many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in order, with
-  /// runs of message data copied whole. Not virtual, so firmware that does not call it does not link it.
+  /// Link side: many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in
+  /// order, with runs of message data copied whole. Not virtual, so firmware that does not call it does not
+  /// link it.
   void receive(byte_view bytes) noexcept { receive_bytes(bytes); }
-  /// Fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that many calls
-  /// of `transmit`, stopping at the first that has none.
+  /// Link side: fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that
+  /// many calls of `transmit`, stopping at the first that has none.
   [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept { return link_.transmit(out.data(), out.size()); }
 
-  /// A DMA-fed node's receive-and-forward in one call: exactly `receive(in)` then `transmit(out)` (returns
-  /// how many bytes of `out` to send). When the forward buffer is empty and the node is between its own
-  /// messages, the bytes it forwards are written straight into `out`: one copy instead of two.
+  /// Link side: a DMA-fed node's receive-and-forward in one call: exactly `receive(in)` then `transmit(out)`
+  /// (returns how many bytes of `out` to send). When the forward buffer is empty and the node is between its
+  /// own messages, the bytes it forwards are written straight into `out`: one copy instead of two.
   [[nodiscard]] std::size_t relay(byte_view in, byte_buffer out) noexcept {
     if (!link_.straight_through(in.size(), out.size())) return receive_then_transmit(in, out);
     auto straight = Link::straight_buffer(out.data());
@@ -124,29 +88,29 @@ class node : public byte_port {
     return link_.transmit_after(straight, out.data(), out.size());
   }
 
-  // ---- state ----
-
-  /// NETSTAT: errors since it was last cleared (docs/protocol.md 1.6); cleared only by `clear_netstat`.
-  /// Bit 1 (a forwarded message lost) is read off the link's counters, so the forwarding paths never touch it.
-  std::uint8_t netstat() const noexcept {
-    const bool forward_lost = link_.counters().forwards_failed() != forwards_failed_at_clear_;
-    return static_cast<std::uint8_t>(netstat_.read() | (forward_lost ? netstat_tx_buffer_error : 0));
-  }
-  void clear_netstat() noexcept {
-    netstat_.clear();
-    forwards_failed_at_clear_ = link_.counters().forwards_failed();
-  }
-
-  const Counters& counters() const noexcept { return counters_; }
-  const link_counters& forwarding_counters() const noexcept { return link_.counters(); }
-  /// Bytes waiting in the forward buffer.
+  /// Link side: bytes waiting in the forward buffer.
   std::size_t forward_backlog() const noexcept { return link_.forward_backlog(); }
-  /// Room left in the transmit queue, in bytes (a message takes its data + 2).
+
+  // ---- the program side ----
+
+  /// Program side: NETSTAT, errors since it was last cleared (docs/protocol.md 1.6); cleared only by
+  /// `clear_netstat`.
+  std::uint8_t netstat() const noexcept { return link_.netstat().read(); }
+  /// Program side: clears NETSTAT.
+  void clear_netstat() noexcept { link_.netstat().clear(); }
+  /// Program side: room left in the transmit queue, in bytes (a message takes its data + 2).
   std::size_t transmit_free() const noexcept { return link_.transmit_free(); }
 
-  /// The longest own frame the node sends, header and end of message included (docs/protocol.md 1.5: the forward
-  /// buffer absorbs what arrives meanwhile).
+  /// Either side: the link's counters now.
+  link_counters forwarding_counters() const noexcept { return link_.counters(); }
+
+  /// The longest own frame the node sends, header and end of message included (docs/protocol.md 1.5: the
+  /// forward buffer absorbs what arrives meanwhile).
   static constexpr std::size_t max_own_frame = Link::max_own_frame;
+  /// The transmit queue's capacity in bytes (`transmit_free()` when nothing waits).
+  static constexpr std::size_t transmit_capacity = Link::transmit_capacity;
+  /// The forward buffer's capacity in bytes.
+  static constexpr std::size_t forward_capacity = Link::forward_capacity;
 
  protected:
   node() noexcept = default;
@@ -154,24 +118,36 @@ class node : public byte_port {
   node& operator=(const node&) = default;
   ~node() = default;
 
-  Link link_;
-  Decoder decoder_;
-  Counters counters_{};
-  netstat_register netstat_;
-  std::uint32_t forwards_failed_at_clear_ = 0;  // the link's forwards_failed() when NETSTAT was cleared
+  /// Frame errors so far (link side writes).
+  std::uint32_t frame_errors() const noexcept { return frame_errors_.load(); }
+  /// CRC errors so far (link side writes).
+  std::uint32_t crc_errors() const noexcept { return crc_errors_.load(); }
+
+  Link link_;        ///< the link (forward buffer, transmit queue, NETSTAT, its counters)
+  Decoder decoder_;  ///< the decoder of messages for this node (link side)
 
  private:
+  // Everything but a data byte passing through while the link's grant lasts.
+  TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
+    const byte_route r = link_.receive(byte);
+    if (r == byte_route::local) {
+      handle(decoder_.push(byte));
+      return;
+    }
+    if (classify(byte) == byte_class::header) passed_header();
+  }
+
   void handle(const decode_result& r) noexcept {
     switch (r.status) {
       case decode_status::incomplete:
         return;
       case decode_status::frame_error:
-        ++counters_.frame_errors;
-        netstat_.raise(netstat_rx_frame_error);
+        frame_errors_.increment();
+        link_.netstat().raise(netstat_rx_frame_error);
         return;
       case decode_status::crc_error:
-        ++counters_.crc_errors;
-        netstat_.raise(netstat_rx_crc_error);
+        crc_errors_.increment();
+        link_.netstat().raise(netstat_rx_crc_error);
         return;
       case decode_status::no_room:
       case decode_status::ok:
@@ -217,15 +193,18 @@ class node : public byte_port {
   // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
   TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p, const std::uint8_t* end) noexcept {
     if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
-      receive(*p);
+      receive_slow(*p);
       return p + 1;
     }
     const std::uint8_t* const run = find_control(p, end);
     const auto n = static_cast<std::size_t>(run - p);
-    (void)link_.receive_data(p, n);  // byte_route::local: counted
+    (void)link_.receive_data(p, n);  // byte_route::local
     decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
     return run;
   }
+
+  single_writer<std::uint32_t> frame_errors_;  // link side
+  single_writer<std::uint32_t> crc_errors_;    // link side
 };
 
 }  // namespace trionet::ring

@@ -1,0 +1,55 @@
+// A value that one side of a node writes and both sides read: the building block of the nodes' concurrency
+// contract (docs/design.md, "Contexts").
+//
+// A node has two sides: the link side (the UART or CAN interrupt: receive, transmit, idle line) and the
+// program side (the main loop or one RTOS task: PRINT#, SEND, GET#, NETSTAT, counters). Every variable that
+// both sides touch is a `single_writer`: only its owning side stores to it, the other side only loads it.
+// So nothing needs a lock, interrupt masking or an atomic read-modify-write: an increment is a load and a
+// store by the one writer. On a Cortex-M0+ (no LDREX/STREX) every operation here is a plain load or store
+// (a `dmb` for `acquire`/`release`), and no `__atomic_*` library routine is linked (the firmware build checks).
+// On a host the same code is correct between two threads, which is how the contract is tested (with
+// ThreadSanitizer).
+//
+// Cost: sizeof(T); loads and stores only.
+#pragma once
+
+#include <atomic>
+
+namespace trionet {
+
+/// A value written by one side only and read by both (see the file comment). Copying copies the value, so a
+/// node that holds one stays copyable; copy a node only while neither side is running.
+template <class T>
+class single_writer {
+ public:
+  /// Zero.
+  constexpr single_writer() noexcept : value_(T{}) {}
+  /// Starts at `value`.
+  constexpr explicit single_writer(T value) noexcept : value_(value) {}
+  /// Copies the value (relaxed).
+  single_writer(const single_writer& other) noexcept : value_(other.load()) {}
+  /// Copies the value (relaxed).
+  single_writer& operator=(const single_writer& other) noexcept {
+    store(other.load());
+    return *this;
+  }
+  ~single_writer() = default;
+
+  /// The value now, for either side. Orders nothing else.
+  T load() const noexcept { return value_.load(std::memory_order_relaxed); }
+  /// The value now, and everything the writer did before it `release`d this value is visible after.
+  T acquire() const noexcept { return value_.load(std::memory_order_acquire); }
+  /// Writer only: a new value (for counters and flags that order nothing else).
+  void store(T value) noexcept { value_.store(value, std::memory_order_relaxed); }
+  /// Writer only: a new value, after everything written before it (e.g. the bytes that an index publishes).
+  void release(T value) noexcept { value_.store(value, std::memory_order_release); }
+  /// Writer only: adds `n` (wrapping): a load and a store, not a read-modify-write instruction.
+  void add(T n) noexcept { store(static_cast<T>(load() + n)); }
+  /// Writer only: adds one (wrapping).
+  void increment() noexcept { add(T{1}); }
+
+ private:
+  std::atomic<T> value_;
+};
+
+}  // namespace trionet

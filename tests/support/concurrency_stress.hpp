@@ -1,0 +1,689 @@
+// The concurrency stress of a node's two sides (docs/design.md, "Contexts"): one thread plays the UART
+// interrupt (the link side: it feeds received bytes and pulls bytes to transmit, one of each per step as a
+// UART at full rate does, and calls line_idle now and then), the other calls the program API at random (the
+// program side: PRINT#, SEND, GET#, KEY#, VR(), NETSTAT, counters, key presses). No lock, no masking: the two
+// threads share only the node (and, for the check, nothing else until both have ended).
+//
+// What is checked:
+//   - nothing lost, duplicated or reordered: every forwarded message leaves the node whole, in order, with A
+//     decremented; every own frame (PRINT#, SEND, key press) leaves whole and in the order it was queued;
+//     the characters GET# returns are the local character messages, whole and in order (a message dropped
+//     for lack of room is counted as a receive overflow, and only then missing); nothing else is sent;
+//   - no value is ever seen half-written: VR() as the program reads it always holds a value some writer wrote
+//     whole, a VR only the network writes never goes back, one only the program writes reads back exactly;
+//   - counters only grow while read concurrently, and add up at the end: messages forwarded, delivered, VRs
+//     written, frame and CRC errors, own messages sent, refused sends equal what both threads did;
+//   - NETSTAT shows only the bits the traffic can raise, and a clear then an error gives exactly that bit.
+// Built with ThreadSanitizer (scripts/concurrency-test) the same run also proves that no variable is
+// accessed by both threads without the synchronisation the contract promises.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "trionet/can.hpp"
+#include "trionet/ring.hpp"
+#include "trionet/vr.hpp"
+
+namespace trionet::stress {
+
+/// How long to run: the link thread's steps (one byte in and one byte out at most each).
+struct config {
+  std::uint64_t link_steps = 200000;
+  std::uint64_t seed = 1;
+};
+
+/// What a run did, and every failed check (empty: it passed).
+struct report {
+  std::uint64_t link_steps = 0;     ///< link-side steps (receive + transmit)
+  std::uint64_t link_calls = 0;     ///< link-side calls into the node
+  std::uint64_t program_calls = 0;  ///< program-side calls into the node
+  std::uint64_t messages_in = 0;    ///< messages fed to the node
+  std::uint64_t frames_out = 0;     ///< frames the node sent
+  std::uint64_t own_frames = 0;     ///< of which the program's own
+  std::uint64_t dropped_whole = 0;  ///< local messages dropped for lack of room (counted)
+  std::vector<std::string> failures;
+  bool ok() const { return failures.empty(); }
+};
+
+namespace detail {
+
+/// A thread's own failure list (merged after both threads ended).
+class checks {
+ public:
+  void expect(bool ok, const std::string& what) {
+    if (ok) return;
+    if (failures.size() < 20) failures.push_back(what);
+    ++failed;
+  }
+  std::vector<std::string> failures;
+  std::uint64_t failed = 0;
+};
+
+inline std::vector<std::uint8_t> frame_of(const ring::message& m) {
+  std::vector<std::uint8_t> out(ring::frame_length(m));
+  (void)ring::encode(byte_buffer(out.data(), out.size()), m);
+  return out;
+}
+
+inline std::vector<std::uint8_t> text_frame(std::uint8_t hops, const std::string& text) {
+  return frame_of(
+      ring::message::characters(hops, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())));
+}
+
+inline std::string letters(std::mt19937_64& rng, std::size_t n) {
+  std::string s;
+  for (std::size_t i = 0; i < n; ++i) s += static_cast<char>('a' + rng() % 26);
+  return s;
+}
+
+/// A forwarded frame as the next node must receive it: A decremented in its header and end of message.
+inline std::vector<std::uint8_t> passed_on(std::vector<std::uint8_t> frame) {
+  frame.front() = ring::decrement_hops(frame.front());
+  frame.back() = ring::decrement_hops(frame.back());
+  return frame;
+}
+
+/// A VR value whose two 32-bit halves belong together: a half-written one breaks the relation.
+constexpr std::int64_t whole_value(std::uint32_t s) noexcept {
+  return static_cast<std::int64_t>((std::uint64_t{s} << 32) | (s ^ 0x5A5A5A5Au));
+}
+constexpr bool is_whole(std::int64_t v) noexcept {
+  const auto bits = static_cast<std::uint64_t>(v);
+  return static_cast<std::uint32_t>(bits) == (static_cast<std::uint32_t>(bits >> 32) ^ 0x5A5A5A5Au);
+}
+constexpr std::uint32_t serial_of(std::int64_t v) noexcept {
+  return static_cast<std::uint32_t>(static_cast<std::uint64_t>(v) >> 32);
+}
+
+/// Cuts a transmitted stream into frames; anything outside a whole frame is a failure.
+inline std::vector<std::vector<std::uint8_t>> frames_in(const std::vector<std::uint8_t>& out, checks& c) {
+  std::vector<std::vector<std::uint8_t>> frames;
+  std::vector<std::uint8_t> current;
+  for (std::uint8_t b : out) {
+    switch (ring::classify(b)) {
+      case ring::byte_class::header:
+        c.expect(current.empty(), "a header inside a frame");
+        current.assign(1, b);
+        break;
+      case ring::byte_class::data:
+        c.expect(!current.empty(), "data outside a frame");
+        if (!current.empty()) current.push_back(b);
+        break;
+      case ring::byte_class::end_of_message:
+        c.expect(!current.empty(), "an end of message outside a frame");
+        if (!current.empty()) {
+          current.push_back(b);
+          frames.push_back(current);
+          current.clear();
+        }
+        break;
+    }
+  }
+  c.expect(current.empty(), "the stream ends inside a frame");
+  return frames;
+}
+
+/// Compares the frames seen with the frames expected, in order.
+inline void same_frames(const std::vector<std::vector<std::uint8_t>>& seen,
+                        const std::vector<std::vector<std::uint8_t>>& expected, const char* what, checks& c) {
+  c.expect(seen.size() == expected.size(), std::string(what) + ": " + std::to_string(seen.size()) +
+                                               " frames sent, " + std::to_string(expected.size()) + " expected");
+  const std::size_t n = std::min(seen.size(), expected.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (seen[i] != expected[i]) {
+      c.expect(false, std::string(what) + ": frame " + std::to_string(i) + " differs (lost, reordered or torn)");
+      return;
+    }
+  }
+}
+
+/// Every counter grew or stayed (a traffic counter that wraps at 2^16 may have wrapped: from 0xFFFF to 0).
+template <class Counters>
+bool grew_or_same(const Counters& now, const Counters& before) {
+  static_assert(sizeof(Counters) % sizeof(std::uint32_t) == 0, "counters are 32-bit fields");
+  std::uint32_t a[sizeof(Counters) / 4], b[sizeof(Counters) / 4];
+  std::memcpy(a, &now, sizeof a);
+  std::memcpy(b, &before, sizeof b);
+  for (std::size_t i = 0; i < sizeof a / 4; ++i) {
+    const bool wrapped = b[i] <= 0xFFFFu && a[i] < 0x8000u && b[i] - a[i] >= 0x8000u;
+    if (a[i] < b[i] && !wrapped) return false;
+  }
+  return true;
+}
+
+/// How the two threads start together and end (the test's own synchronisation, not the node's).
+struct handshake {
+  std::atomic<int> started{0};             // both threads wait for each other before their first call
+  std::atomic<std::uint64_t> program_calls{0};  // so that the link side does not end before the program ran
+  std::atomic<bool> fed{false};            // the link thread has fed every message
+  std::atomic<bool> program_done{false};   // the program thread has queued its last frame and read everything
+
+  void start() {
+    started.fetch_add(1);
+    while (started.load() < 2) std::this_thread::yield();
+  }
+  // The link thread, after its steps: keeps `transmit`ting until the program side made at least `calls`
+  // calls, then says that everything is fed.
+  template <class Transmit>
+  void end_feeding(std::uint64_t calls, Transmit&& transmit) {
+    while (program_calls.load(std::memory_order_relaxed) < calls) transmit();
+    fed.store(true, std::memory_order_release);
+  }
+};
+
+}  // namespace detail
+
+// ---- the Motion Coordinator ----
+
+/// One Motion Coordinator (default capacities) with a Q32.32 VR table: forwarded messages (A = 3 and 4),
+/// messages for it (characters, variables, a CRC error, a frame error) and idle gaps come in; the program
+/// PRINTs, SENDs (address 10: A = 1 on the wire), reads characters, VRs, NETSTAT and counters.
+inline report run_motion_coordinator(const config& cfg) {
+  using namespace detail;
+  using mc_type = ring::motion_coordinator<>;
+  constexpr std::size_t vr_count = 16;
+  vr_table<vr_count, std::int64_t> vr;
+  mc_type mc(vr);
+  handshake h;
+  report rep;
+
+  // What the link thread fed, and saw.
+  std::vector<std::vector<std::uint8_t>> forwarded_expected;
+  std::vector<std::string> local_texts;
+  std::vector<std::uint8_t> out;
+  std::uint64_t variables_fed = 0, crc_errors_fed = 0, frame_errors_fed = 0, link_calls = 0;
+  std::int64_t last_network[vr_count] = {};
+  checks link_checks;
+
+  std::thread link([&] {
+    std::mt19937_64 rng(cfg.seed);
+    std::uint32_t serial[vr_count] = {};
+    std::vector<std::uint8_t> current;
+    std::size_t at = 0;
+    std::uint64_t gap = 0;
+    const auto transmit = [&] {
+      std::uint8_t b = 0;
+      ++link_calls;
+      if (mc.transmit(b)) out.push_back(b);
+    };
+    h.start();
+    for (std::uint64_t step = 0; step < cfg.link_steps; ++step) {
+      if (at == current.size() && gap == 0) {  // between messages: the next one, or a quiet line
+        at = 0;
+        const unsigned pick = static_cast<unsigned>(rng() % 100);
+        ++rep.messages_in;
+        if (pick < 25) {
+          current = text_frame(3, letters(rng, 1 + rng() % 40));
+          forwarded_expected.push_back(passed_on(current));
+        } else if (pick < 35) {
+          current = frame_of(ring::message::variable(4, static_cast<std::uint16_t>(rng() % 16384),
+                                                     static_cast<std::int64_t>(rng())));
+          forwarded_expected.push_back(passed_on(current));
+        } else if (pick < 55) {
+          const std::string text = "#" + std::to_string(local_texts.size()) + letters(rng, rng() % 30) + ";";
+          local_texts.push_back(text);
+          current = text_frame(1, text);
+        } else if (pick < 70) {
+          const auto k = static_cast<std::uint16_t>(rng() % 4 + (rng() % 2) * 4);  // 0..3 network only, 4..7 both
+          const std::int64_t value = whole_value(++serial[k]);
+          current = frame_of(ring::message::variable(1, k, value));
+          last_network[k] = value;
+          ++variables_fed;
+        } else if (pick < 74) {
+          current = frame_of(ring::message::variable(1, 0, whole_value(0)));
+          current[13] ^= 0x01;  // C0: a CRC error
+          ++crc_errors_fed;
+        } else if (pick < 78) {
+          current = text_frame(1, "MISMATCH");
+          current.back() = ring::make_end_of_message(2);  // a frame error
+          ++frame_errors_fed;
+        } else {
+          current.clear();
+          --rep.messages_in;
+          gap = 1 + rng() % 60;  // a quiet line: the transmitter catches up
+          mc.line_idle();
+          ++link_calls;
+        }
+      }
+      if (gap != 0) {
+        --gap;
+      } else if (at < current.size()) {
+        mc.receive(current[at++]);
+        ++link_calls;
+      }
+      transmit();
+      ++rep.link_steps;
+      if ((step & 255) == 255) std::this_thread::yield();  // lets the program thread run on a busy machine
+    }
+    while (at < current.size()) {  // the last message whole
+      mc.receive(current[at++]);
+      transmit();
+      link_calls += 2;
+    }
+    h.end_feeding(cfg.link_steps / 10, transmit);
+    while (!h.program_done.load(std::memory_order_acquire)) transmit();
+    for (int i = 0; i < 64; ++i) transmit();  // what the program queued last
+  });
+
+  // The program side.
+  checks program_checks;
+  std::vector<std::vector<std::uint8_t>> own_expected;
+  std::string received;
+  std::uint64_t refused = 0, program_calls = 0, printed = 0;
+  std::int64_t program_value[vr_count] = {};
+  std::thread program([&] {
+    std::mt19937_64 rng(cfg.seed * 7919 + 1);
+    std::uint32_t serial = 0x40000000u;
+    std::uint32_t last_seen[vr_count] = {};
+    ring::motion_coordinator_counters counters_before{};
+    ring::link_counters links_before{};
+    h.start();
+    const auto read_characters = [&] {
+      for (int i = 0; i < 64 && mc.key(4); ++i) {
+        const ring::get_result got = mc.get(4);
+        program_checks.expect(got.status == ring::get_status::ok, "KEY#4 said a character waits, GET#4 found none");
+        received += static_cast<char>(got.value);
+        program_calls += 2;
+      }
+      ++program_calls;
+    };
+    while (!h.fed.load(std::memory_order_acquire)) {
+      const unsigned pick = static_cast<unsigned>(rng() % 100);
+      ++program_calls;
+      h.program_calls.store(program_calls, std::memory_order_relaxed);
+      if (pick < 10) {
+        const std::string text = "P" + std::to_string(printed++) + letters(rng, rng() % 40) + ";";
+        const ring::print_result r =
+            mc.print(10, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+        if (r.status == ring::send_status::queue_full) ++refused;
+        program_checks.expect(r.status == ring::send_status::ok || r.status == ring::send_status::queue_full,
+                              "PRINT# failed for another reason than a full queue");
+        for (std::size_t done = 0; done < r.queued;) {  // the messages it was split into
+          const std::size_t n = std::min(r.queued - done, mc_type::max_own_frame - ring::framing_length);
+          own_expected.push_back(text_frame(1, text.substr(done, n)));
+          done += n;
+        }
+      } else if (pick < 20) {
+        const auto k = static_cast<std::uint16_t>(rng() % 16);
+        const std::int64_t value = whole_value(++serial);
+        const ring::send_status s = mc.send_variable_q32(10, k, value);
+        if (s == ring::send_status::ok) {
+          own_expected.push_back(frame_of(ring::message::variable(1, k, value)));
+        } else {
+          program_checks.expect(s == ring::send_status::queue_full, "SEND failed for another reason than a full queue");
+          ++refused;
+        }
+      } else if (pick < 60) {
+        read_characters();
+      } else if (pick < 75) {  // VR(): 0..3 network only, 4..7 both, 8..11 the program only
+        const std::size_t k = rng() % 12;
+        const std::int64_t v = vr[k];
+        program_checks.expect(v == 0 || is_whole(v), "VR(" + std::to_string(k) + ") read half-written");
+        if (k < 4) {
+          program_checks.expect(v == 0 || serial_of(v) >= last_seen[k], "VR written by the network went back");
+          last_seen[k] = v == 0 ? 0 : serial_of(v);
+        } else if (k >= 8) {
+          program_checks.expect(v == program_value[k], "VR written by the program reads back wrong");
+        }
+        if (k >= 4) {
+          const std::int64_t mine = whole_value(++serial);
+          vr[k] = mine;
+          if (k >= 8) program_value[k] = mine;
+        }
+      } else if (pick < 85) {
+        const std::uint8_t n = mc.netstat();
+        program_checks.expect((n & ~(ring::netstat_tx_timeout | ring::netstat_rx_crc_error |
+                                     ring::netstat_rx_frame_error | ring::netstat_rx_overflow)) == 0,
+                              "NETSTAT shows a bit the traffic cannot raise (no forwarded message is lost)");
+        if ((rng() & 1) != 0) mc.clear_netstat();
+      } else {
+        const ring::motion_coordinator_counters now = mc.counters();
+        const ring::link_counters links = mc.forwarding_counters();
+        program_checks.expect(grew_or_same(now, counters_before), "a counter went back");
+        program_checks.expect(grew_or_same(links, links_before), "a forwarding counter went back");
+        counters_before = now;
+        links_before = links;
+      }
+    }
+    // Everything is fed: read the rest, and wait until the own frames have gone to the link side.
+    read_characters();
+    while (mc.key(4)) read_characters();
+    while (mc.transmit_free() != mc_type::transmit_capacity) std::this_thread::yield();
+    h.program_done.store(true, std::memory_order_release);
+  });
+  link.join();
+  program.join();
+
+  // Both sides have ended: check what was sent, delivered and counted.
+  checks c;
+  const auto frames = frames_in(out, c);
+  std::vector<std::vector<std::uint8_t>> forwarded_seen, own_seen;
+  for (const auto& f : frames) (ring::hops_of(f.front()) == 1 ? own_seen : forwarded_seen).push_back(f);
+  same_frames(forwarded_seen, forwarded_expected, "forwarded messages", c);
+  same_frames(own_seen, own_expected, "own messages", c);
+  // The characters: whole local messages in order, the missing ones counted as receive overflows.
+  std::size_t next = 0, missing = 0;
+  for (std::size_t start = 0; start < received.size();) {
+    const std::size_t end = received.find(';', start);
+    if (end == std::string::npos) {
+      c.expect(false, "a character message arrived in part");
+      break;
+    }
+    const std::string text = received.substr(start, end + 1 - start);
+    while (next < local_texts.size() && local_texts[next] != text) {
+      ++next;
+      ++missing;
+    }
+    c.expect(next < local_texts.size(), "GET# returned characters no message carried, or out of order");
+    ++next;
+    start = end + 1;
+  }
+  missing += local_texts.size() - std::min(next, local_texts.size());
+  const ring::motion_coordinator_counters counters = mc.counters();
+  const ring::link_counters links = mc.forwarding_counters();
+  c.expect(counters.receive_overflows == missing, "receive overflows " + std::to_string(counters.receive_overflows) +
+                                                      ", messages missing " + std::to_string(missing));
+  c.expect(counters.character_messages == ((local_texts.size() - missing) & 0xFFFFu), "character messages miscounted");
+  c.expect(counters.variables_written == (variables_fed & 0xFFFFu), "variables written miscounted");
+  c.expect(counters.crc_errors == crc_errors_fed, "CRC errors miscounted");
+  c.expect(counters.frame_errors == frame_errors_fed, "frame errors miscounted");
+  c.expect(counters.sends_refused == (refused & 0xFFFFu), "refused sends miscounted");
+  c.expect(links.messages_forwarded == (forwarded_expected.size() & 0xFFFFu), "forwarded messages miscounted");
+  c.expect(links.messages_sent == (own_expected.size() & 0xFFFFu), "own messages sent miscounted");
+  c.expect(links.forwards_failed() == 0, "a forwarded message was lost");
+  for (std::size_t k = 0; k < 4; ++k) c.expect(vr[k] == last_network[k], "VR(0..3) is not the last network write");
+  for (std::size_t k = 4; k < 8; ++k) c.expect(vr[k] == 0 || is_whole(vr[k]), "VR(4..7) is half-written");
+  for (std::size_t k = 8; k < 12; ++k) c.expect(vr[k] == program_value[k], "VR(8..11) lost the program's write");
+  // NETSTAT, now that both sides are quiet: cleared it is 0, and one CRC error raises exactly its bit.
+  mc.clear_netstat();
+  c.expect(mc.netstat() == 0, "NETSTAT not clear after clear_netstat");
+  std::vector<std::uint8_t> bad = frame_of(ring::message::variable(1, 0, whole_value(1)));
+  bad[13] ^= 0x01;
+  for (std::uint8_t b : bad) mc.receive(b);
+  c.expect(mc.netstat() == ring::netstat_rx_crc_error, "a CRC error did not raise exactly NETSTAT bit 2");
+
+  rep.link_calls = link_calls;
+  rep.program_calls = program_calls;
+  rep.frames_out = frames.size();
+  rep.own_frames = own_seen.size();
+  rep.dropped_whole = missing;
+  for (checks* each : {&link_checks, &program_checks, &c}) {
+    for (auto& f : each->failures) rep.failures.push_back("motion coordinator: " + f);
+  }
+  return rep;
+}
+
+// ---- the keypad ----
+
+/// A keypad put in network mode (key presses go 5 hops along: A = 5 on the wire) while messages pass
+/// through it (A = 3), text comes for its display and its keypad mode changes; the program presses and
+/// releases keys at random.
+inline report run_keypad(const config& cfg) {
+  using namespace detail;
+  using keypad_type = ring::keypad<>;
+  keypad_type keypad;
+  handshake h;
+  report rep;
+  std::vector<std::vector<std::uint8_t>> forwarded_expected;
+  std::vector<std::uint8_t> out;
+  std::uint64_t display_fed = 0, link_calls = 0;
+
+  std::thread link([&] {
+    std::mt19937_64 rng(cfg.seed);
+    std::vector<std::uint8_t> current = frame_of(ring::message::keypad_offset(1, 5));
+    std::size_t at = 0;
+    std::uint64_t gap = 0;
+    const auto transmit = [&] {
+      std::uint8_t b = 0;
+      ++link_calls;
+      if (keypad.transmit(b)) out.push_back(b);
+    };
+    h.start();
+    for (std::uint64_t step = 0; step < cfg.link_steps; ++step) {
+      if (at == current.size() && gap == 0) {
+        at = 0;
+        const unsigned pick = static_cast<unsigned>(rng() % 100);
+        ++rep.messages_in;
+        if (pick < 30) {
+          current = text_frame(4, letters(rng, 1 + rng() % 40));
+          forwarded_expected.push_back(passed_on(current));
+        } else if (pick < 45) {
+          current = frame_of(ring::message::variable(4, static_cast<std::uint16_t>(rng() % 100),
+                                                     static_cast<std::int64_t>(rng())));
+          forwarded_expected.push_back(passed_on(current));
+        } else if (pick < 60) {
+          current = text_frame(1, letters(rng, 1 + rng() % 20));
+          ++display_fed;
+        } else if (pick < 70) {
+          current = frame_of(ring::message::keypad_mode(1, (rng() & 1) != 0 ? 127 : 0));
+        } else {
+          current.clear();
+          --rep.messages_in;
+          gap = 1 + rng() % 60;
+          keypad.line_idle();
+          ++link_calls;
+        }
+      }
+      if (gap != 0) {
+        --gap;
+      } else if (at < current.size()) {
+        keypad.receive(current[at++]);
+        ++link_calls;
+      }
+      transmit();
+      ++rep.link_steps;
+      if ((step & 255) == 255) std::this_thread::yield();
+    }
+    while (at < current.size()) {
+      keypad.receive(current[at++]);
+      transmit();
+      link_calls += 2;
+    }
+    h.end_feeding(cfg.link_steps / 10, transmit);
+    while (!h.program_done.load(std::memory_order_acquire)) transmit();
+    for (int i = 0; i < 64; ++i) transmit();
+  });
+
+  checks program_checks;
+  std::vector<std::vector<std::uint8_t>> keys_expected;
+  std::uint64_t sent = 0, lost = 0, program_calls = 0;
+  std::thread program([&] {
+    std::mt19937_64 rng(cfg.seed * 104729 + 3);
+    h.start();
+    while (!h.fed.load(std::memory_order_acquire)) {
+      ++program_calls;
+      h.program_calls.store(program_calls, std::memory_order_relaxed);
+      const auto k = static_cast<ring::key>(rng() % ring::key_count);
+      // Releases only once in network mode (it never ends): in local mode a release in keypad mode 0 is not
+      // a lost key, in mode 127 it is, and the mode may change between the test's look and the call.
+      const bool press = (rng() & 1) != 0 || !keypad.network_mode();
+      const std::uint8_t mode = keypad.mode();
+      program_checks.expect(mode == ring::keypad_mode_key_on || mode == ring::keypad_mode_key_on_off,
+                            "keypad mode read as neither 0 nor 127");
+      const ring::key_status s = press ? keypad.press(k) : keypad.release(k);
+      switch (s) {
+        case ring::key_status::ok: {
+          const std::uint8_t code = ring::default_keypad_codes[k];
+          const std::uint8_t c = press ? code : ring::default_key_off_code(code);
+          keys_expected.push_back(frame_of(ring::message::characters(5, byte_view(&c, 1))));
+          ++sent;
+          break;
+        }
+        case ring::key_status::local_mode:
+        case ring::key_status::queue_full:
+          ++lost;
+          break;
+        case ring::key_status::nothing_to_send:
+          program_checks.expect(!press, "a key press had nothing to send");
+          break;
+      }
+      if (keypad.network_mode()) program_checks.expect(keypad.offset() == 5, "keypad offset read wrong");
+    }
+    while (keypad.transmit_free() != keypad_type::transmit_capacity) std::this_thread::yield();
+    h.program_done.store(true, std::memory_order_release);
+  });
+  link.join();
+  program.join();
+
+  checks c;
+  const auto frames = frames_in(out, c);
+  std::vector<std::vector<std::uint8_t>> forwarded_seen, keys_seen;
+  for (const auto& f : frames) (ring::hops_of(f.front()) == 5 ? keys_seen : forwarded_seen).push_back(f);
+  same_frames(forwarded_seen, forwarded_expected, "forwarded messages", c);
+  same_frames(keys_seen, keys_expected, "key presses", c);
+  const ring::keypad_counters counters = keypad.counters();
+  c.expect(counters.keys_sent == sent, "keys sent miscounted");
+  c.expect(counters.keys_lost == lost, "keys lost miscounted");
+  c.expect(counters.display_messages == display_fed, "display messages miscounted");
+  c.expect(counters.frame_errors == 0 && counters.crc_errors == 0, "a frame or CRC error out of nothing");
+  c.expect(keypad.forwarding_counters().forwards_failed() == 0, "a forwarded message was lost");
+  rep.link_calls = link_calls;
+  rep.program_calls = program_calls;
+  rep.frames_out = frames.size();
+  rep.own_frames = keys_seen.size();
+  for (checks* each : {&program_checks, &c}) {
+    for (auto& f : each->failures) rep.failures.push_back("keypad: " + f);
+  }
+  return rep;
+}
+
+// ---- the CAN VR exchange node ----
+
+/// Node 1 of 5 with a Q32.32 VR table: the receive thread (the CAN receive ISR) takes frames from nodes 2..5
+/// (VR writes), foreign and malformed frames; the program sends VRs to node 2, reads VRs and counters and
+/// clears them now and then (then stops clearing, so that the last counts can be checked exactly).
+inline report run_can(const config& cfg) {
+  using namespace detail;
+  vr_table<16, std::int64_t> vr;
+  struct recording_port final : can::port {
+    can::transmit_status send(const can::frame& f) noexcept override {
+      sent.push_back(f);
+      return can::transmit_status::ok;
+    }
+    std::vector<can::frame> sent;
+  } port;
+  can::vr_exchange_node node(can::make_node_address(5, 1).address, port, vr);
+  handshake h;
+  report rep;
+  // Frames the receive side fed in all, and after it saw that the program's last clear was over (those are
+  // certainly in the last counts; one fed while the clear ran may be too).
+  std::uint64_t written = 0, foreign = 0, bad_dlc = 0;
+  std::uint64_t written_after = 0, foreign_after = 0, bad_dlc_after = 0;
+  std::atomic<bool> clearing_over{false};
+
+  // A CAN value: integer part n, fraction n mod 10000 (Q32.32 after the table's conversion).
+  const auto can_value = [](std::uint32_t s) {
+    can::vr_message m;
+    m.value.integer_part = s & 0x3FFFFu;
+    m.value.fraction = static_cast<std::uint16_t>((s & 0x3FFFFu) % 10000u);
+    return m;
+  };
+  const auto consistent = [](std::int64_t v) {
+    const decimal d = q32_to_decimal(v);
+    return d.fraction == d.integer_part % 10000u;
+  };
+
+  std::thread receiver([&] {
+    std::mt19937_64 rng(cfg.seed);
+    std::uint32_t serial[8] = {};
+    h.start();
+    for (std::uint64_t step = 0; step < cfg.link_steps; ++step) {
+      can::frame f;
+      const unsigned pick = static_cast<unsigned>(rng() % 10);
+      const bool after = clearing_over.load(std::memory_order_acquire);
+      if (pick < 7) {
+        const auto k = static_cast<std::uint8_t>(rng() % 8);
+        can::vr_message m = can_value(++serial[k] * 7u);
+        m.vr = k;
+        f.id = 10u + static_cast<std::uint32_t>(rng() % 4);  // from nodes 2..5 to node 1
+        f.dlc = 8;
+        (void)can::encode_vr_message(m, f.data);
+        ++written;
+        if (after) ++written_after;
+      } else if (pick < 9) {
+        f.id = 999;
+        f.dlc = 8;
+        ++foreign;
+        if (after) ++foreign_after;
+      } else {
+        f.id = 11;
+        f.dlc = 7;
+        ++bad_dlc;
+        if (after) ++bad_dlc_after;
+      }
+      (void)node.receive(f);
+      ++rep.link_steps;
+      if ((step & 255) == 255) std::this_thread::yield();
+      if (step + 1 == cfg.link_steps && !clearing_over.load(std::memory_order_acquire)) --step;  // until then
+    }
+    h.fed.store(true, std::memory_order_release);
+  });
+
+  checks program_checks;
+  std::uint64_t program_calls = 0, sends = 0, sends_counted = 0;
+  std::thread program([&] {
+    std::mt19937_64 rng(cfg.seed * 31 + 7);
+    can::node_counters before{};
+    std::uint64_t calls = 0;
+    h.start();
+    while (!h.fed.load(std::memory_order_acquire)) {
+      ++program_calls;
+      const unsigned pick = static_cast<unsigned>(rng() % 10);
+      if (pick < 3) {
+        can::vr_message m = can_value(static_cast<std::uint32_t>(rng()));
+        m.vr = static_cast<std::uint8_t>(rng() % 16);
+        program_checks.expect(node.send_to_node(2, m) == can::send_status::ok, "send_to_node failed");
+        ++sends;
+        if (clearing_over.load(std::memory_order_relaxed)) ++sends_counted;
+      } else if (pick < 7) {
+        const std::size_t k = rng() % 8;
+        program_checks.expect(consistent(vr[k]), "a VR written from CAN read half-written");
+      } else {
+        const can::node_counters now = node.counters();
+        program_checks.expect(grew_or_same(now, before), "a CAN counter went back between clears");
+        before = now;
+        if (!clearing_over.load(std::memory_order_relaxed) && pick == 9) {
+          node.clear_counters();
+          before = can::node_counters{};
+        }
+      }
+      if (++calls == 2000) {  // the last clear: from here on the counts only grow
+        node.clear_counters();
+        before = can::node_counters{};
+        clearing_over.store(true, std::memory_order_release);
+      }
+    }
+    h.program_done.store(true, std::memory_order_release);
+  });
+  receiver.join();
+  program.join();
+
+  checks c;
+  const can::node_counters counters = node.counters();
+  c.expect(port.sent.size() == sends, "the port did not get every frame sent");
+  c.expect(counters.sent == sends_counted, "frames sent since the last clear miscounted");
+  c.expect(clearing_over.load(), "the run ended before the last clear");
+  c.expect(counters.written >= written_after && counters.written <= written, "VR writes since the last clear miscounted");
+  c.expect(counters.foreign >= foreign_after && counters.foreign <= foreign, "foreign frames miscounted");
+  c.expect(counters.bad_dlc >= bad_dlc_after && counters.bad_dlc <= bad_dlc, "malformed frames miscounted");
+  for (std::size_t k = 0; k < 8; ++k) c.expect(consistent(vr[k]), "a VR is half-written at the end");
+  node.clear_counters();
+  const can::node_counters zero = node.counters();
+  c.expect(zero.written == 0 && zero.sent == 0 && zero.foreign == 0, "clear_counters left a count");
+  rep.link_calls = rep.link_steps;
+  rep.program_calls = program_calls;
+  for (checks* each : {&program_checks, &c}) {
+    for (auto& f : each->failures) rep.failures.push_back("CAN node: " + f);
+  }
+  return rep;
+}
+
+}  // namespace trionet::stress
