@@ -245,7 +245,7 @@ TEST(RingLiveness, LivelockCirculatingCharactersAreCutByTheBound) {
     }
   } f;
   sim.set_fault_hook(&fault::hook, &f);
-  ASSERT_EQ(a.print(24, "FIVE LAPS ROUND").status, ring::send_status::ok);
+  ASSERT_EQ(a.print(24, "FIVE LAPS").status, ring::send_status::ok);  // one message
   std::uint64_t last_byte = 0, last_fault = 0;
   sim.run(2000, [&](const auto& event) {
     if constexpr (std::is_same_v<std::decay_t<decltype(event)>, ring::link_byte>) {
@@ -341,7 +341,7 @@ TEST(RingLiveness, AFortyCharacterDisplayUpdateAtDefaultCapacities) {
   sim.run(100);
   EXPECT_EQ(std::string(keypad.display().line(0)), line.substr(0, 20));
   EXPECT_EQ(std::string(keypad.display().line(1)), line.substr(20));
-  EXPECT_EQ(keypad.counters().display_messages, 2u);  // two messages: 30 + 11 characters
+  EXPECT_EQ(keypad.counters().display_messages, 3u);  // three messages: 14 + 14 + 13 characters
   EXPECT_EQ(keypad.counters().frame_errors, 0u);
 }
 
@@ -352,7 +352,7 @@ TEST(RingLiveness, PrintQueuesWholeMessagesAndSaysHowMuch) {
   for (int i = 0; i < 256; ++i) text += static_cast<char>('!' + i % 90);
   ring::print_result r = a.print(10, text.c_str());
   EXPECT_EQ(r.status, ring::send_status::queue_full);
-  EXPECT_EQ(r.queued, 30u);  // one message: the forward buffer's 32 bytes
+  EXPECT_EQ(r.queued, 28u);  // two messages of 14 (the 16-byte forward buffer) fill the 32-byte queue
   EXPECT_EQ(a.netstat(), ring::netstat_tx_timeout);
   EXPECT_EQ(a.counters().sends_refused, 1u);
   a.clear_netstat();
@@ -376,12 +376,12 @@ TEST(RingLiveness, PrintQueuesWholeMessagesAndSaysHowMuch) {
     b.receive(byte);
     got += read_all(b);
   }
-  EXPECT_EQ(got, text.substr(0, 30) + text);  // GET# sees the characters in order
+  EXPECT_EQ(got, text.substr(0, 28) + text);  // GET# sees the characters in order
   EXPECT_EQ(b.counters().frame_errors, 0u);
   // Giving up sets NETSTAT bit 0 and says how far it got.
   r = a.print_all(10, text.c_str(), [] { return false; });
   EXPECT_EQ(r.status, ring::send_status::queue_full);
-  EXPECT_EQ(r.queued, 30u);
+  EXPECT_EQ(r.queued, 28u);
   EXPECT_EQ(a.netstat(), ring::netstat_tx_timeout);
   // Nothing is queued unless every character is valid.
   a.clear_netstat();

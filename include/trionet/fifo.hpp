@@ -66,10 +66,14 @@ struct broken_index {
 template <std::size_t Capacity, std::size_t Extra = 0>
 class spsc_fifo {
   static_assert(Capacity >= 1 && Capacity <= 32767, "a queue holds 1..32767 bytes");
+  // A power-of-two capacity lets the indices run freely (wrapping at 2^8 or 2^16) and a slot be an index's
+  // low bits; any other capacity runs them over 0 .. 2 * Capacity - 1. Either way full and empty differ.
+  static constexpr bool power_of_two = (Capacity & (Capacity - 1)) == 0;
 
  public:
-  /// An index: the positions run over 0 .. 2 * Capacity - 1, so that full and empty differ.
-  using index = detail::index_for<2 * Capacity - 1>;
+  /// An index of the queue (see above).
+  using index = std::conditional_t<power_of_two, detail::index_for<(Capacity <= 128 ? 255 : 65535)>,
+                                   detail::index_for<2 * Capacity - 1>>;
 
   /// How many bytes the queue holds.
   static constexpr std::size_t capacity() noexcept { return Capacity; }
@@ -118,12 +122,10 @@ class spsc_fifo {
   /// Precondition: k < free().
   void stage(std::size_t k, std::uint8_t byte) noexcept { data_[slot(advance(tail_.load(), k))] = byte; }
   /// Producer: writes `n` bytes from `k` places after the last published byte on, without publishing them.
-  /// Precondition: k + n <= free().
+  /// Precondition: k + n <= free(). (A byte at a time: own frames are short, and the code stays small.)
   void stage(std::size_t k, const std::uint8_t* bytes, std::size_t n) noexcept {
-    const std::size_t at = slot(advance(tail_.load(), k));
-    const std::size_t first = n < Capacity - at ? n : Capacity - at;
-    detail::copy_bytes(data_ + at, bytes, first);
-    if (n != first) detail::copy_bytes(data_, bytes + first, n - first);
+    const index tail = tail_.load();
+    for (std::size_t i = 0; i < n; ++i) data_[slot(advance(tail, k + i))] = bytes[i];
   }
   /// Producer: hands the next `n` staged bytes to the consumer, all at once.
   void publish(std::size_t n) noexcept { tail_.release(advance(tail_.load(), n)); }
@@ -146,19 +148,31 @@ class spsc_fifo {
 
  private:
   static constexpr std::size_t slot(std::size_t position) noexcept {
-    return position < Capacity ? position : position - Capacity;
+    if constexpr (power_of_two) {
+      return position & (Capacity - 1);
+    } else {
+      return position < Capacity ? position : position - Capacity;
+    }
   }
   static constexpr index advance(std::size_t position, std::size_t n) noexcept {
-    const std::size_t next = position + n;
-    return static_cast<index>(next < 2 * Capacity ? next : next - 2 * Capacity);
+    if constexpr (power_of_two) {
+      return static_cast<index>(position + n);
+    } else {
+      const std::size_t next = position + n;
+      return static_cast<index>(next < 2 * Capacity ? next : next - 2 * Capacity);
+    }
   }
   static constexpr std::size_t distance(std::size_t from, std::size_t to) noexcept {
-    return to >= from ? to - from : to + 2 * Capacity - from;
+    if constexpr (power_of_two) {
+      return static_cast<index>(to - from);
+    } else {
+      return to >= from ? to - from : to + 2 * Capacity - from;
+    }
   }
 
-  std::uint8_t data_[Capacity + Extra] = {};
   TRIONET_QUEUE_INDEX<index> head_;  // the consumer's
   TRIONET_QUEUE_INDEX<index> tail_;  // the producer's
+  std::uint8_t data_[Capacity + Extra] = {};
 };
 
 }  // namespace trionet

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <atomic>
+#include <type_traits>
 
 namespace trionet {
 
@@ -21,6 +22,8 @@ namespace trionet {
 /// node that holds one stays copyable; copy a node only while neither side is running.
 template <class T>
 class single_writer {
+  static_assert(std::is_integral_v<T> && sizeof(T) <= 4, "a single-writer value is an integer of 1..4 bytes");
+
  public:
   /// Zero.
   constexpr single_writer() noexcept : value_(T{}) {}

@@ -17,7 +17,9 @@
 namespace trionet::host {
 namespace {
 
-using mc_node = ring::motion_coordinator<>;
+// The simulated Motion Coordinators have 32-byte forward buffers (the firmware default is 16, for RAM): own
+// character messages carry up to 30 characters, as the example programs' traces show.
+using mc_node = ring::motion_coordinator<256, 32, 32>;
 using keypad_node = ring::keypad<>;
 using event_sink = std::function<void(const network_event&)>;
 

@@ -100,7 +100,9 @@ inline std::uint64_t recovery_bound(std::size_t nodes) {
 
 namespace detail {
 
-using mc_type = ring::motion_coordinator<>;
+// 32-byte forward buffers: every PRINT# of the soak (up to 24 characters) is one message, which the
+// bookkeeping below follows as one.
+using mc_type = ring::motion_coordinator<256, 32, 32>;
 using keypad_type = ring::keypad<>;
 constexpr std::size_t no_id = static_cast<std::size_t>(-1);
 

@@ -146,6 +146,7 @@ struct store_window {
 ///                                               // the next go (the store may wrap round), or no room
 ///   byte_view commit(std::size_t length);       // the message is valid: keep it (a view of it, or empty if
 ///                                               // the characters are not contiguous)
+///   byte_view text(std::size_t length) const;   // the message just committed, as `commit` returned it
 ///   void abort();                               // the message is discarded
 /// A node can stage characters straight into its receive buffer this way, so no message is held twice.
 template <std::size_t N>
@@ -162,7 +163,9 @@ class character_buffer {
   /// The N slots are used up: no more room.
   static store_window next(std::size_t) noexcept { return {}; }
   /// The first `length` slots hold the message.
-  byte_view commit(std::size_t length) noexcept { return byte_view(data_, length); }
+  byte_view commit(std::size_t length) noexcept { return text(length); }
+  /// The message just committed.
+  byte_view text(std::size_t length) const noexcept { return byte_view(data_, length); }
   /// Nothing to forget: the next message starts again at slot 0.
   static void abort() noexcept {}
 
@@ -170,6 +173,14 @@ class character_buffer {
   static_assert(N >= 1 && N < 65535, "a character buffer holds 1..65534 characters");
   std::uint8_t data_[N < variable_data_length ? variable_data_length : N] = {};
 };
+
+/// What one byte did to a decoder, in a byte: the `decode_status` in bits 0..2 and, for a frame error, the
+/// `frame_error` in bits 3..6. A node handles this and asks for the whole `decode_result` only for a message
+/// it takes (`basic_decoder::result`), so the per-byte path never builds one.
+using decode_step = std::uint8_t;
+
+/// The status of a step.
+constexpr decode_status status_of(decode_step step) noexcept { return static_cast<decode_status>(step & 7u); }
 
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
 template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
@@ -182,14 +193,65 @@ class basic_decoder {
   static constexpr std::size_t max_characters = MaxCharacters;
 
   /// Feeds one byte. The fast path: a data byte of an open message with room in the store's window.
-  [[nodiscard]] TRIONET_ALWAYS_INLINE decode_result push(std::uint8_t byte) noexcept {
+  [[nodiscard]] TRIONET_FAST_PATH decode_result push(std::uint8_t byte) noexcept {
     if (TRIONET_LIKELY(is_data(byte)) && at_ != end_) {
       store_.slots()[at_] = byte;
       ++at_;
       return {};
     }
-    return push_slow(byte);
+    return result(step_slow(byte));
   }
+
+  /// Feeds one byte and says what it did in a `decode_step` (see `result` for the details).
+  [[nodiscard]] TRIONET_ALWAYS_INLINE decode_step step(std::uint8_t byte) noexcept {
+    if (TRIONET_LIKELY(is_data(byte)) && at_ != end_) {
+      store_.slots()[at_] = byte;
+      ++at_;
+      return 0;
+    }
+    return step_slow(byte);
+  }
+
+  /// The whole result of the step just taken (the message, or why it was discarded); `step` must be the
+  /// last step's value, and the decoder not fed since. A character message's text is in the store.
+  TRIONET_NOINLINE decode_result result(decode_step step) const noexcept {
+    decode_result r;
+    r.status = status_of(step);
+    switch (r.status) {
+      case decode_status::incomplete:
+        return r;
+      case decode_status::frame_error:
+        r.error = static_cast<frame_error>(step >> 3);
+        return r;
+      case decode_status::ok:
+      case decode_status::no_room:
+      case decode_status::crc_error:
+        break;
+    }
+    r.msg.type = type();
+    r.msg.hops = hops_of(header_);
+    const std::uint8_t* const payload = store_.slots() + Store::payload_at;
+    switch (r.msg.type) {
+      case message_type::character:
+        if (r.status == decode_status::ok) r.msg.text = store_.text(length());
+        break;
+      case message_type::variable:
+        read_variable_data(payload, r.msg.vr, r.msg.value);
+        break;
+      case message_type::keypad_offset:
+        r.msg.offset = payload[0];
+        break;
+      case message_type::keypad_mode:
+        r.msg.mode = payload[0];
+        break;
+    }
+    return r;
+  }
+
+  /// The type of the message the last step ended (meaningful for `ok`, `no_room` and `crc_error`).
+  message_type type() const noexcept { return static_cast<message_type>(type_of(header_)); }
+  /// The data of that message when it is not a character transfer (14 bytes for a variable transfer).
+  const std::uint8_t* payload() const noexcept { return store_.slots() + Store::payload_at; }
 
   /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
   /// order: exactly the results that pushing the bytes one at a time would give.
@@ -201,9 +263,19 @@ class basic_decoder {
       if (state_ != state::in_message && end - p >= 16 && is_whole_variable_transfer(p)) {
         // A whole direct variable transfer in the buffer: checked in place, as the bytes one by one would be.
         state_ = state::idle;
-        const decode_result result = check_variable(hops_of(*p), p + 1);
+        end_ = at_;
+        const decode_step checked = check_variable(p + 1);
+        decode_result r;
+        r.status = status_of(checked);
+        if (r.status == decode_status::frame_error) {
+          r.error = static_cast<frame_error>(checked >> 3);
+        } else {
+          r.msg.type = message_type::variable;
+          r.msg.hops = hops_of(*p);
+          read_variable_data(p + 1, r.msg.vr, r.msg.value);
+        }
         p += 16;
-        sink(result);
+        sink(r);
         continue;
       }
       if (state_ == state::in_message) {  // the common case: a run of message data, copied whole
@@ -212,22 +284,29 @@ class basic_decoder {
         p = run;
         if (p == end) break;
       }
-      const decode_result result = push_slow(*p++);
-      if (result.status != decode_status::incomplete) sink(result);
+      const decode_step done = step_slow(*p++);
+      if (done != 0) sink(result(done));
     }
   }
 
   /// A header that this decoder does not see (a node forwards it) ends any open message: `interrupted` if a
   /// message was open, else incomplete. Either way the decoder is then between messages.
-  [[nodiscard]] decode_result interrupt() noexcept { return close(frame_error::interrupted); }
+  [[nodiscard]] decode_result interrupt() noexcept { return result(close(frame_error::interrupted)); }
 
   /// The line has been idle (docs/protocol.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
   /// else incomplete. Either way the decoder is then between messages (a skipped A = 0 message is over too).
-  [[nodiscard]] decode_result line_idle() noexcept { return close(frame_error::idle_line); }
+  [[nodiscard]] decode_result line_idle() noexcept { return result(close(frame_error::idle_line)); }
+
+  /// `interrupt` or `line_idle` (`reason`) as a step: a frame error with that reason if a message was open.
+  decode_step close(frame_error reason) noexcept {
+    const bool was_open = state_ == state::in_message;
+    reset();
+    return was_open ? error(reason) : decode_step{0};
+  }
 
   /// Forgets any open message (e.g. after a link reset), silently.
   void reset() noexcept {
-    if (state_ == state::in_message && type_ == 1) store_.abort();
+    if (state_ == state::in_message && characters()) store_.abort();
     state_ = state::idle;
     end_ = at_;
   }
@@ -245,54 +324,53 @@ class basic_decoder {
  private:
   enum class state : std::uint8_t { idle, stray, in_message, skipping };
 
+  static constexpr decode_step error(frame_error reason) noexcept {
+    return static_cast<decode_step>(static_cast<unsigned>(decode_status::frame_error) |
+                                    (static_cast<unsigned>(reason) << 3));
+  }
+  static constexpr decode_step status(decode_status s) noexcept { return static_cast<decode_step>(s); }
+
+  bool characters() const noexcept { return type_of(header_) == 1; }
+  bool no_room() const noexcept { return (header_ & 0x80u) == 0; }
+
   // Data bytes of the open message so far (saturating one past its limit).
   std::size_t length() const noexcept { return static_cast<std::uint16_t>(base_ + at_); }
-  std::size_t limit() const noexcept { return type_ == 1 ? MaxCharacters : variable_data_length; }
   void set_length(std::size_t length) noexcept { base_ = static_cast<std::uint16_t>(length - at_); }
 
   // Everything but a data byte with room in the window.
-  TRIONET_NOINLINE decode_result push_slow(std::uint8_t byte) noexcept {
+  TRIONET_NOINLINE decode_step step_slow(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
-      switch (state_) {
-        case state::in_message:
-          store(&byte, 1);
-          return {};
-        case state::idle:
-          state_ = state::stray;
-          return error(frame_error::stray_data);
-        case state::stray:
-        case state::skipping:
-          return {};
+      if (state_ == state::in_message) {
+        store(&byte, 1);
+        return 0;
       }
-      return {};
+      if (state_ != state::idle) return 0;  // stray data reported once per run; a skipped message
+      state_ = state::stray;
+      return error(frame_error::stray_data);
     }
     end_ = at_;
+    const state was = state_;
     if (type_of(byte) == 0) {  // end of message
-      const state was = state_;
       state_ = state::idle;
       if (was == state::in_message) return finish(hops_of(byte));
-      if (was == state::skipping) return {};
-      return error(frame_error::stray_eom);
+      return was == state::skipping ? decode_step{0} : error(frame_error::stray_eom);
     }
-    const bool was_open = state_ == state::in_message;
-    if (was_open && type_ == 1) store_.abort();
+    if (was == state::in_message && characters()) store_.abort();
     const std::uint8_t hops = hops_of(byte);
     if (hops == 0) {
       state_ = state::skipping;
-      return error(was_open ? frame_error::interrupted : frame_error::zero_hops);
+      return error(was == state::in_message ? frame_error::interrupted : frame_error::zero_hops);
     }
     state_ = state::in_message;
-    hops_ = hops;
-    type_ = type_of(byte);
-    no_room_ = false;
-    if (type_ == 1) {
+    header_ = byte;  // bit 7 set: room so far
+    if (characters()) {
       open_window(store_.begin(), 0);
     } else {
       at_ = static_cast<std::uint16_t>(Store::payload_at);
       end_ = static_cast<std::uint16_t>(Store::payload_at + variable_data_length);
       set_length(0);
     }
-    return was_open ? error(frame_error::interrupted) : decode_result{};
+    return was == state::in_message ? error(frame_error::interrupted) : decode_step{0};
   }
 
   // Characters go to the store's windows (up to MaxCharacters), other payloads to its payload slots (up to
@@ -308,16 +386,17 @@ class basic_decoder {
       n -= k;
       if (n == 0) return;
       const std::size_t so_far = length();
-      if (type_ != 1 || no_room_ || so_far >= MaxCharacters) break;
+      if (!characters() || no_room() || so_far >= MaxCharacters) break;
       const store_window next = store_.next(so_far);
       if (next.first == next.end) {
-        no_room_ = true;
+        header_ = static_cast<std::uint8_t>(header_ & 0x7Fu);  // no room
         break;
       }
       open_window(next, so_far);
     }
+    const std::size_t limit = characters() ? MaxCharacters : variable_data_length;
     const std::size_t counted = length() + n;  // no more room: count the rest
-    set_length(counted > limit() ? limit() + 1 : counted);
+    set_length(counted > limit ? limit + 1 : counted);
   }
 
   // The store's window `w` takes the characters from the `so_far`th on.
@@ -328,68 +407,41 @@ class basic_decoder {
     set_length(so_far);
   }
 
-  // Ends any open message with `reason` (interrupted or idle line).
-  decode_result close(frame_error reason) noexcept {
-    const bool was_open = state_ == state::in_message;
-    state_ = state::idle;
-    end_ = at_;
-    if (!was_open) return {};
-    if (type_ == 1) store_.abort();
-    return error(reason);
-  }
-
-  // Out of line: one copy of the result set-up instead of one per error (smaller firmware).
-  TRIONET_NOINLINE static decode_result error(frame_error reason) noexcept {
-    decode_result result;
-    result.status = decode_status::frame_error;
-    result.error = reason;
-    return result;
-  }
-
-  decode_result finish(std::uint8_t end_hops) noexcept {
-    const decode_result result = check(end_hops);
-    if (type_ == 1) {
-      if (result.status == decode_status::ok) {
-        decode_result committed = result;
-        committed.msg.text = store_.commit(length());
-        return committed;
+  // The end of message of the open message: its checks, in the order of the file comment.
+  decode_step finish(std::uint8_t end_hops) noexcept {
+    const decode_step checked = check(end_hops);
+    if (characters()) {
+      if (checked == status(decode_status::ok)) {
+        (void)store_.commit(length());
+      } else {
+        store_.abort();
       }
-      store_.abort();
     }
-    return result;
+    return checked;
   }
 
-  decode_result check(std::uint8_t end_hops) const noexcept {
-    if (end_hops != hops_) return error(frame_error::eom_mismatch);
-    if (type_ > 4) return error(frame_error::unknown_type);
-    decode_result result;
-    result.status = decode_status::ok;
-    result.msg.type = static_cast<message_type>(type_);
-    result.msg.hops = hops_;
-    const std::size_t length_now = length();
+  decode_step check(std::uint8_t end_hops) const noexcept {
+    if (end_hops != hops_of(header_)) return error(frame_error::eom_mismatch);
+    const std::size_t n = length();
     const std::uint8_t* const payload = store_.slots() + Store::payload_at;
-    switch (result.msg.type) {
-      case message_type::character:
-        if (length_now == 0 || length_now > MaxCharacters) return error(frame_error::bad_length);
-        if (no_room_) result.status = decode_status::no_room;
-        return result;
-      case message_type::variable:
-        if (length_now != variable_data_length) return error(frame_error::bad_length);
-        return check_variable(hops_, payload);
-      case message_type::keypad_offset:
-        if (length_now != 1) return error(frame_error::bad_length);
-        if (!valid_hops(payload[0])) return error(frame_error::bad_field);
-        result.msg.offset = payload[0];
-        return result;
-      case message_type::keypad_mode:
-        if (length_now != 1) return error(frame_error::bad_length);
-        if (payload[0] != keypad_mode_key_on && payload[0] != keypad_mode_key_on_off) {
-          return error(frame_error::bad_field);
-        }
-        result.msg.mode = payload[0];
-        return result;
+    switch (type_of(header_)) {
+      case 1:
+        if (n == 0 || n > MaxCharacters) return error(frame_error::bad_length);
+        return status(no_room() ? decode_status::no_room : decode_status::ok);
+      case 2:
+        if (n != variable_data_length) return error(frame_error::bad_length);
+        return check_variable(payload);
+      case 3:
+        if (n != 1) return error(frame_error::bad_length);
+        return valid_hops(payload[0]) ? status(decode_status::ok) : error(frame_error::bad_field);
+      case 4:
+        if (n != 1) return error(frame_error::bad_length);
+        return payload[0] == keypad_mode_key_on || payload[0] == keypad_mode_key_on_off
+                   ? status(decode_status::ok)
+                   : error(frame_error::bad_field);
+      default:
+        return error(frame_error::unknown_type);
     }
-    return error(frame_error::unknown_type);
   }
 
   // Header A = hops (not 0), type 2; 14 data bytes; end of message with the same A.
@@ -401,28 +453,24 @@ class basic_decoder {
     return find_control(p + 1, p + 15) == p + 15;
   }
 
-  // The checks of a direct variable transfer whose 14 data bytes are well framed: X9, then the CRC.
-  static decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) noexcept {
-    decode_result result;
-    result.status = decode_status::ok;
-    result.msg.type = message_type::variable;
-    result.msg.hops = hops;
-    read_variable_data(data, result.msg.vr, result.msg.value);
+  // The checks of a direct variable transfer whose 14 data bytes are well framed: X9, then the CRC (a CRC
+  // error is a message that is otherwise well formed).
+  static decode_step check_variable(const std::uint8_t* data) noexcept {
+    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
     const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
     if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
-      result.status = decode_status::crc_error;  // if it is otherwise well formed
+      return status(decode_status::crc_error);
     }
-    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
-    return result;
+    return status(decode_status::ok);
   }
 
   std::uint16_t at_ = 0;   // the slot the next data byte goes to
   std::uint16_t end_ = 0;  // the fast path writes while at_ != end_ (equal outside a message)
   std::uint16_t base_ = 0;  // length() - at_ (mod 2^16)
   state state_ = state::idle;
-  std::uint8_t hops_ = 0;
-  std::uint8_t type_ = 0;
-  bool no_room_ = false;  // a character did not fit: the message is counted, not stored
+  // The open message's header: its A and type, and bit 7 cleared once a character did not fit (the message
+  // is then counted, not stored).
+  std::uint8_t header_ = 0;
   Store store_;
 };
 

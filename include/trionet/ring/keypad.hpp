@@ -141,6 +141,8 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
 
   // A message for this keypad (the core has counted errors already). In local mode the link forwards nothing
   // and the keypad never transmits: the transmit queue stays empty because keys are refused.
+  // Link side: a message for this keypad, still in the decoder.
+  void deliver(decode_step step) noexcept { deliver(this->decoder_.result(step)); }
   // Link side.
   void deliver(const decode_result& r) noexcept {
     if (r.status != decode_status::ok) return;  // no_room cannot happen: the store holds MaxCharacters

@@ -150,6 +150,8 @@ class receive_buffer {
     fifo_.publish(length);
     return {};  // the characters may wrap round the buffer: no contiguous view
   }
+  /// The committed characters are not one contiguous view.
+  static byte_view text(std::size_t) noexcept { return {}; }
   /// Link side: nothing was published, so there is nothing to take back.
   static void abort() noexcept {}
 
@@ -174,7 +176,7 @@ class receive_buffer {
 /// `MaxCharacters` is the character maximum of docs/protocol.md 1.4: the longest character transfer the node
 /// accepts, and the bound on messages it forwards. The receive buffer (`ReceiveCapacity`) may be smaller: a
 /// message that does not fit is dropped whole (NETSTAT bit 4).
-template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
+template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 16,
           std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false,
           std::size_t MaxCharacters = default_max_characters>
 class motion_coordinator final
@@ -348,19 +350,30 @@ class motion_coordinator final
     return send_status::bad_address;
   }
 
-  // Link side: a message for this node (the core has counted errors already).
-  void deliver(const decode_result& r) noexcept {
-    if (r.status == decode_status::no_room) {
+  // Link side: a message for this node (the core has counted errors already), still in the decoder.
+  void deliver(decode_step step) noexcept {
+    std::uint16_t vr = 0;
+    std::int64_t value = 0;
+    const message_type type = this->decoder_.type();
+    if (type == message_type::variable) read_variable_data(this->decoder_.payload(), vr, value);
+    delivered(status_of(step), type, vr, value);
+  }
+  // Link side: the same as a whole result (the bulk path).
+  void deliver(const decode_result& r) noexcept { delivered(r.status, r.msg.type, r.msg.vr, r.msg.value); }
+
+  // A message for this node: `ok` or `no_room`; `vr` and `value` for a variable transfer.
+  void delivered(decode_status status, message_type type, std::uint16_t vr, std::int64_t value) noexcept {
+    if (status == decode_status::no_room) {
       receive_overflows_.increment();
       this->link_.netstat().raise(netstat_rx_overflow);
       return;
     }
-    switch (r.msg.type) {
+    switch (type) {
       case message_type::character:
         character_messages_.increment();
         return;
       case message_type::variable:
-        switch (vr_->write(r.msg.vr, network_value::from_q32(r.msg.value))) {
+        switch (vr_->write(vr, network_value::from_q32(value))) {
           case vr_write_status::ok:
             variables_written_.increment();
             return;
@@ -382,10 +395,7 @@ class motion_coordinator final
     }
   }
 
-  vr_store* vr_;
-  const defkey_table* defkey_;
   // Written by the link side:
-  single_writer<std::uint32_t> receive_overflows_;
   single_writer<std::uint16_t> character_messages_;
   single_writer<std::uint16_t> variables_written_;
   single_writer<std::uint16_t> variables_refused_;
@@ -394,6 +404,9 @@ class motion_coordinator final
   single_writer<std::uint16_t> keypad_messages_ignored_;
   // Written by the program side:
   single_writer<std::uint16_t> sends_refused_;
+  vr_store* vr_;
+  const defkey_table* defkey_;
+  single_writer<std::uint32_t> receive_overflows_;  // link side
 };
 
 }  // namespace trionet::ring

@@ -41,8 +41,10 @@
 namespace trionet::ring {
 
 /// The ring-node core. `Node` (the derived node, CRTP) provides
-///   void deliver(const decode_result&)   // a valid message for it (`ok`), or one with no room (`no_room`)
-/// which runs on the link side. `Decoder` is a `basic_decoder`; `Link` a `detail::link`.
+///   void deliver(decode_step)            // a valid message for it (`ok`), or one with no room (`no_room`),
+///                                        // still in the decoder (the per-byte path)
+///   void deliver(const decode_result&)   // the same as a whole result (the bulk path)
+/// which run on the link side. `Decoder` is a `basic_decoder`; `Link` a `detail::link`.
 template <class Node, class Decoder, class Link>
 class node : public byte_port {
  public:
@@ -63,7 +65,7 @@ class node : public byte_port {
   /// messages may then be sent.
   void line_idle() noexcept final {
     (void)link_.line_idle();
-    handle(decoder_.line_idle());
+    handle(decoder_.close(frame_error::idle_line));
   }
   /// Link side: true while a message has begun on the receive side and not ended.
   [[nodiscard]] bool in_message() const noexcept final { return link_.passing_message() || decoder_.open(); }
@@ -123,7 +125,13 @@ class node : public byte_port {
   /// CRC errors so far (link side writes).
   std::uint32_t crc_errors() const noexcept { return crc_errors_.load(); }
 
-  Link link_;        ///< the link (forward buffer, transmit queue, NETSTAT, its counters)
+  Link link_;  ///< the link (forward buffer, transmit queue, NETSTAT, its counters)
+
+ private:
+  single_writer<std::uint32_t> frame_errors_;  // link side
+  single_writer<std::uint32_t> crc_errors_;    // link side
+
+ protected:
   Decoder decoder_;  ///< the decoder of messages for this node (link side)
 
  private:
@@ -131,14 +139,19 @@ class node : public byte_port {
   TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
     const byte_route r = link_.receive(byte);
     if (r == byte_route::local) {
-      handle(decoder_.push(byte));
+      handle(decoder_.step(byte));
       return;
     }
     if (classify(byte) == byte_class::header) passed_header();
   }
 
-  void handle(const decode_result& r) noexcept {
-    switch (r.status) {
+  // What a step of the decoder completed: errors are counted here, messages go to the node.
+  void handle(decode_step step) noexcept {
+    if (step == 0) return;
+    handle(status_of(step), step);
+  }
+  TRIONET_NOINLINE void handle(decode_status status, decode_step step) noexcept {
+    switch (status) {
       case decode_status::incomplete:
         return;
       case decode_status::frame_error:
@@ -151,8 +164,16 @@ class node : public byte_port {
         return;
       case decode_status::no_room:
       case decode_status::ok:
-        static_cast<Node*>(this)->deliver(r);
+        static_cast<Node*>(this)->deliver(step);
         return;
+    }
+  }
+  // The same for a result of the bulk decoder.
+  void handle_result(const decode_result& r) noexcept {
+    if (r.status == decode_status::ok || r.status == decode_status::no_room) {
+      static_cast<Node*>(this)->deliver(r);
+    } else {
+      handle(r.status, decode_step{0});
     }
   }
 
@@ -188,7 +209,7 @@ class node : public byte_port {
   }
 
   // A header through the node ended the message the node was receiving.
-  TRIONET_NOINLINE void end_local_message() noexcept { handle(decoder_.interrupt()); }
+  void end_local_message() noexcept { handle(decoder_.close(frame_error::interrupted)); }
 
   // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
   TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p, const std::uint8_t* end) noexcept {
@@ -199,12 +220,10 @@ class node : public byte_port {
     const std::uint8_t* const run = find_control(p, end);
     const auto n = static_cast<std::size_t>(run - p);
     (void)link_.receive_data(p, n);  // byte_route::local
-    decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle(result); });
+    decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle_result(result); });
     return run;
   }
 
-  single_writer<std::uint32_t> frame_errors_;  // link side
-  single_writer<std::uint32_t> crc_errors_;    // link side
 };
 
 }  // namespace trionet::ring
