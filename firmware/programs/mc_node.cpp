@@ -13,10 +13,22 @@
 // Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR and
 // main loop move bytes without the library (and do the same integer arithmetic on the position). The
 // difference between the two images is the MC node: link, decoder, encoder, receive buffer, VR writes.
+//
+// Built once more for the emulated Cortex-M3 with TRIONET_FIRMWARE_MEASURE=1 (scripts/firmware-instructions):
+// the same UART interrupt, and a quiet main loop that only reads the characters that arrive (GET#4) until a
+// keypad mode message to this node ends the run, then reports the node's counters through semihosting. The
+// script counts the Thumb instructions that the interrupt executes per byte.
 #include <cstddef>
 #include <cstdint>
 
 #include "board.hpp"
+
+#ifndef TRIONET_FIRMWARE_MEASURE
+#define TRIONET_FIRMWARE_MEASURE 0
+#endif
+#if TRIONET_FIRMWARE_MEASURE
+#include "semihosting.hpp"
+#endif
 
 #if !TRIONET_FIRMWARE_BASELINE
 #include "trionet/ring/motion_coordinator.hpp"
@@ -61,8 +73,11 @@ extern "C" void SysTick_Handler() {
   tick = true;
 }
 
+// One received byte and one transmitted byte per interrupt, as a UART at line rate gives them (FIFOs off:
+// one byte in the receive register, one place in the transmitter). A byte that is still waiting re-raises
+// the interrupt at once.
 extern "C" void UART0_IRQHandler() {
-  while (board::uart0::rx_ready()) {
+  if (board::uart0::rx_ready()) {
 #if TRIONET_FIRMWARE_BASELINE
     last_byte = board::uart0::read();
     bytes_waiting = bytes_waiting + 1;
@@ -70,21 +85,58 @@ extern "C" void UART0_IRQHandler() {
     node.receive(board::uart0::read());
 #endif
   }
-  std::uint8_t byte = 0;
-  while (board::uart0::tx_ready()) {
+  if (board::uart0::tx_ready()) {
+    std::uint8_t byte = 0;
 #if TRIONET_FIRMWARE_BASELINE
     const bool have = next_byte(byte);
 #else
     const bool have = node.transmit(byte);
 #endif
-    if (!have) {
-      board::uart0::enable_tx_interrupt(false);
-      break;
+    if (have) {
+      board::uart0::write(byte);
+    } else {
+      board::uart0::enable_tx_interrupt(false);  // nothing to send: the main loop switches it on again
     }
-    board::uart0::write(byte);
   }
 }
 
+#if TRIONET_FIRMWARE_MEASURE
+void report(const char* name, std::uint32_t value) {
+  char text[12];
+  char* p = text + sizeof text;
+  *--p = '\0';
+  do {
+    *--p = static_cast<char>('0' + value % 10);
+    value /= 10;
+  } while (value != 0);
+  semihosting::write(name);
+  semihosting::write(p);
+  semihosting::write("\n");
+}
+
+int main() {
+  board::uart0::start();
+  std::uint32_t characters = 0;
+  for (;;) {  // (no wfi: under qemu's instruction trace a core asleep may miss the serial input)
+    while (node.key(4)) {
+      static_cast<void>(node.get(4));
+      ++characters;
+    }
+    const ring::motion_coordinator_counters c = node.counters();
+    if (c.keypad_messages_ignored == 0) continue;  // the end of the run
+    const ring::link_counters links = node.forwarding_counters();
+    report("forwarded ", links.messages_forwarded);
+    report("character_messages ", c.character_messages);
+    report("characters_read ", characters);
+    report("variables_written ", c.variables_written);
+    report("frame_errors ", c.frame_errors);
+    report("crc_errors ", c.crc_errors);
+    report("receive_overflows ", c.receive_overflows);
+    report("forwards_failed ", links.forwards_failed());
+    semihosting::exit(0);
+  }
+}
+#else
 int main() {
   board::uart0::start();
   board::systick::start(core_clock_hz / ticks_per_second - 1);
@@ -110,3 +162,4 @@ int main() {
 #endif
   }
 }
+#endif

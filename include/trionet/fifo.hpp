@@ -80,6 +80,8 @@ class spsc_fifo {
 
   // ---- the consumer's side ----
 
+  /// Consumer: true when nothing published waits.
+  bool empty() const noexcept { return head_.load() == tail_.acquire(); }
   /// Consumer: bytes published and not yet taken.
   std::size_t available() const noexcept { return distance(head_.load(), tail_.acquire()); }
   /// Consumer: takes the oldest byte; false when there is none.

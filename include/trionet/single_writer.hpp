@@ -16,6 +16,8 @@
 #include <atomic>
 #include <type_traits>
 
+#include "trionet/attributes.hpp"
+
 namespace trionet {
 
 /// A value written by one side only and read by both (see the file comment). Copying copies the value, so a
@@ -39,17 +41,17 @@ class single_writer {
   ~single_writer() = default;
 
   /// The value now, for either side. Orders nothing else.
-  T load() const noexcept { return value_.load(std::memory_order_relaxed); }
+  TRIONET_ALWAYS_INLINE T load() const noexcept { return value_.load(std::memory_order_relaxed); }
   /// The value now, and everything the writer did before it `release`d this value is visible after.
   T acquire() const noexcept { return value_.load(std::memory_order_acquire); }
   /// Writer only: a new value (for counters and flags that order nothing else).
-  void store(T value) noexcept { value_.store(value, std::memory_order_relaxed); }
+  TRIONET_ALWAYS_INLINE void store(T value) noexcept { value_.store(value, std::memory_order_relaxed); }
   /// Writer only: a new value, after everything written before it (e.g. the bytes that an index publishes).
   void release(T value) noexcept { value_.store(value, std::memory_order_release); }
   /// Writer only: adds `n` (wrapping): a load and a store, not a read-modify-write instruction.
-  void add(T n) noexcept { store(static_cast<T>(load() + n)); }
+  TRIONET_ALWAYS_INLINE void add(T n) noexcept { store(static_cast<T>(load() + n)); }
   /// Writer only: adds one (wrapping).
-  void increment() noexcept { add(T{1}); }
+  TRIONET_ALWAYS_INLINE void increment() noexcept { add(T{1}); }
 
  private:
   std::atomic<T> value_;

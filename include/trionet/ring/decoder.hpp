@@ -212,9 +212,18 @@ class basic_decoder {
     return step_slow(byte);
   }
 
+  /// The fast path alone: stores a data byte of an open message if its window has room (true), else does
+  /// nothing (false: `step` it).
+  TRIONET_ALWAYS_INLINE bool take(std::uint8_t byte) noexcept {
+    if (at_ == end_) return false;
+    store_.slots()[at_] = byte;
+    ++at_;
+    return true;
+  }
+
   /// The whole result of the step just taken (the message, or why it was discarded); `step` must be the
   /// last step's value, and the decoder not fed since. A character message's text is in the store.
-  TRIONET_NOINLINE decode_result result(decode_step step) const noexcept {
+  decode_result result(decode_step step) const noexcept {
     decode_result r;
     r.status = status_of(step);
     switch (r.status) {
@@ -306,9 +315,11 @@ class basic_decoder {
 
   /// Forgets any open message (e.g. after a link reset), silently.
   void reset() noexcept {
-    if (state_ == state::in_message && characters()) store_.abort();
+    if (state_ == state::in_message) {
+      if (characters()) store_.abort();
+      end_ = at_;  // (outside a message end_ == at_ already)
+    }
     state_ = state::idle;
-    end_ = at_;
   }
 
   /// True while a message has begun and not ended.
@@ -340,8 +351,13 @@ class basic_decoder {
   // Everything but a data byte with room in the window.
   TRIONET_NOINLINE decode_step step_slow(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
-      if (state_ == state::in_message) {
-        store(&byte, 1);
+      if (state_ == state::in_message) {  // the window is used up
+        if (next_window()) {
+          store_.slots()[at_] = byte;
+          ++at_;
+        } else {
+          count(1);
+        }
         return 0;
       }
       if (state_ != state::idle) return 0;  // stray data reported once per run; a skipped message
@@ -385,17 +401,28 @@ class basic_decoder {
       data += k;
       n -= k;
       if (n == 0) return;
-      const std::size_t so_far = length();
-      if (!characters() || no_room() || so_far >= MaxCharacters) break;
-      const store_window next = store_.next(so_far);
-      if (next.first == next.end) {
-        header_ = static_cast<std::uint8_t>(header_ & 0x7Fu);  // no room
-        break;
-      }
-      open_window(next, so_far);
+      if (!next_window()) return count(n);
     }
+  }
+
+  // The window is used up (at_ == end_): opens the next one if the message may store more characters (true);
+  // notes it when the store has no more room.
+  bool next_window() noexcept {
+    const std::size_t so_far = length();
+    if (!characters() || no_room() || so_far >= MaxCharacters) return false;
+    const store_window next = store_.next(so_far);
+    if (next.first == next.end) {
+      header_ = static_cast<std::uint8_t>(header_ & 0x7Fu);  // no room
+      return false;
+    }
+    open_window(next, so_far);
+    return true;
+  }
+
+  // `n` more data bytes that are not stored: counted, saturating one past the longest legal length.
+  void count(std::size_t n) noexcept {
     const std::size_t limit = characters() ? MaxCharacters : variable_data_length;
-    const std::size_t counted = length() + n;  // no more room: count the rest
+    const std::size_t counted = length() + n;
     set_length(counted > limit ? limit + 1 : counted);
   }
 

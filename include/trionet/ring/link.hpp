@@ -143,7 +143,6 @@ class forward_buffer {
   /// Opens a grant of up to `most` bytes: as many as fit before the end of the buffer (none while parked or
   /// wrapped round). Returns the grant.
   std::size_t grant(std::size_t most) noexcept {
-    reset_if_empty();
     const std::size_t room = Capacity - w_;  // 0 while parked or wrapped round (w_ == Capacity)
     const std::size_t n = most < room ? most : room;
     lim_ = static_cast<index>(w_ + n);
@@ -151,32 +150,42 @@ class forward_buffer {
   }
 
   /// Appends a byte; false (nothing done) when full. Ends any grant.
-  [[nodiscard]] bool push(std::uint8_t byte) noexcept {
-    reset_if_empty();
-    if (w_ != Capacity) {
-      data_[w_] = byte;
-      lim_ = w_ = static_cast<index>(w_ + 1u);
-      return true;
+  [[nodiscard]] TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
+    if (w_ == Capacity) {
+      if (r_ != Capacity || o_ != 0 || parked_) {  // the wrapped-round part, up to the next byte to send
+        if (o_ == r_) return false;
+        data_[o_] = byte;
+        o_ = static_cast<index>(o_ + 1u);
+        return true;
+      }
+      r_ = w_ = 0;  // drained at the end: start again (not while parked: an own frame is going out)
     }
-    if (o_ == r_) return false;
-    data_[o_] = byte;
-    o_ = static_cast<index>(o_ + 1u);
+    data_[w_] = byte;
+    lim_ = w_ = static_cast<index>(w_ + 1u);
     return true;
   }
   /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. Ends any grant.
   std::size_t push(const std::uint8_t* bytes, std::size_t n) noexcept {
-    reset_if_empty();
+    std::size_t room = Capacity - w_;
+    if (TRIONET_LIKELY(n <= room)) {  // the common case: all of it before the end
+      trionet::detail::copy_bytes(data_ + w_, bytes, n);
+      lim_ = w_ = static_cast<index>(w_ + n);
+      return n;
+    }
     std::size_t done = 0;
-    if (w_ != Capacity) {
-      const std::size_t room = Capacity - w_;
+    if (room == 0 && r_ == Capacity && o_ == 0 && !parked_) {  // drained at the end: start again
+      r_ = w_ = 0;
+      room = Capacity;
+    }
+    if (room != 0) {
       done = n < room ? n : room;
       trionet::detail::copy_bytes(data_ + w_, bytes, done);
       lim_ = w_ = static_cast<index>(w_ + done);
       if (done == n || w_ != Capacity) return done;
     }
-    const std::size_t room = std::size_t{r_} - o_;
-    std::size_t more = n - done;
-    if (more > room) more = room;
+    std::size_t more = n - done;  // then the wrapped-round part, up to the next byte to send
+    const std::size_t wrapped_room = std::size_t{r_} - o_;
+    if (more > wrapped_room) more = wrapped_room;
     trionet::detail::copy_bytes(data_ + o_, bytes + done, more);
     o_ = static_cast<index>(o_ + more);
     return done + more;
@@ -203,7 +212,8 @@ class forward_buffer {
     o_ = 0;
     return true;
   }
-  /// Takes up to `n` bytes into `out` (both parts); returns how many. Takes nothing while parked.
+  /// Takes up to `n` bytes into `out` (both parts); returns how many. Takes nothing while parked. A buffer it
+  /// drains starts again at its beginning (with any grant).
   std::size_t pop(std::uint8_t* out, std::size_t n) noexcept {
     if (parked_) return 0;
     std::size_t done = 0;
@@ -213,7 +223,16 @@ class forward_buffer {
       trionet::detail::copy_bytes(out + done, data_ + r_, k);
       r_ = static_cast<index>(r_ + k);
       done += k;
-      if (done == n || !next_part()) return done;
+      if (r_ != w_) return done;
+      if (o_ == 0) {  // drained
+        lim_ = static_cast<index>(lim_ - w_);
+        r_ = w_ = 0;
+        return done;
+      }
+      if (done == n) return done;
+      r_ = 0;  // on to the wrapped-round part
+      lim_ = w_ = o_;
+      o_ = 0;
     }
   }
 
@@ -229,11 +248,6 @@ class forward_buffer {
   bool parked() const noexcept { return parked_; }
 
  private:
-  // An empty buffer starts again at its beginning (not while parked: the own frame is still going out).
-  void reset_if_empty() noexcept {
-    if (w_ == Capacity && r_ == Capacity && o_ == 0 && !parked_) r_ = w_ = lim_ = 0;
-  }
-
   // The indices first: near the node's start, one instruction away on a Cortex-M0+.
   index r_ = 0;    // the next byte to send
   index w_ = 0;    // the end of the first part, where `put_fast` appends
@@ -315,8 +329,11 @@ class link : private forwarding_switch<Switchable> {
     return is_data(byte) && forward_.put_fast(byte);
   }
 
+  /// Link side: true when `byte` is data for the node's own decoder (`receive` would route it `local`).
+  bool local_data(std::uint8_t byte) const noexcept { return is_data(byte) && receiving_ == receiving::local; }
+
   /// Link side: takes one received byte and says where it went.
-  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept {
+  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route receive(std::uint8_t byte) noexcept {
     settle();
     const byte_route r = route_byte(byte, forward_);
     regrant();
@@ -327,10 +344,8 @@ class link : private forwarding_switch<Switchable> {
   /// each, with one copy. Returns where they went; if a forwarded message is lost part-way, the result is
   /// `lost` (the byte it was lost on; the rest are dropped).
   [[nodiscard]] byte_route receive_data(const std::uint8_t* data, std::size_t n) noexcept {
-    settle();
-    const byte_route r = receive_data(data, n, forward_);
-    regrant();
-    return r;
+    settle();  // (no new grant after a bulk call: the next byte at a time renews it on the general path)
+    return receive_data(data, n, forward_);
   }
 
   /// Link side: the line has been idle (docs/protocol.md 1.10): a message being forwarded has lost the rest of
@@ -362,9 +377,7 @@ class link : private forwarding_switch<Switchable> {
   TRIONET_ALWAYS_INLINE [[nodiscard]] passing receive_passing(const std::uint8_t* first,
                                                               const std::uint8_t* last) noexcept {
     settle();
-    const passing p = receive_passing(first, last, forward_);
-    regrant();
-    return p;
+    return receive_passing(first, last, forward_);
   }
 
   /// The caller's transmit buffer standing in for the forward buffer while the forward buffer is empty and
@@ -408,7 +421,7 @@ class link : private forwarding_switch<Switchable> {
   /// forwarded goes out first). If so, forwarded bytes are written into `out` (`receive_passing` with the
   /// returned stand-in), and `transmit_after` then adds what `transmit` would give after them.
   [[nodiscard]] bool straight_through(std::size_t received, std::size_t capacity) const noexcept {
-    return forward_.empty() && !forward_.parked() && received <= ForwardCapacity && received <= capacity;
+    return received <= ForwardCapacity && received <= capacity && forward_.empty() && !forward_.parked();
   }
   /// The stand-in for the forward buffer that writes into `out`.
   [[nodiscard]] static straight_out straight_buffer(std::uint8_t* out) noexcept { return straight_out(out); }
@@ -417,16 +430,14 @@ class link : private forwarding_switch<Switchable> {
                                                               const std::uint8_t* last,
                                                               straight_out& into) noexcept {
     settle();
-    const passing p = receive_passing<straight_out>(first, last, into);
-    regrant();
-    return p;
+    return receive_passing<straight_out>(first, last, into);
   }
   /// Link side: the bytes `transmit(out, capacity)` gives after the forwarded bytes already in `straight`
   /// (= out[0..]).
   [[nodiscard]] std::size_t transmit_after(const straight_out& straight, std::uint8_t* out,
                                            std::size_t capacity) noexcept {
     const std::size_t n = straight.size();
-    if (queue_.available() == 0) return n;  // the forward buffer is empty too: nothing more
+    if (queue_.empty()) return n;  // the forward buffer is empty too: nothing more
     return n + transmit(out + n, capacity - n);
   }
 
@@ -439,11 +450,10 @@ class link : private forwarding_switch<Switchable> {
     std::size_t n = 0;
     while (n < capacity) {
       if (!forward_.parked()) {
-        const std::size_t k = forward_.pop(out + n, capacity - n);
-        if (k != 0) {
-          n += k;
-          continue;
-        }
+        n += forward_.pop(out + n, capacity - n);
+        if (n == capacity) break;
+        // The forward buffer is empty: nothing more unless an own message may start (as `transmit` finds).
+        if (forwarding_message() || queue_.empty()) break;
       } else {  // a run of own message data up to its next control byte
         const std::size_t room = capacity - n;
         const std::size_t contiguous = queue_.front_size();
@@ -475,8 +485,7 @@ class link : private forwarding_switch<Switchable> {
 
   /// Link side: true when `transmit` would give a byte now.
   bool transmit_pending() const noexcept {
-    if (forward_.parked() || !forward_.empty()) return true;
-    return !forwarding_message() && queue_.available() != 0;
+    return !forward_.empty() || !(forwarding_message() || queue_.empty());  // (parked: the queue has the rest)
   }
 
   // ---- program side ----
@@ -567,7 +576,9 @@ class link : private forwarding_switch<Switchable> {
 
   // The grant of the fast path goes back into the forwarding bound: `remaining_` is exact again.
   void settle() noexcept {
-    remaining_ = static_cast<std::uint16_t>(remaining_ + forward_.granted());
+    const std::size_t granted = forward_.granted();
+    if (granted == 0) return;
+    remaining_ = static_cast<std::uint16_t>(remaining_ + granted);
     forward_.revoke();
   }
   // A new grant for the fast path, while a forwarded message is open.
@@ -658,7 +669,7 @@ class link : private forwarding_switch<Switchable> {
   }
 
   template <class Into>
-  byte_route route_byte(std::uint8_t byte, Into& into) noexcept {
+  TRIONET_ALWAYS_INLINE byte_route route_byte(std::uint8_t byte, Into& into) noexcept {
     if (is_data(byte)) {
       if (forwarding_message()) {
         if (remaining_ == 0) return cut(into);

@@ -50,13 +50,20 @@ class node : public byte_port {
  public:
   // ---- the link side (byte_port): per byte, for a UART interrupt ----
 
-  /// Link side: a byte arrived. A data byte of a message passing through takes the fast path.
-  void receive(std::uint8_t byte) noexcept final {
+  /// Link side: a byte arrived. A data byte of a message passing through takes the fast path (inlined into
+  /// a caller that knows the node's type, e.g. the UART interrupt).
+  TRIONET_ALWAYS_INLINE void receive(std::uint8_t byte) noexcept final {
     if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
+#if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
+    if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
+#endif
     receive_slow(byte);
   }
-  /// Link side: the next byte to send, if there is one now.
-  [[nodiscard]] bool transmit(std::uint8_t& byte) noexcept final { return link_.transmit(byte); }
+  /// Link side: the next byte to send, if there is one now. The next forwarded byte takes the fast path
+  /// (inlined as `receive` is).
+  [[nodiscard]] TRIONET_ALWAYS_INLINE bool transmit(std::uint8_t& byte) noexcept final {
+    return link_.transmit(byte);
+  }
   /// Link side: true when `transmit` would give a byte now.
   [[nodiscard]] bool transmit_pending() const noexcept final { return link_.transmit_pending(); }
 
