@@ -13,3 +13,4 @@
 #include "trionet/ring/motion_coordinator.hpp"
 #include "trionet/ring/q32.hpp"
 #include "trionet/ring/simulator.hpp"
+#include "trionet/ring/variable_layout.hpp"

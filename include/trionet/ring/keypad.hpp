@@ -52,7 +52,8 @@ struct keypad_counters {
 };
 
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
-          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
+          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
 class keypad final : public byte_port {
  public:
   explicit keypad(const keypad_config& config = keypad_config{}) noexcept : config_(config) {
@@ -156,8 +157,8 @@ class keypad final : public byte_port {
   }
 
   keypad_config config_;
-  link<ForwardCapacity, TransmitCapacity, Crc> link_;
-  decoder<MaxCharacters, Crc> decoder_;
+  link<ForwardCapacity, TransmitCapacity, Crc, Layout> link_;
+  decoder<MaxCharacters, Crc, Layout> decoder_;
   keypad_display display_;
   keypad_counters counters_;
   std::uint8_t offset_ = 0;

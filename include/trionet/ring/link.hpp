@@ -48,8 +48,10 @@ struct link_counters {
   std::uint32_t messages_sent = 0;       ///< own messages whose end of message has gone out
 };
 
-/// `Crc` is the CRC policy the node's own direct variable transfers are sent with.
-template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, class Crc = crc16_ccitt_false>
+/// `Crc` and `Layout` are the CRC policy and field layout the node's own direct variable transfers are sent
+/// with (crc.hpp, variable_layout.hpp).
+template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
 class link {
   static_assert(ForwardCapacity < 65535, "the forward buffer holds up to 65534 bytes");
 
@@ -217,7 +219,7 @@ class link {
       (void)queue_.push(make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
-      const encode_result encoded = encode<Crc>(frame, m);
+      const encode_result encoded = encode<Crc, Layout>(frame, m);
       for (std::size_t i = 0; i < encoded.length; ++i) (void)queue_.push(frame[i]);
     }
     return {length, encode_error::none};

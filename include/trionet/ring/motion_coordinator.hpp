@@ -137,7 +137,8 @@ class receive_buffer {
 };
 
 template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
-          std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false>
+          std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
 class motion_coordinator final : public byte_port {
  public:
   /// `vr` receives direct variable transfers (through its write policy); `defkey` translates GET#3.
@@ -377,9 +378,9 @@ class motion_coordinator final : public byte_port {
     }
   }
 
-  using link_type = link<ForwardCapacity, TransmitCapacity, Crc>;
+  using link_type = link<ForwardCapacity, TransmitCapacity, Crc, Layout>;
   link_type link_;
-  basic_decoder<receive_buffer<ReceiveCapacity>, ReceiveCapacity, Crc> decoder_;
+  basic_decoder<receive_buffer<ReceiveCapacity>, ReceiveCapacity, Crc, Layout> decoder_;
   vr_store* vr_;
   const defkey_table* defkey_;
   motion_coordinator_counters counters_;
