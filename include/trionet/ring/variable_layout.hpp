@@ -71,18 +71,16 @@ struct variable_layout_parameters {
   }
 };
 
-namespace detail {
-// The 12 field bytes in the default order from bytes laid out as `from` says, or the reverse (the map swaps
-// the groups of a field whose order is not the default, so it is its own inverse).
-constexpr void reorder_fields(const std::uint8_t* in, std::uint8_t* out, group_order vr,
-                              group_order value) noexcept {
+/// The 12 field bytes of a frame laid out with `vr` and `value` orders, put in the default order (or back:
+/// the map swaps the groups of each field whose order is not the default, so it is its own inverse).
+constexpr void reorder_variable_fields(const std::uint8_t* in, std::uint8_t* out, group_order vr,
+                                       group_order value) noexcept {
   const bool swap_vr = vr == group_order::most_significant_first;
   const bool swap_value = value == group_order::most_significant_first;
   out[0] = in[swap_vr ? 1 : 0];
   out[1] = in[swap_vr ? 0 : 1];
   for (std::size_t k = 0; k < 10; ++k) out[2 + k] = in[2 + (swap_value ? 9 - k : k)];
 }
-}  // namespace detail
 
 /// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes in the default layout (no checks).
 inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
@@ -114,14 +112,14 @@ constexpr void write_variable_fields(std::uint8_t* out, std::uint16_t vr, std::i
     fields[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
     bits >>= 7;
   }
-  detail::reorder_fields(fields, out, vr_order, value_order);
+  reorder_variable_fields(fields, out, vr_order, value_order);
 }
 
 /// Reads the vr and value of 12 field bytes in the given layout (no checks).
 constexpr void read_variable_fields(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value,
                                     group_order vr_order, group_order value_order) noexcept {
   std::uint8_t fields[12] = {};
-  detail::reorder_fields(data, fields, vr_order, value_order);
+  reorder_variable_fields(data, fields, vr_order, value_order);
   vr = static_cast<std::uint16_t>(fields[0] | (fields[1] << 7));
   std::uint64_t bits = 0;
   for (std::size_t k = 10; k-- > 0;) bits = (bits << 7) | fields[2 + k];
@@ -172,7 +170,7 @@ struct variable_layout {
       (void)scratch;
       return data;
     } else {
-      detail::reorder_fields(data, scratch, VrOrder, ValueOrder);
+      reorder_variable_fields(data, scratch, VrOrder, ValueOrder);
       return scratch;
     }
   }
