@@ -209,7 +209,7 @@ TEST(LearnGeniusCrc, EveryCatalogueCrcAndDrawnOnesAreLearnedBack) {
     EXPECT_EQ(o.learned.rejected, 0u);
     EXPECT_GT(o.validation_samples, 50u);
     EXPECT_EQ(o.validated, o.validation_samples) << name;
-    EXPECT_GE(o.samples_needed, 3u) << name;  // fewer cannot fix a polynomial and the reflections
+    EXPECT_GE(o.samples_needed, 2u) << name;  // one sample fits every polynomial, reflection and init
     EXPECT_LE(o.samples_needed, 8u) << name;
     ++needed[o.samples_needed];
   };

@@ -184,7 +184,7 @@ TEST(LearnRingCrc, EveryCatalogueCrcInBothGroupOrdersFromAtMostEightFrames) {
         EXPECT_TRUE(same_on_twelve_bytes(parameters_of(*other), hidden, rng)) << e.name << " / " << best.name;
       }
       EXPECT_EQ(o.validation_verified, 100u) << e.name;
-      ASSERT_GE(o.frames_needed, 3u) << e.name;  // fewer cannot determine a 16-bit polynomial
+      ASSERT_GE(o.frames_needed, 2u) << e.name;  // one frame fits every polynomial (OneFrameFits... below)
       ASSERT_LE(o.frames_needed, 8u) << e.name;
       ++needed[o.frames_needed];
     }
@@ -209,7 +209,7 @@ TEST(LearnRingCrc, RandomParametersIncludingMixedReflections) {
     ASSERT_EQ(o.learned.status, learn::crc_learn_status::ok) << round;
     EXPECT_TRUE(same_on_twelve_bytes(o.learned.classes[0].members[0].parameters, hidden, rng)) << round;
     EXPECT_EQ(o.validation_verified, 100u) << round;
-    EXPECT_GE(o.frames_needed, 3u) << round;
+    EXPECT_GE(o.frames_needed, 2u) << round;
     EXPECT_LE(o.frames_needed, 8u) << round;
     EXPECT_EQ(o.learned.rejected, 0u);
   }
