@@ -85,7 +85,7 @@ std::size_t verified_by_decoder(const std::vector<learn::variable_frame>& frames
 }
 
 // Learns the hidden CRC from `learn_count` frames, then decodes a separate validation capture with it.
-// Returns the smallest number of leading frames that gives exactly one class (0 if none up to learn_count).
+// Also the smallest number of leading frames that gives exactly one class (0 if none up to learn_count).
 struct outcome {
   learn::crc_learn_result learned;
   std::size_t frames_needed = 0;
@@ -98,7 +98,8 @@ outcome learn_and_validate(const ring::crc16_parameters& hidden,
   outcome o;
   const auto sent = random_sent(rng, learn_count);
   const auto frames = learn::encode_capture(sent, hidden, layout);
-  for (std::size_t k = 1; k <= learn_count && o.frames_needed == 0; ++k) {
+  // From two frames: one never suffices (OneFrameFitsEveryPolynomialAndReflection), and is the slow call.
+  for (std::size_t k = 2; k <= learn_count && o.frames_needed == 0; ++k) {
     const std::vector<learn::variable_frame> first(frames.begin(), frames.begin() + static_cast<long>(k));
     if (learn::learn_ring_crc(first, options).status == learn::crc_learn_status::ok) o.frames_needed = k;
   }
@@ -184,7 +185,7 @@ TEST(LearnRingCrc, EveryCatalogueCrcInBothGroupOrdersFromAtMostEightFrames) {
         EXPECT_TRUE(same_on_twelve_bytes(parameters_of(*other), hidden, rng)) << e.name << " / " << best.name;
       }
       EXPECT_EQ(o.validation_verified, 100u) << e.name;
-      ASSERT_GE(o.frames_needed, 2u) << e.name;  // one frame fits every polynomial (OneFrameFits... below)
+      ASSERT_NE(o.frames_needed, 0u) << e.name;  // 0: not within the capture
       ASSERT_LE(o.frames_needed, 8u) << e.name;
       ++needed[o.frames_needed];
     }
@@ -209,7 +210,7 @@ TEST(LearnRingCrc, RandomParametersIncludingMixedReflections) {
     ASSERT_EQ(o.learned.status, learn::crc_learn_status::ok) << round;
     EXPECT_TRUE(same_on_twelve_bytes(o.learned.classes[0].members[0].parameters, hidden, rng)) << round;
     EXPECT_EQ(o.validation_verified, 100u) << round;
-    EXPECT_GE(o.frames_needed, 2u) << round;
+    EXPECT_NE(o.frames_needed, 0u) << round;
     EXPECT_LE(o.frames_needed, 8u) << round;
     EXPECT_EQ(o.learned.rejected, 0u);
   }

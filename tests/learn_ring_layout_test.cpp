@@ -22,7 +22,7 @@ std::vector<learn::sent_variable> random_sent(std::mt19937_64& rng, std::size_t 
   for (std::size_t i = 0; i < count; ++i) {
     // Values a program sends: integers and fractions in the Q32.32 range.
     const auto value = static_cast<std::int64_t>(rng() % 2000000) - 1000000;
-    sent.push_back({static_cast<std::uint16_t>(rng() % 16384), value << (rng() % 32)});
+    sent.push_back({static_cast<std::uint16_t>(rng() % 16384), value * (std::int64_t{1} << (rng() % 32))});
   }
   return sent;
 }

@@ -18,7 +18,8 @@ constexpr unsigned mask = (1u << width) - 1;
 unsigned feed(unsigned reg, unsigned polynomial, bool reflect_in, const std::vector<std::uint8_t>& data) {
   for (std::uint8_t byte : data) {
     for (unsigned k = 0; k < 8; ++k) {
-      const unsigned bit = reflect_in ? (byte >> k) & 1u : (byte >> (7 - k)) & 1u;
+      const unsigned value = byte;
+      const unsigned bit = reflect_in ? (value >> k) & 1u : (value >> (7 - k)) & 1u;
       const unsigned top = ((reg & top_bit) != 0 ? 1u : 0u) ^ bit;
       reg = (reg << 1) & mask;
       if (top != 0) reg ^= polynomial;

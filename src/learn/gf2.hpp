@@ -10,14 +10,15 @@ namespace trionet::learn {
 /// The 8 bits of `value` in reverse order.
 constexpr std::uint8_t reflect_bits8(std::uint8_t value) noexcept {
   unsigned out = 0;
-  for (unsigned bit = 0; bit < 8; ++bit) out |= ((value >> bit) & 1u) << (7 - bit);
+  for (unsigned bit = 0; bit < 8; ++bit) out |= ((static_cast<unsigned>(value) >> bit) & 1u) << (7 - bit);
   return static_cast<std::uint8_t>(out);
 }
 
 /// The low `width` bits of `value` in reverse order.
 constexpr std::uint16_t reflect_bits(std::uint16_t value, unsigned width) noexcept {
   unsigned out = 0;
-  for (unsigned bit = 0; bit < width; ++bit) out |= ((value >> bit) & 1u) << (width - 1 - bit);
+  for (unsigned bit = 0; bit < width; ++bit)
+    out |= ((static_cast<unsigned>(value) >> bit) & 1u) << (width - 1 - bit);
   return static_cast<std::uint16_t>(out);
 }
 
@@ -39,7 +40,7 @@ class gf2_solver {
   /// Adds a vector with its label.
   void add(std::uint16_t vector, std::uint16_t label) noexcept {
     for (unsigned bit = Bits; bit-- > 0;) {
-      if (((vector >> bit) & 1u) == 0) continue;
+      if (((static_cast<unsigned>(vector) >> bit) & 1u) == 0) continue;
       if (!used_[bit]) {
         used_[bit] = true;
         vectors_[bit] = vector;
@@ -54,7 +55,7 @@ class gf2_solver {
   bool solve(std::uint16_t target, std::uint16_t& label) const noexcept {
     label = 0;
     for (unsigned bit = Bits; bit-- > 0;) {
-      if (((target >> bit) & 1u) == 0) continue;
+      if (((static_cast<unsigned>(target) >> bit) & 1u) == 0) continue;
       if (!used_[bit]) return false;
       target = static_cast<std::uint16_t>(target ^ vectors_[bit]);
       label = static_cast<std::uint16_t>(label ^ labels_[bit]);

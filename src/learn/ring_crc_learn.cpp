@@ -139,7 +139,7 @@ sliced sliced_linear_part(unsigned base, const message& m) {
   sliced reg{};
   for (std::uint8_t byte : m) {
     for (int bit = 7; bit >= 0; --bit) {
-      const std::uint64_t top = reg[15] ^ (((byte >> bit) & 1u) != 0 ? ~0ull : 0ull);
+      const std::uint64_t top = reg[15] ^ (((static_cast<unsigned>(byte) >> bit) & 1u) != 0 ? ~0ull : 0ull);
       for (unsigned j = 15; j > 0; --j) reg[j] = reg[j - 1] ^ (top & polynomial[j]);
       reg[0] = top & polynomial[0];
     }
@@ -152,8 +152,8 @@ sliced sliced_linear_part(unsigned base, const message& m) {
 std::array<std::uint64_t, 2> sliced_matches(const sliced& reg, std::uint16_t want) {
   std::uint64_t wrong[2] = {0, 0};
   for (unsigned j = 0; j < 16; ++j) {
-    if (((wire_mask >> j) & 1u) == 0) continue;
-    const std::uint64_t bit = ((want >> j) & 1u) != 0 ? ~0ull : 0ull;
+    if (((static_cast<unsigned>(wire_mask) >> j) & 1u) == 0) continue;
+    const std::uint64_t bit = ((static_cast<unsigned>(want) >> j) & 1u) != 0 ? ~0ull : 0ull;
     wrong[0] |= reg[j] ^ bit;       // output bit j is register bit j
     wrong[1] |= reg[15 - j] ^ bit;  // reflected: output bit j is register bit 15 - j
   }

@@ -22,7 +22,8 @@ namespace detail {
 constexpr std::uint8_t reflect6(std::uint8_t value) noexcept {
   std::uint8_t out = 0;
   for (unsigned i = 0; i < 6; ++i) {
-    if (((static_cast<unsigned>(value) >> i) & 1u) != 0) out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
+    if (((static_cast<unsigned>(value) >> i) & 1u) != 0)
+      out = static_cast<std::uint8_t>(out | (1u << (5 - i)));
   }
   return out;
 }
@@ -137,7 +138,8 @@ class crc6_runtime {
     unsigned reg = parameters_.initial;
     for (std::uint8_t byte : bytes) {
       for (unsigned k = 0; k < 8; ++k) {
-        const unsigned bit = parameters_.reflect_in ? (byte >> k) & 1u : (byte >> (7 - k)) & 1u;
+        const unsigned value = byte;
+        const unsigned bit = parameters_.reflect_in ? (value >> k) & 1u : (value >> (7 - k)) & 1u;
         const unsigned top = ((reg >> 5) & 1u) ^ bit;
         reg = (reg << 1) & 0x3fu;
         if (top != 0) reg ^= parameters_.polynomial;

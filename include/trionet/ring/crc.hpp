@@ -46,7 +46,8 @@ constexpr const char* to_string(crc_table table) noexcept {
 constexpr std::uint16_t reflect16(std::uint16_t value) noexcept {
   std::uint16_t out = 0;
   for (unsigned bit = 0; bit < 16; ++bit) {
-    if (((value >> bit) & 1u) != 0) out = static_cast<std::uint16_t>(out | (1u << (15 - bit)));
+    if (((static_cast<unsigned>(value) >> bit) & 1u) != 0)
+      out = static_cast<std::uint16_t>(out | (1u << (15 - bit)));
   }
   return out;
 }
