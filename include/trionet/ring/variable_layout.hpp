@@ -82,7 +82,7 @@ constexpr void reorder_variable_fields(const std::uint8_t* in, std::uint8_t* out
   for (std::size_t k = 0; k < 10; ++k) out[2 + k] = in[2 + (swap_value ? 9 - k : k)];
 }
 
-/// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes in the default layout (no checks).
+/// Reads the vr and Q32.32 value of the field bytes in the default layout (no checks).
 inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
   vr = static_cast<std::uint16_t>(data[0] | (data[1] << 7));
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && UINTPTR_MAX > 0xFFFFFFFFu
@@ -101,17 +101,24 @@ inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std:
 #endif
 }
 
+namespace detail {
+// The 12 field bytes in the default layout.
+constexpr void write_default_fields(std::uint8_t* out, std::uint16_t vr, std::int64_t value) noexcept {
+  out[0] = static_cast<std::uint8_t>(vr & 0x7F);
+  out[1] = static_cast<std::uint8_t>((vr >> 7) & 0x7F);
+  std::uint64_t bits = static_cast<std::uint64_t>(value);
+  for (std::size_t k = 0; k < 10; ++k) {
+    out[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
+    bits >>= 7;
+  }
+}
+}  // namespace detail
+
 /// The 12 field bytes V0 V1 X0..X9 of `vr` (0..16383) and the Q32.32 `value`, in the given layout.
 constexpr void write_variable_fields(std::uint8_t* out, std::uint16_t vr, std::int64_t value,
                                      group_order vr_order, group_order value_order) noexcept {
   std::uint8_t fields[12] = {};
-  fields[0] = static_cast<std::uint8_t>(vr & 0x7F);
-  fields[1] = static_cast<std::uint8_t>((vr >> 7) & 0x7F);
-  std::uint64_t bits = static_cast<std::uint64_t>(value);
-  for (std::size_t k = 0; k < 10; ++k) {
-    fields[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
-    bits >>= 7;
-  }
+  detail::write_default_fields(fields, vr, value);
   reorder_variable_fields(fields, out, vr_order, value_order);
 }
 
@@ -145,13 +152,7 @@ struct variable_layout {
   /// The 12 field bytes V0 V1 X0..X9 of `vr` (0..16383) and `value`.
   static constexpr void write(std::uint8_t* out, std::uint16_t vr, std::int64_t value) noexcept {
     if constexpr (default_order) {
-      out[0] = static_cast<std::uint8_t>(vr & 0x7F);
-      out[1] = static_cast<std::uint8_t>((vr >> 7) & 0x7F);
-      std::uint64_t bits = static_cast<std::uint64_t>(value);
-      for (std::size_t k = 0; k < 10; ++k) {
-        out[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
-        bits >>= 7;
-      }
+      detail::write_default_fields(out, vr, value);
     } else {
       write_variable_fields(out, vr, value, VrOrder, ValueOrder);
     }
