@@ -30,6 +30,7 @@
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/variable_layout.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::ring {
@@ -108,25 +109,6 @@ struct [[nodiscard]] decode_result {
   constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 
-/// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes (no checks).
-inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
-  vr = static_cast<std::uint16_t>(data[0] | (data[1] << 7));
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && UINTPTR_MAX > 0xFFFFFFFFu
-  // On 64-bit cores: X0..X7 as one little-endian word, their 7-bit groups squeezed together in three steps.
-  std::uint64_t w = 0;
-  std::memcpy(&w, data + 2, sizeof w);
-  w = (w & 0x007F007F007F007Full) | ((w & 0x7F007F007F007F00ull) >> 1);
-  w = (w & 0x00003FFF00003FFFull) | ((w & 0x3FFF00003FFF0000ull) >> 2);
-  w = (w & 0x000000000FFFFFFFull) | ((w & 0x0FFFFFFF00000000ull) >> 4);
-  value = static_cast<std::int64_t>(w | static_cast<std::uint64_t>(data[10]) << 56 |
-                                    static_cast<std::uint64_t>(data[11]) << 63);
-#else
-  std::uint64_t bits = 0;  // a loop: the smallest code on a 32-bit core
-  for (std::size_t k = 10; k-- > 0;) bits = (bits << 7) | data[2 + k];
-  value = static_cast<std::int64_t>(bits);
-#endif
-}
-
 /// The default character store: a plain array of N characters, so a decoded message's `text` is contiguous.
 ///
 /// A character store receives the characters of a character transfer while it arrives and keeps them only
@@ -161,13 +143,20 @@ class character_buffer {
 };
 
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
-template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class basic_decoder {
+/// `Crc` and `Layout` are the direct variable transfer's CRC (crc.hpp) and field layout
+/// (variable_layout.hpp). A static CRC policy costs no RAM; a CRC chosen at run time (`crc16_runtime`) is
+/// passed to the constructor and held by the decoder.
+template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
+class basic_decoder : private detail::crc_holder<Crc> {
   static_assert(MaxCharacters >= 1 && MaxCharacters < 65535,
                 "a character transfer holds 1..65534 characters");
 
  public:
   static constexpr std::size_t max_characters = MaxCharacters;
+
+  constexpr basic_decoder() = default;
+  constexpr explicit basic_decoder(const Crc& crc) noexcept : detail::crc_holder<Crc>(crc) {}
 
   /// Feeds one byte.
   [[nodiscard]] decode_result push(std::uint8_t byte) noexcept {
@@ -359,18 +348,20 @@ class basic_decoder {
     return find_control(p + 1, p + 15) == p + 15;
   }
 
-  // The checks of a direct variable transfer whose 14 data bytes are well framed: X9, then the CRC.
-  static decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) noexcept {
+  // The checks of a direct variable transfer whose 14 data bytes are well framed: the value's top group (X9 by
+  // default) must have bits 6..1 zero whatever the CRC; a CRC error is an otherwise well-formed message.
+  decode_result check_variable(std::uint8_t hops, const std::uint8_t* data) const noexcept {
     decode_result result;
     result.status = decode_status::ok;
     result.msg.type = message_type::variable;
     result.msg.hops = hops;
-    read_variable_data(data, result.msg.vr, result.msg.value);
-    const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
+    Layout::read(data, result.msg.vr, result.msg.value);
+    std::uint8_t scratch[variable_crc_length];
+    const std::uint16_t crc = crc_of<variable_crc_length>(this->crc(), Layout::crc_bytes(data, scratch));
     if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
       result.status = decode_status::crc_error;  // if it is otherwise well formed
     }
-    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
+    if ((data[Layout::top_group] & 0x7E) != 0) return error(frame_error::bad_field);
     return result;
   }
 
@@ -384,7 +375,8 @@ class basic_decoder {
 };
 
 /// The streaming decoder with its own character buffer of MaxCharacters.
-template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-using decoder = basic_decoder<character_buffer<MaxCharacters>, MaxCharacters, Crc>;
+template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
+using decoder = basic_decoder<character_buffer<MaxCharacters>, MaxCharacters, Crc, Layout>;
 
 }  // namespace trionet::ring

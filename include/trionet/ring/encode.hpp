@@ -9,6 +9,7 @@
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/variable_layout.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::ring {
@@ -79,24 +80,22 @@ constexpr encode_status check(const message& m) noexcept {
   return encode_status::unknown_type;
 }
 
-/// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1). Precondition: vr <= 16383.
-template <class Crc = crc16_ccitt_false>
-constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int64_t value) noexcept {
-  out[0] = static_cast<std::uint8_t>(vr & 0x7F);
-  out[1] = static_cast<std::uint8_t>((vr >> 7) & 0x7F);
-  std::uint64_t bits = static_cast<std::uint64_t>(value);
-  for (std::size_t k = 0; k < 10; ++k) {
-    out[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
-    bits >>= 7;
-  }
-  const std::uint16_t crc = crc_of<Crc, variable_crc_length>(out);
-  out[12] = static_cast<std::uint8_t>(crc & 0x7F);
-  out[13] = static_cast<std::uint8_t>((crc >> 8) & 0x7F);
+/// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1) in the layout `Layout`, with
+/// the CRC `crc` (a static policy by default; pass a `crc16_runtime` for one chosen at run time).
+/// Precondition: vr <= 16383.
+template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
+constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int64_t value,
+                                   const Crc& crc = Crc{}) noexcept {
+  Layout::write(out, vr, value);
+  std::uint8_t scratch[variable_crc_length] = {};
+  const std::uint16_t sum = crc_of<variable_crc_length>(crc, Layout::crc_bytes(out, scratch));
+  out[12] = static_cast<std::uint8_t>(sum & 0x7F);
+  out[13] = static_cast<std::uint8_t>((sum >> 8) & 0x7F);
 }
 
 /// Encodes any message. On success returns its frame length; on error writes nothing.
-template <class Crc = crc16_ccitt_false>
-constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
+template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
+constexpr encode_result encode(byte_buffer out, const message& m, const Crc& crc = Crc{}) noexcept {
   const encode_status status = check(m);
   if (status != encode_status::ok) return {status, 0};
   const std::size_t length = frame_length(m);
@@ -108,7 +107,7 @@ constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
       for (std::uint8_t c : m.text) *p++ = c;
       break;
     case message_type::variable:
-      write_variable_data<Crc>(p, m.vr, m.value);
+      write_variable_data<Crc, Layout>(p, m.vr, m.value, crc);
       p += variable_data_length;
       break;
     case message_type::keypad_offset:
@@ -132,10 +131,10 @@ inline encode_result encode_characters(byte_buffer out, std::uint8_t hops, const
 }
 
 /// SEND(n,1,vr,value): a direct variable transfer of a Q32.32 value (see trionet/q32.hpp).
-template <class Crc = crc16_ccitt_false>
+template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
 constexpr encode_result encode_variable(byte_buffer out, std::uint8_t hops, std::uint16_t vr,
-                                        std::int64_t value) noexcept {
-  return encode<Crc>(out, message::variable(hops, vr, value));
+                                        std::int64_t value, const Crc& crc = Crc{}) noexcept {
+  return encode<Crc, Layout>(out, message::variable(hops, vr, value), crc);
 }
 
 /// SEND(n,2,offset): a keypad offset; `offset` is a hop count 1..15 (BASIC offset - 9).

@@ -68,12 +68,14 @@ struct keypad_counters {
 };
 
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
-          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>, keypad_counters,
-                                 decoder<MaxCharacters, Crc>,
-                                 detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
-  using core = node<keypad, keypad_counters, decoder<MaxCharacters, Crc>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
+          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
+class keypad final
+    : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>, keypad_counters,
+                  decoder<MaxCharacters, Crc, Layout>,
+                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>> {
+  using core = node<keypad, keypad_counters, decoder<MaxCharacters, Crc, Layout>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>>;
   friend core;
 
  public:

@@ -122,4 +122,9 @@ constexpr std::uint8_t default_key_off_code(std::uint8_t on) noexcept {
   return on + 64 < 128 ? static_cast<std::uint8_t>(on + 64) : on;
 }
 
+/// Another key OFF rule (a profile's choice): the key OFF character is the key ON character.
+constexpr std::uint8_t same_key_off_code(std::uint8_t on) noexcept {
+  return on;
+}
+
 }  // namespace trionet::ring

@@ -40,6 +40,7 @@
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/encode.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/variable_layout.hpp"
 
 namespace trionet::ring {
 
@@ -84,10 +85,11 @@ struct link_counters {
 
 namespace detail {
 
-/// `Crc` is the CRC policy the node's own direct variable transfers are sent with; `MaxCharacters` the
-/// character maximum of docs/protocol.md 1.4 (the forwarding bound of type 1 and the reserved types).
+/// `Crc` and `Layout` are the CRC policy and field layout the node's own direct variable transfers are sent
+/// with (crc.hpp, variable_layout.hpp); `MaxCharacters` the character maximum of docs/protocol.md 1.4 (the
+/// forwarding bound of type 1 and the reserved types).
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
-          class Crc = crc16_ccitt_false>
+          class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
 class link {
   static_assert(ForwardCapacity >= framing_length + variable_data_length && ForwardCapacity < 65535,
                 "the forward buffer must hold a whole direct variable transfer (16 bytes): while a node sends "
@@ -303,7 +305,7 @@ class link {
       (void)queue_.push(make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
-      const encode_result encoded = encode<Crc>(frame, m);
+      const encode_result encoded = encode<Crc, Layout>(frame, m);
       (void)queue_.push(frame, encoded.length);
     }
     return {encode_status::ok, length};

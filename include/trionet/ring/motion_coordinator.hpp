@@ -160,18 +160,19 @@ class receive_buffer {
 
 /// `MaxCharacters` is the character maximum of docs/protocol.md 1.4: the longest character transfer the node
 /// accepts, and the bound on messages it forwards. The receive buffer (`ReceiveCapacity`) may be smaller: a
-/// message that does not fit is dropped whole (NETSTAT bit 4).
+/// message that does not fit is dropped whole (NETSTAT bit 4). `Crc` and `Layout` are the direct variable
+/// transfer's CRC policy and field layout (crc.hpp, variable_layout.hpp).
 template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 32,
           std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false,
-          std::size_t MaxCharacters = default_max_characters>
+          std::size_t MaxCharacters = default_max_characters, class Layout = default_variable_layout>
 class motion_coordinator final
-    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters>,
+    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters, Layout>,
                   motion_coordinator_counters,
-                  basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
-                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
+                  basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
+                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>> {
   using core = node<motion_coordinator, motion_coordinator_counters,
-                    basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
+                    basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>>;
   friend core;
 
  public:
