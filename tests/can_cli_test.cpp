@@ -170,3 +170,55 @@ TEST(CanCli, HelpGoesToStdout) {
 }
 
 }  // namespace
+
+#include <fstream>
+
+#include "trionet/host/capture.hpp"
+#include "trionet/host/pcapng.hpp"
+
+namespace {
+
+TEST(CanCli, DecodeACaptureRecordByRecord) {
+  using namespace trionet::host;
+  const std::string capture = "/tmp/trionet-can-" + std::to_string(::getpid()) + ".pcapng";
+  {
+    std::ofstream file(capture, std::ios::binary);
+    pcapng_writer writer(file);
+    const std::uint32_t bus = writer.add_interface("can0", capture_network::can).id;
+    trionet::can::frame vr;
+    vr.id = 0x028;
+    vr.dlc = 8;
+    const std::uint8_t data[8] = {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A};
+    for (int i = 0; i < 8; ++i) vr.data[i] = data[i];
+    trionet::can::frame remote;
+    remote.id = 0x123 | trionet::can::frame::remote_flag;
+    for (const trionet::can::frame& f : {vr, remote}) {
+      const auto record = socketcan_record(f);
+      ASSERT_EQ(writer.write(bus, 1700000000123456789ull, trionet::byte_view(record.data(), record.size())),
+                pcapng_write_status::ok);
+    }
+  }
+  const auto r = run_cli("can decode --pcap " + capture);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "{\"event\":\"vr\",\"record\":1,\"interface_id\":0,\"interface\":\"can0\",\"time\":\"1700000000.123456789\","
+            "\"id\":40,\"from\":1,\"to\":4,\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,\"value\":2.345}\n"
+            "{\"event\":\"frame\",\"record\":2,\"interface_id\":0,\"interface\":\"can0\",\"time\":\"1700000000.123456789\","
+            "\"kind\":\"remote\",\"id\":291,\"length\":0}\n");
+  const auto fields = run_cli("can decode --pcap " + capture + " --json");
+  EXPECT_NE(fields.out.find("\"trionet_can.value\":2.3450000000000002"), std::string::npos) << fields.out;
+  const auto ring = run_cli("ring decode --pcap " + capture);
+  EXPECT_EQ(ring.out.find("{\"event\":\"other_network\",\"record\":1"), 0u) << ring.out;
+  std::remove(capture.c_str());
+}
+
+TEST(CanCli, HelpOnEveryCommand) {
+  for (const char* command : {"can encode --help", "can decode -h", "can table --help", "can --help"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_EQ(r.out.rfind("usage: trionet can", 0), 0u) << command << ": " << r.out;
+    EXPECT_EQ(r.err, "") << command;
+  }
+}
+
+}  // namespace

@@ -219,3 +219,32 @@ TEST(GeniusCli, BadArgumentsExit2WithAMessage) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(GeniusCli, WritePcapThenReadItBack) {
+  const std::string capture = "/tmp/trionet-genius-" + std::to_string(::getpid()) + ".pcapng";
+  const auto written = run_cli("genius decode --write-pcap " + capture + " --rate 76.8",
+                               "c:04 07 11 22 c:89 aa bb c:ce 33 c:50 c:23 5a c:75 c:23 5a");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const auto read = run_cli("genius decode --pcap " + capture);
+  EXPECT_EQ(read.exit_code, 0) << read.err;
+  EXPECT_EQ(read.out,
+            "transmission from SBA 4, directed to SBA 7 (record 1 (genius 76.8) at 0.000000000, character 1)\n"
+            "  data 11 22\n"
+            "  block to SBA 9: aa bb\n"
+            "  data 33\n"
+            "transmission from SBA 3, broadcast (record 2 (genius 76.8) at 0.001432292, character 1)\n"
+            "  data 5a\n"
+            "error at end of record 3: transmission not finished (its Start at record 3 (genius 76.8) at "
+            "0.001861979, character 1)\n"
+            "2 transmissions, 1 error, 0 characters skipped\n")
+      << "one record per transmission, 11 bit times (143.2 us at 76.8 kbaud) per character";
+  const auto fields = run_cli("genius decode --pcap " + capture + " --json");
+  EXPECT_EQ(fields.exit_code, 0);
+  EXPECT_NE(fields.out.find("\"frame.interface_name\":\"genius 76.8\""), std::string::npos) << fields.out;
+  EXPECT_NE(fields.out.find("\"trionet_genius.status\":\"ok\""), std::string::npos) << fields.out;
+  std::remove(capture.c_str());
+}
+
+}  // namespace

@@ -166,3 +166,41 @@ TEST(RingCli, AMissingCaptureIsAnIoFailure) {
   EXPECT_EQ(r.out, "");
   EXPECT_NE(r.err.find("cannot open"), std::string::npos) << r.err;
 }
+
+TEST(RingCli, HelpAndVersionEverywhere) {
+  for (const char* command : {"ring encode var --help", "ring decode --help", "ring simulate --help", "ring --help",
+                              "genius encode --help", "genius decode --help", "genius timing --help", "--help"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_EQ(r.out.rfind("usage: trionet", 0), 0u) << command << ": " << r.out;
+    EXPECT_EQ(r.err, "") << command;
+  }
+  for (const char* command : {"--version", "ring --version", "can --version", "genius --version"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_EQ(r.out.rfind("trionet ", 0), 0u) << command << ": " << r.out;
+  }
+  for (const char* part : {"ring", "can", "genius"}) {  // no command: the same for every part
+    const auto r = run_cli(part);
+    EXPECT_EQ(r.exit_code, 2) << part;
+    EXPECT_EQ(r.out, "") << part;
+    EXPECT_EQ(r.err.rfind(std::string("trionet: ") + part + " needs a command", 0), 0u) << r.err;
+  }
+}
+
+TEST(RingCli, SimulatePcapThenDecodeIt) {
+  const std::string capture = "/tmp/trionet-ring-" + std::to_string(::getpid()) + ".pcapng";
+  const auto simulated = run_cli("ring simulate example1 --pcap " + capture);
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const auto r = run_cli("ring decode --pcap " + capture);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("{\"event\":\"message\",\"record\":1,\"interface_id\":0,"
+                        "\"interface\":\"link 0: node 1 (mc) -> node 2 (keypad)\",\"time\":\"0.000080000\",", 0),
+            0u)
+      << r.out.substr(0, 300);
+  EXPECT_NE(r.out.find("\"interface\":\"link 2: node 3 (keypad) -> node 1 (mc)\""), std::string::npos);
+  EXPECT_EQ(r.out.find("frame_error"), std::string::npos) << "a simulated ring without faults";
+  std::remove(capture.c_str());
+  const auto missing_dir = run_cli("ring simulate example1 --pcap /nonexistent/dir/x.pcapng");
+  EXPECT_EQ(missing_dir.exit_code, 1);
+}

@@ -13,19 +13,17 @@ namespace trionet::cli {
 namespace {
 
 constexpr const char* encode_usage =
-    "usage:\n"
-    "  trionet ring encode print  --to N TEXT\n"
-    "  trionet ring encode var    --to N --vr V --value X\n"
-    "  trionet ring encode offset --to N --offset M\n"
-    "  trionet ring encode mode   --to N --mode 0|127\n"
+    "usage: trionet ring encode print  --to N TEXT\n"
+    "       trionet ring encode var    --to N --vr V --value X\n"
+    "       trionet ring encode offset --to N --offset M\n"
+    "       trionet ring encode mode   --to N --mode 0|127\n"
     "Prints the frame as hex bytes. N and M are BASIC addresses 10..24 (hops + 9); TEXT is 1..256 characters\n"
     "of 7 bits (what a decoder accepts); V is 0..16383; X is a real number in the Q32.32 range.\n";
 
 constexpr const char* decode_usage =
-    "usage:\n"
-    "  trionet ring decode [HEX...]            hex bytes from the arguments, else from standard input\n"
-    "  trionet ring decode --raw               raw bytes from standard input (a serial port, a file)\n"
-    "  trionet ring decode --pcap FILE [--json]   the ring records of a pcapng capture\n"
+    "usage: trionet ring decode [HEX...]               hex bytes from the arguments, else from standard input\n"
+    "       trionet ring decode --raw                  raw bytes from standard input (a serial port, a file)\n"
+    "       trionet ring decode --pcap FILE [--json]   the ring records of a pcapng capture\n"
     "Prints one JSON object per event as soon as it is complete:\n"
     "  {\"event\":\"message\",...}, {\"event\":\"crc_error\",...}, {\"event\":\"frame_error\",\"reason\":R,...},\n"
     "  {\"event\":\"unfinished\",...} (a message still open at the end of the input),\n"

@@ -151,7 +151,7 @@ bool parse_screen_byte(std::string_view word, std::uint8_t& out) {
 
 // "(VV|FF:SS:AAAAAAAA)": the CAN XL header of the screen form.
 bool parse_screen_xl_header(std::string_view word, candump_record& out) {
-  if (word.size() != 21 || word.front() != '(' || word.back() != ')' || word[3] != '|' || word[6] != ':' ||
+  if (word.size() != 19 || word.front() != '(' || word.back() != ')' || word[3] != '|' || word[6] != ':' ||
       word[9] != ':') {
     return false;
   }
