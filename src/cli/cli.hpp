@@ -105,6 +105,8 @@ class output {
  public:
   static constexpr std::size_t flush_at = 1U << 16U;
 
+  output() { text_.reserve(flush_at + 16384); }
+
   std::string& text() { return text_; }
   /// Writes when the buffer is past `flush_at`.
   bool maybe_flush() { return text_.size() < flush_at || flush(); }
@@ -138,30 +140,55 @@ class input {
   std::vector<char> buffer_;
 };
 
-/// Appends one JSON event line, `{"event":"<kind>",...}\n`, to a string as its fields are added.
+/// Appends one JSON event line, `{"event":"<kind>",...}\n`, to a string as its fields are added. The line is
+/// put together in a buffer of its own and appended at once (the decoders' output is their hot path).
 class event {
  public:
-  event(std::string& out, const char* kind) : out_(out) {
-    out_ += "{\"event\":\"";
-    out_ += kind;
-    out_ += '"';
+  event(std::string& out, std::string_view kind) : out_(out) {
+    put("{\"event\":\"", 10);
+    put(kind.data(), kind.size());
+    put("\"", 1);
   }
-  ~event() { out_ += "}\n"; }
+  ~event() {
+    put("}\n", 2);
+    out_.append(line_, size_);
+  }
   event(const event&) = delete;
   event& operator=(const event&) = delete;
 
-  event& number(const char* name, std::uint64_t value);
-  event& signed_number(const char* name, std::int64_t value);
-  event& real(const char* name, double value);
-  event& boolean(const char* name, bool value);
+  event& number(std::string_view name, std::uint64_t value);
+  event& signed_number(std::string_view name, std::int64_t value);
+  /// A real number, shortest form; null if not finite.
+  event& real(std::string_view name, double value);
+  event& boolean(std::string_view name, bool value);
   /// A string field; the text is escaped (host::append_json_string).
-  event& text(const char* name, std::string_view value);
+  event& text(std::string_view name, std::string_view value);
   /// A field whose value is already JSON.
-  event& json(const char* name, std::string_view value);
+  event& json(std::string_view name, std::string_view value);
+
+  /// Raw text (for host::append_json_string, which escapes into the event).
+  void push_back(char c) { put(&c, 1); }
+  /// Raw text (for host::append_json_string).
+  void append(const char* text, std::size_t size) { put(text, size); }
 
  private:
-  void key(const char* name);
+  void key(std::string_view name);
+  void put(const char* text, std::size_t size) {
+    if (size > sizeof line_ - size_) {  // a long field: what is gathered goes first
+      out_.append(line_, size_);
+      size_ = 0;
+      if (size > sizeof line_) {
+        out_.append(text, size);
+        return;
+      }
+    }
+    for (std::size_t i = 0; i < size; ++i) line_[size_ + i] = text[i];
+    size_ += size;
+  }
+
   std::string& out_;
+  char line_[480];
+  std::size_t size_ = 0;
 };
 
 /// Nanoseconds since 1970 as decimal seconds with 9 digits, "1700000000.123456789" (as Wireshark's

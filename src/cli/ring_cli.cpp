@@ -174,6 +174,24 @@ class ring_stream {
     append_ring_event(out_, r, [&](event& e) { e.number(key(), about_this_byte ? at : message_at); });
   }
 
+  // Many bytes, the first at offset `at`: runs of data go to the decoder whole (its fast path); only a run
+  // outside a message gives a result (stray_data), and that is about the run's first byte.
+  void push(const std::uint8_t* first, const std::uint8_t* last, std::uint64_t at) {
+    while (first != last) {
+      const std::uint8_t* run = ring::find_control(first, last);
+      if (run != first) {
+        const std::uint64_t run_at = at;
+        decoder_.push(byte_view(first, static_cast<std::size_t>(run - first)), [&](const ring::decode_result& r) {
+          append_ring_event(out_, r, [&](event& e) { e.number(key(), run_at); });
+        });
+        at += static_cast<std::uint64_t>(run - first);
+        first = run;
+        if (first == last) break;
+      }
+      push(*first++, at++);
+    }
+  }
+
   // The end of the input: a message still open is reported.
   void finish() {
     if (!decoder_.in_message()) return;
@@ -292,7 +310,9 @@ int decode_main(const words& all) {
     ring_stream bytes(out.text(), where_kind::offset);
     std::uint64_t offset = 0;
     const int status = stream_stdin(out, [&](std::string_view chunk) {
-      for (const char c : chunk) bytes.push(static_cast<std::uint8_t>(c), offset++);
+      const auto* first = reinterpret_cast<const std::uint8_t*>(chunk.data());
+      bytes.push(first, first + chunk.size(), offset);
+      offset += chunk.size();
     });
     if (status != exit_ok) return status;
     bytes.finish();
@@ -340,9 +360,13 @@ void append_ring_event_body(event& e, const ring::decode_result& result) {
       e.text("text", std::string_view(reinterpret_cast<const char*>(m.text.data()), m.text.size()));
       return;
     case ring::message_type::variable: {
-      char raw[24];
-      std::snprintf(raw, sizeof raw, "\"0x%016" PRIx64 "\"", trionet::q32_to_raw(m.value));
-      e.text("type", "var").number("hops", m.hops).number("vr", m.vr).json("raw", raw);
+      static constexpr char digits[] = "0123456789abcdef";
+      char raw[21] = {'"', '0', 'x'};
+      const auto bits = static_cast<std::uint64_t>(trionet::q32_to_raw(m.value));
+      for (unsigned i = 0; i < 16; ++i) raw[3 + i] = digits[bits >> (60U - 4U * i) & 0xFU];
+      raw[19] = '"';
+      raw[20] = 0;
+      e.text("type", "var").number("hops", m.hops).number("vr", m.vr).json("raw", std::string_view(raw, 20));
       e.real("value", trionet::q32_to_double(m.value));
       return;
     }

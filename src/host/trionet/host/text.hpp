@@ -102,28 +102,39 @@ constexpr std::size_t utf8_sequence(std::string_view text) noexcept {
 
 /// Appends `text` as a JSON string literal, quotes included: '"' and '\' escaped; control bytes (below 0x20,
 /// and 0x7f) and bytes that are not part of well-formed UTF-8 as \u00XX; well-formed UTF-8 as it is. So any
-/// input gives valid JSON, and UTF-8 text reads back unchanged.
-inline void append_json_string(std::string& out, std::string_view text) {
+/// input gives valid JSON, and UTF-8 text reads back unchanged. `Out` is std::string or anything with
+/// `append(const char*, std::size_t)` and `push_back(char)`.
+template <class Out>
+void append_json_string(Out& out, std::string_view text) {
   static constexpr char digits[] = "0123456789abcdef";
-  out += '"';
+  out.push_back('"');
   for (std::size_t i = 0; i < text.size(); ++i) {
+    std::size_t run = i;  // a run of characters that need no escape goes out in one append
+    while (run < text.size() && static_cast<unsigned char>(text[run]) >= 0x20 &&
+           static_cast<unsigned char>(text[run]) < 0x7f && text[run] != '"' && text[run] != '\\') {
+      ++run;
+    }
+    if (run != i) {
+      out.append(text.data() + i, run - i);
+      i = run;
+      if (i == text.size()) break;
+    }
     const char c = text[i];
     const auto byte = static_cast<unsigned char>(c);
     if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
+      out.push_back('\\');
+      out.push_back(c);
     } else if (byte >= 0x20 && byte < 0x7f) {
-      out += c;
+      out.push_back(c);
     } else if (const std::size_t length = byte >= 0x80 ? utf8_sequence(text.substr(i)) : 0; length != 0) {
       out.append(text.data() + i, length);
       i += length - 1;
     } else {
-      out += "\\u00";
-      out += digits[byte >> 4U];
-      out += digits[byte & 0x0FU];
+      const char escape[6] = {'\\', 'u', '0', '0', digits[byte >> 4U], digits[byte & 0x0FU]};
+      out.append(escape, sizeof escape);
     }
   }
-  out += '"';
+  out.push_back('"');
 }
 
 /// `text` as a JSON string literal (see append_json_string).
