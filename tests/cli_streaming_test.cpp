@@ -39,6 +39,11 @@ child spawn(const std::vector<std::string>& args, bool read_output) {
     }
     ::close(to_child[1]);
     if (read_output) ::close(from_child[0]);
+    // Under AddressSanitizer freed memory waits in a quarantine (256 MB by default), which would look like
+    // growth: keep it small, so that the figure is the decoder's own memory.
+    const char* asan = std::getenv("ASAN_OPTIONS");
+    const std::string options = std::string(asan != nullptr ? asan : "") + ":quarantine_size_mb=1";
+    ::setenv("ASAN_OPTIONS", options.c_str(), 1);
     std::vector<char*> argv;
     argv.push_back(const_cast<char*>(TRIONET_CLI_PATH));
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
