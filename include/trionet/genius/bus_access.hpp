@@ -1,5 +1,5 @@
-// Genius bus access (docs/protocol.md 3.3): rates, turn timing after a Stop, margins between turns, a
-// discrete-event bus scan that finds collisions, and the per-device scan-time estimate.
+// Genius bus access (docs/protocol.md 3.3): rates, turn timing after a Stop, margins between turns and a
+// discrete-event bus scan that finds collisions. GE's scan-time figures are in scan_time.hpp.
 //
 // Bus model. Devices sit on one line at positions in feet; a signal needs `propagation_us_per_2000ft`
 // (default 3 us) per 2000 ft. Time 0 is the end of the Stop character of SBA s at s's position. Device d
@@ -48,7 +48,7 @@ constexpr const char* to_string(rate value) noexcept {
   return "unknown";
 }
 
-/// One row of docs/protocol.md 3.3's rate table plus GE's published scan-time terms (GFK-0825F).
+/// One row of docs/protocol.md 3.3's rate table.
 struct rate_properties {
   const char* name;         ///< the CLI name: "153.6s", "153.6e", "76.8", "38.4"
   const char* description;  ///< e.g. "153.6 kbaud standard"
@@ -56,23 +56,21 @@ struct rate_properties {
   std::uint8_t skip_bits;  ///< the skip-time rule, in bit times
   std::uint16_t max_length_ft;
   std::uint8_t max_devices;
-  double published_fixed_ms;     ///< GE's fixed scan-time term per device
-  double published_per_byte_ms;  ///< GE's per-byte scan-time term
 };
 
 /// The properties of `r`. Cost: a table lookup; ISR-safe.
 [[nodiscard]] constexpr rate_properties properties(rate r) noexcept {
   switch (r) {
     case rate::standard_153k6:
-      return {"153.6s", "153.6 kbaud standard", 153600, 1, 2000, 32, 0.943, 0.0715};
+      return {"153.6s", "153.6 kbaud standard", 153600, 1, 2000, 32};
     case rate::extended_153k6:
-      return {"153.6e", "153.6 kbaud extended", 153600, 2, 3500, 32, 1.015, 0.0715};
+      return {"153.6e", "153.6 kbaud extended", 153600, 2, 3500, 32};
     case rate::baud_76k8:
-      return {"76.8", "76.8 kbaud", 76800, 1, 4500, 32, 1.538, 0.143};
+      return {"76.8", "76.8 kbaud", 76800, 1, 4500, 32};
     case rate::baud_38k4:
-      return {"38.4", "38.4 kbaud", 38400, 1, 7500, 16, 2.583, 0.286};
+      return {"38.4", "38.4 kbaud", 38400, 1, 7500, 16};
   }
-  return {"?", "?", 1, 1, 0, 0, 0.0, 0.0};
+  return {"?", "?", 1, 1, 0, 0};
 }
 
 /// Looks a rate up by its CLI name ("153.6s", "153.6e", "76.8", "38.4"). Returns false if unknown.
@@ -351,22 +349,6 @@ struct bus_scan {
     }
   }
   return result;
-}
-
-/// GE's scan-time contribution of one device with `io_bytes` input + output bytes: a fixed term
-/// (GE's published figure: it includes device processing, so it is not derived from the character timing)
-/// plus one 11-bit character time per byte (computed from the bit rate).
-struct scan_time_estimate {
-  double fixed_ms = 0;
-  double per_byte_ms = 0;
-  double total_ms = 0;
-};
-
-/// See `scan_time_estimate`. Cost: a few operations; ISR-safe.
-[[nodiscard]] constexpr scan_time_estimate device_scan_time(rate r, std::size_t io_bytes) noexcept {
-  const double per_byte = character_time_us(r) / 1000.0;
-  const double fixed = properties(r).published_fixed_ms;
-  return scan_time_estimate{fixed, per_byte, fixed + per_byte * static_cast<double>(io_bytes)};
 }
 
 }  // namespace trionet::genius
