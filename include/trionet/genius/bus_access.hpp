@@ -34,6 +34,7 @@ enum class rate : std::uint8_t {
   baud_38k4,       ///< 38.4 kbaud ("38.4")
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(rate value) noexcept {
   switch (value) {
     case rate::standard_153k6:
@@ -52,10 +53,10 @@ constexpr const char* to_string(rate value) noexcept {
 struct rate_properties {
   const char* name;         ///< the CLI name: "153.6s", "153.6e", "76.8", "38.4"
   const char* description;  ///< e.g. "153.6 kbaud standard"
-  std::uint32_t baud;
+  std::uint32_t baud;       ///< bits per second
   std::uint8_t skip_bits;  ///< the skip-time rule, in bit times
-  std::uint16_t max_length_ft;
-  std::uint8_t max_devices;
+  std::uint16_t max_length_ft;  ///< the longest bus the rate allows, in feet
+  std::uint8_t max_devices;     ///< the most devices the rate allows
 };
 
 /// The properties of `r`. Cost: a table lookup; ISR-safe.
@@ -100,8 +101,8 @@ struct rate_properties {
 
 /// The timing parameters of a bus. Start from `default_timing(rate)` and override what differs.
 struct bus_timing {
-  rate bus_rate = rate::standard_153k6;
-  double bit_time_us = 0;
+  rate bus_rate = rate::standard_153k6;    ///< the rate (limits of length and devices)
+  double bit_time_us = 0;                  ///< one bit period (the character time is 11 bits)
   double skip_us = 0;                      ///< the skip time (rule by default, or explicit)
   double propagation_us_per_2000ft = 3.0;  ///< docs/protocol.md 3.3, configurable
   double detection_us = 0;                 ///< time a device needs to detect a start bit
@@ -120,14 +121,14 @@ struct bus_timing {
 
 /// A device on the bus. `data_bytes` is used only by the bus scan (length of its transmission).
 struct device {
-  std::uint8_t sba = 0;
-  double position_ft = 0;
-  std::uint16_t data_bytes = 1;
+  std::uint8_t sba = 0;          ///< its Serial Bus Address, 0..31
+  double position_ft = 0;        ///< where it sits on the line, in feet
+  std::uint16_t data_bytes = 1;  ///< data characters it sends per turn (bus scan only)
 };
 
 /// Why a layout cannot be analysed (misuse of the API).
 enum class layout_status : std::uint8_t {
-  ok,
+  ok,                 ///< the layout can be analysed
   sba_out_of_range,   ///< an SBA > 31
   duplicate_sba,      ///< two devices with the same SBA
   sender_not_on_bus,  ///< the SBA whose Stop ended is not one of the devices
@@ -135,6 +136,7 @@ enum class layout_status : std::uint8_t {
   bad_timing,         ///< skip <= 0, or a negative or non-finite propagation, detection or bit time
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(layout_status value) noexcept {
   switch (value) {
     case layout_status::ok:
@@ -160,29 +162,29 @@ constexpr const char* to_string(layout_status value) noexcept {
 
 /// When a device's turn starts, at its own position, after the Stop.
 struct turn {
-  std::uint8_t sba = 0;
-  double position_ft = 0;
-  double start_us = 0;
+  std::uint8_t sba = 0;    ///< the device
+  double position_ft = 0;  ///< its position, in feet
+  double start_us = 0;     ///< when its turn starts, after the Stop
 };
 
 /// The margin between two consecutive turns: time from the arrival of `first`'s start bit at `second`
 /// to `second`'s own turn. `too_small` when below the detection time (negative: certain collision).
 struct turn_margin {
-  std::uint8_t first = 0;
-  std::uint8_t second = 0;
-  double margin_us = 0;
-  bool too_small = false;
+  std::uint8_t first = 0;   ///< the SBA whose turn comes first
+  std::uint8_t second = 0;  ///< the SBA whose turn follows
+  double margin_us = 0;     ///< second's turn minus the arrival of first's start bit
+  bool too_small = false;   ///< below the detection time
 };
 
 /// Turns and margins after one Stop. Turns are in SBA order after the sender (the order the protocol
 /// intends), the sender excluded. Cost: about 1.5 KB; fill it with `analyse_turns`.
 struct turn_analysis {
-  layout_status status = layout_status::ok;
-  std::uint8_t after = 0;
-  turn turns[31] = {};
-  std::size_t turn_count = 0;
-  turn_margin margins[30] = {};
-  std::size_t margin_count = 0;
+  layout_status status = layout_status::ok;    ///< `ok`, or why nothing was analysed
+  std::uint8_t after = 0;                      ///< the SBA whose Stop starts the turns
+  turn turns[31] = {};                         ///< the turns, in SBA order after `after`
+  std::size_t turn_count = 0;                  ///< how many of `turns` are used
+  turn_margin margins[30] = {};                ///< the margin between each consecutive pair
+  std::size_t margin_count = 0;                ///< how many of `margins` are used
   std::size_t too_small_count = 0;             ///< margins below the detection time
   double bus_length_ft = 0;                    ///< from the first to the last device
   bool longer_than_rate_allows = false;        ///< bus length over the rate's maximum
@@ -261,9 +263,9 @@ inline const device* find_device(span<const device> devices, std::uint8_t sba) n
 
 /// One transmission in a simulated bus scan, times at the transmitter.
 struct scan_transmission {
-  std::uint8_t sba = 0;
-  double start_us = 0;
-  double end_us = 0;
+  std::uint8_t sba = 0;   ///< the transmitting device
+  double start_us = 0;    ///< its Start begins
+  double end_us = 0;      ///< its Stop ends
   bool collided = false;  ///< another device transmitted at the same time
 };
 
@@ -272,9 +274,9 @@ constexpr std::size_t max_scan_transmissions = 64;
 
 /// The result of `simulate_scan`. Cost: about 2 KB.
 struct bus_scan {
-  layout_status status = layout_status::ok;
-  scan_transmission transmissions[max_scan_transmissions] = {};
-  std::size_t count = 0;
+  layout_status status = layout_status::ok;                      ///< `ok`, or why nothing was simulated
+  scan_transmission transmissions[max_scan_transmissions] = {};  ///< in the order they started
+  std::size_t count = 0;                                         ///< how many of `transmissions` are used
   std::size_t collisions = 0;  ///< turns in which two or more devices transmitted
   bool complete = false;       ///< the scan came round to the starting device again
 };

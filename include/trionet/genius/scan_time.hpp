@@ -55,7 +55,7 @@ struct scan_time_terms {
 
 /// Why a bus's scan time was not computed (misuse of the API).
 enum class scan_time_status : std::uint8_t {
-  ok,
+  ok,                ///< computed
   too_many_devices,  ///< more devices than the rate allows (32, or 16 at 38.4 kbaud)
 };
 

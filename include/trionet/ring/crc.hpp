@@ -25,8 +25,13 @@ namespace trionet::ring {
 
 /// How a CRC policy computes: no table (smallest), one 256-entry table (512 bytes, the default), or four
 /// tables (2 KiB) that take four bytes per step ("slicing by 4": fastest on long buffers and on hosts).
-enum class crc_table : std::uint8_t { none = 0, lookup = 1, sliced = 2 };
+enum class crc_table : std::uint8_t {
+  none = 0,    ///< bit by bit, no table
+  lookup = 1,  ///< one 256-entry table
+  sliced = 2,  ///< four tables, four bytes per step
+};
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(crc_table value) noexcept {
   switch (value) {
     case crc_table::none:
@@ -41,11 +46,14 @@ constexpr const char* to_string(crc_table value) noexcept {
 
 template <std::uint16_t Polynomial, std::uint16_t Initial, std::uint16_t XorOut = 0,
           crc_table Table = crc_table::lookup>
+/// A CRC policy (see above) for the 16-bit polynomial `Polynomial`, not reflected, with register `Initial`
+/// before the first byte and `XorOut` applied at the end, computed as `Table` says.
 struct crc16 {
-  static constexpr std::uint16_t polynomial = Polynomial;
-  static constexpr std::uint16_t initial = Initial;
-  static constexpr crc_table table_kind = Table;
+  static constexpr std::uint16_t polynomial = Polynomial;  ///< the generator polynomial
+  static constexpr std::uint16_t initial = Initial;        ///< the register before the first byte
+  static constexpr crc_table table_kind = Table;           ///< how it computes
 
+  /// The register after one more byte, computed bit by bit (no table).
   static constexpr std::uint16_t update_bitwise(std::uint16_t crc, std::uint8_t byte) noexcept {
     crc = static_cast<std::uint16_t>(crc ^ (byte << 8));
     for (int bit = 0; bit < 8; ++bit) {
@@ -55,6 +63,7 @@ struct crc16 {
     return crc;
   }
 
+  /// The 256-entry table of the byte-at-a-time method.
   static constexpr std::array<std::uint16_t, 256> make_table() noexcept {
     std::array<std::uint16_t, 256> entries{};
     for (unsigned i = 0; i < 256; ++i) entries[i] = update_bitwise(0, static_cast<std::uint8_t>(i));
@@ -74,6 +83,7 @@ struct crc16 {
     return tables;
   }
 
+  /// The register after one more byte.
   static constexpr std::uint16_t update(std::uint16_t crc, std::uint8_t byte) noexcept {
     if constexpr (Table == crc_table::sliced) {
       return static_cast<std::uint16_t>((crc << 8) ^ slices[0][((crc >> 8) ^ byte) & 0xFF]);
@@ -84,6 +94,7 @@ struct crc16 {
     }
   }
 
+  /// The CRC of the bytes taken into the register `crc`.
   static constexpr std::uint16_t finish(std::uint16_t crc) noexcept {
     return static_cast<std::uint16_t>(crc ^ XorOut);
   }
@@ -103,6 +114,7 @@ struct crc16 {
     for (; i < size; ++i) crc = update(crc, data[i]);
     return finish(crc);
   }
+  /// The CRC of a whole buffer.
   static constexpr std::uint16_t compute(byte_view bytes) noexcept {
     return compute(bytes.data(), bytes.size());
   }
