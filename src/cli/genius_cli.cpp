@@ -47,6 +47,13 @@ constexpr const char* timing_usage =
     "D are microseconds up to 1000000. --check: exit status 3 when a margin is below the detection time (a\n"
     "collision risk), so that a script or CI job can fail on it.\n";
 
+constexpr const char* scan_time_usage =
+    "usage: trionet genius scan-time --rate 153.6s|153.6e|76.8|38.4 --device BYTES[,BYTES...] ... [--json]\n"
+    "The scan time of a Genius bus by GE's published figures (GFK-0825F): each device contributes a fixed\n"
+    "term plus a term per byte of its inputs and outputs (BYTES, inputs + outputs together); the bus's scan\n"
+    "time is the sum over its devices. --device is repeatable and takes a comma-separated list. The results\n"
+    "are exact (GE's figures in milliseconds); the computed 11-bit character time is shown beside them.\n";
+
 std::string hex2(unsigned value) {
   char text[8];
   std::snprintf(text, sizeof text, "%02x", value & 0xffu);
@@ -629,16 +636,96 @@ int timing_main(const std::vector<std::string>& words) {
   return verdict;
 }
 
+// ---------------------------------------------------------------------------------------------------
+// scan-time: GE's published scan-time figures (docs/protocol.md 3.3), per device and for the bus.
+
+int scan_time_main(const std::vector<std::string>& words) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(words, {"--rate", "--device"}, {"--json"}, args, error, {"--device"})) return fail(error);
+  if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
+  if (!args.has("--rate")) return fail("scan-time needs --rate 153.6s|153.6e|76.8|38.4");
+  genius::rate rate{};
+  if (!genius::rate_from_name(args.options["--rate"], rate)) {
+    return fail("unknown rate '" + args.options["--rate"] + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
+  }
+  if (!args.has("--device")) return fail("scan-time needs at least one --device BYTES");
+  std::vector<std::uint32_t> bytes;
+  for (const std::string& list : split_lines(args.options["--device"])) {
+    std::size_t from = 0;
+    while (true) {
+      const std::size_t comma = list.find(',', from);
+      const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+      long long value = 0;
+      if (!parse_integer(item, 0, 4294967295LL, value)) {
+        return fail("--device '" + list + "': each BYTES must be a whole number 0..4294967295");
+      }
+      bytes.push_back(static_cast<std::uint32_t>(value));
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+  }
+  const genius::rate_properties props = genius::properties(rate);
+  const genius::scan_time_result bus =
+      genius::bus_scan_time(rate, span<const std::uint32_t>(bytes.data(), bytes.size()));
+  if (bus.status == genius::scan_time_status::too_many_devices) {
+    return fail(std::to_string(bytes.size()) + " devices; " + props.name + " allows " +
+                std::to_string(props.max_devices));
+  }
+  if (!bus) return fail(genius::to_string(bus.status));
+
+  // Milliseconds as exact decimal text from nanoseconds ("0.943", "0.0715", "4.831"), no floating point.
+  const auto ms = [](std::uint64_t ns) {
+    std::string text = std::to_string(ns / 1000000u);
+    std::string fraction = std::to_string(ns % 1000000u);
+    fraction.insert(0, 6 - fraction.size(), '0');
+    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+    return fraction.empty() ? text : text + "." + fraction;
+  };
+  const genius::scan_time_terms terms = genius::published_scan_time_terms(rate);
+  // The computed character time, rounded to the nanosecond: a separate figure, not used in the sums.
+  const auto character_ns = static_cast<std::uint64_t>(std::llround(genius::character_time_us(rate) * 1000.0));
+
+  if (args.flags.count("--json") != 0) {
+    std::string out = "{\"rate\":" + json_string(props.name) + ",\"fixed_ms\":" + ms(terms.fixed_ns) +
+                      ",\"per_byte_ms\":" + ms(terms.per_byte_ns) + ",\"devices\":[";
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      if (i != 0) out += ',';
+      out += "{\"io_bytes\":" + std::to_string(bytes[i]) +
+             ",\"scan_time_ms\":" + ms(genius::device_scan_time_ns(rate, bytes[i])) + "}";
+    }
+    out += "],\"io_bytes\":" + std::to_string(bus.io_bytes) + ",\"total_ms\":" + ms(bus.total_ns) +
+           ",\"character_time_ms\":" + ms(character_ns) + "}";
+    std::printf("%s\n", out.c_str());
+    return exit_ok;
+  }
+  std::printf("rate %s (%s): %s ms per device + %s ms per byte of inputs and outputs (GE GFK-0825F)\n",
+              props.name, props.description, ms(terms.fixed_ns).c_str(), ms(terms.per_byte_ns).c_str());
+  std::printf("  device  io_bytes  scan_time_ms\n");
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    std::printf("  %6zu  %8u  %12s\n", i + 1, static_cast<unsigned>(bytes[i]),
+                ms(genius::device_scan_time_ns(rate, bytes[i])).c_str());
+  }
+  std::printf("bus: %zu device%s, %llu byte%s, %s ms\n", bus.devices, bus.devices == 1 ? "" : "s",
+              static_cast<unsigned long long>(bus.io_bytes), bus.io_bytes == 1 ? "" : "s",
+              ms(bus.total_ns).c_str());
+  std::printf("computed character time (11 bits at %u bit/s): %s ms, not used above\n",
+              static_cast<unsigned>(props.baud), ms(character_ns).c_str());
+  return exit_ok;
+}
+
 const command genius_commands[] = {
     {"encode", "encode a transmission as characters", encode_usage, encode_main},
     {"decode", "read characters, raw words or a capture; print transmissions and errors", decode_usage,
      decode_main},
     {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main},
+    {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
+     scan_time_main},
 };
 
 }  // namespace
 
-const part genius_part = {"genius", "GE Genius bus (encode, decode, timing)", genius_commands,
+const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time)", genius_commands,
                           sizeof genius_commands / sizeof genius_commands[0], ""};
 
 }  // namespace trionet::cli

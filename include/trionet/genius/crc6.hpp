@@ -75,10 +75,12 @@ struct crc6 {
   /// The working register: with RefIn the 6 bits sit reflected in bits 5..0, otherwise in bits 7..2.
   using register_type = std::uint8_t;
 
+  /// The register before the first byte.
   [[nodiscard]] static constexpr register_type begin() noexcept {
     return RefIn ? detail::reflect6(Init) : static_cast<register_type>(Init << 2);
   }
 
+  /// The register after one more byte.
   [[nodiscard]] static constexpr register_type update(register_type reg, std::uint8_t byte) noexcept {
     const auto index = static_cast<std::uint8_t>(reg ^ byte);
     if constexpr (Table) {
@@ -88,6 +90,7 @@ struct crc6 {
     }
   }
 
+  /// The CRC-6 (0..63) of the bytes taken into `reg`.
   [[nodiscard]] static constexpr std::uint8_t finish(register_type reg) noexcept {
     const std::uint8_t normal = RefIn ? detail::reflect6(reg) : static_cast<std::uint8_t>(reg >> 2);
     const std::uint8_t out = RefOut ? detail::reflect6(normal) : normal;

@@ -28,8 +28,13 @@ namespace trionet::ring {
 
 /// How a CRC policy computes: no table (smallest), one 256-entry table (512 bytes, the default), or four
 /// tables (2 KiB) that take four bytes per step ("slicing by 4": fastest on long buffers and on hosts).
-enum class crc_table : std::uint8_t { none = 0, lookup = 1, sliced = 2 };
+enum class crc_table : std::uint8_t {
+  none = 0,    ///< bit by bit, no table
+  lookup = 1,  ///< one 256-entry table
+  sliced = 2,  ///< four tables, four bytes per step
+};
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(crc_table value) noexcept {
   switch (value) {
     case crc_table::none:
@@ -59,12 +64,14 @@ constexpr std::uint16_t reflect16(std::uint16_t value) noexcept {
 template <std::uint16_t Polynomial, std::uint16_t Initial, std::uint16_t XorOut = 0,
           crc_table Table = crc_table::lookup, bool RefIn = false, bool RefOut = false>
 struct crc16 {
-  static constexpr std::uint16_t polynomial = Polynomial;
+  static constexpr std::uint16_t polynomial = Polynomial;  ///< the generator polynomial
+  /// The register before the first byte (reflected when RefIn).
   static constexpr std::uint16_t initial = RefIn ? reflect16(Initial) : Initial;
-  static constexpr crc_table table_kind = Table;
-  static constexpr bool reflect_in = RefIn;
-  static constexpr bool reflect_out = RefOut;
+  static constexpr crc_table table_kind = Table;           ///< how it computes
+  static constexpr bool reflect_in = RefIn;                ///< bytes enter least significant bit first
+  static constexpr bool reflect_out = RefOut;              ///< the register is reflected before the final xor
 
+  /// The register after one more byte, computed bit by bit (no table).
   static constexpr std::uint16_t update_bitwise(std::uint16_t crc, std::uint8_t byte) noexcept {
     if constexpr (RefIn) {
       crc = static_cast<std::uint16_t>(crc ^ byte);
@@ -82,6 +89,7 @@ struct crc16 {
     return crc;
   }
 
+  /// The 256-entry table of the byte-at-a-time method.
   static constexpr std::array<std::uint16_t, 256> make_table() noexcept {
     std::array<std::uint16_t, 256> entries{};
     for (unsigned i = 0; i < 256; ++i) entries[i] = update_bitwise(0, static_cast<std::uint8_t>(i));
@@ -102,6 +110,7 @@ struct crc16 {
     return tables;
   }
 
+  /// The register after one more byte.
   static constexpr std::uint16_t update(std::uint16_t crc, std::uint8_t byte) noexcept {
     if constexpr (Table == crc_table::none) {
       return update_bitwise(crc, byte);
@@ -115,6 +124,7 @@ struct crc16 {
     }
   }
 
+  /// The CRC of the bytes taken into the register `crc`.
   static constexpr std::uint16_t finish(std::uint16_t crc) noexcept {
     if constexpr (RefIn != RefOut) crc = reflect16(crc);
     return static_cast<std::uint16_t>(crc ^ XorOut);
@@ -141,6 +151,7 @@ struct crc16 {
     for (; i < size; ++i) crc = update(crc, data[i]);
     return finish(crc);
   }
+  /// The CRC of a whole buffer.
   static constexpr std::uint16_t compute(byte_view bytes) noexcept {
     return compute(bytes.data(), bytes.size());
   }

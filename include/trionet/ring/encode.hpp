@@ -16,7 +16,7 @@ namespace trionet::ring {
 
 /// What became of an encode (misuse of the API; on anything but `ok` nothing was written).
 enum class encode_status : std::uint8_t {
-  ok,
+  ok,                      ///< encoded
   buffer_too_small,        ///< the frame does not fit in the buffer
   hops_out_of_range,       ///< hops not 1..15
   empty_text,              ///< a character transfer needs at least one character
@@ -27,6 +27,7 @@ enum class encode_status : std::uint8_t {
   unknown_type,            ///< message type not 1..4
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(encode_status status) noexcept {
   switch (status) {
     case encode_status::ok:
@@ -53,8 +54,9 @@ constexpr const char* to_string(encode_status status) noexcept {
 
 /// The outcome of an encode: `length` bytes were written (0 unless `ok`).
 struct [[nodiscard]] encode_result {
-  encode_status status = encode_status::ok;
-  std::size_t length = 0;
+  encode_status status = encode_status::ok;  ///< `ok`, or why nothing was written
+  std::size_t length = 0;                    ///< bytes written
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
@@ -125,6 +127,7 @@ constexpr encode_result encode(byte_buffer out, const message& m, const Crc& crc
 constexpr encode_result encode_characters(byte_buffer out, std::uint8_t hops, byte_view text) noexcept {
   return encode(out, message::characters(hops, text));
 }
+/// PRINT#: the same, for `length` characters at `text`.
 inline encode_result encode_characters(byte_buffer out, std::uint8_t hops, const char* text,
                                        std::size_t length) noexcept {
   return encode_characters(out, hops, byte_view(reinterpret_cast<const std::uint8_t*>(text), length));

@@ -19,28 +19,30 @@
 
 namespace trionet::ring {
 
+/// The 18 keys of the membrane keypad.
 enum class key : std::uint8_t {
-  digit_0,
-  digit_1,
-  digit_2,
-  digit_3,
-  digit_4,
-  digit_5,
-  digit_6,
-  digit_7,
-  digit_8,
-  digit_9,
-  up,
-  down,
-  clear,
-  yes,
-  no,
-  point,
-  start,
-  stop,
+  digit_0,  ///< 0
+  digit_1,  ///< 1
+  digit_2,  ///< 2
+  digit_3,  ///< 3
+  digit_4,  ///< 4
+  digit_5,  ///< 5
+  digit_6,  ///< 6
+  digit_7,  ///< 7
+  digit_8,  ///< 8
+  digit_9,  ///< 9
+  up,       ///< up / +
+  down,     ///< down / -
+  clear,    ///< CLR
+  yes,      ///< Y / enter
+  no,       ///< N
+  point,    ///< decimal point
+  start,    ///< start
+  stop,     ///< stop
 };
-constexpr std::size_t key_count = 18;
+constexpr std::size_t key_count = 18;  ///< the number of keys
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(key value) noexcept {
   switch (value) {
     case key::digit_0:
@@ -83,16 +85,19 @@ constexpr const char* to_string(key value) noexcept {
   return "unknown";
 }
 
+/// The key for a digit 0..9 (taken modulo 10).
 constexpr key digit_key(unsigned digit) noexcept {
   return static_cast<key>(digit % 10);
 }
 
 /// The raw character each key sends (key ON), indexed by `key`.
 struct keypad_codes {
-  std::uint8_t raw[key_count];
+  std::uint8_t raw[key_count];  ///< by key, in the order of `key`
+  /// The raw character of key `k`.
   constexpr std::uint8_t operator[](key k) const noexcept { return raw[static_cast<std::size_t>(k)]; }
 };
 
+/// The characters the manual's keypad sends (the table at the top of this file).
 inline constexpr keypad_codes default_keypad_codes = {
     {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9', 'U', 'D', 'C', 'Y', 'N', '.', 'S', 'T'}};
 
@@ -102,7 +107,8 @@ inline constexpr std::uint8_t defkey_values[key_count] = {0, 1,  2,  3,  4,  5, 
 
 /// DEFKEY: GET#3 translates each received character (0..127) through this table.
 struct defkey_table {
-  std::uint8_t value[128];
+  std::uint8_t value[128];  ///< by received character
+  /// What GET#3 returns for the received character `c` (bit 7 ignored).
   constexpr std::uint8_t operator[](std::uint8_t c) const noexcept { return value[c & 0x7F]; }
 };
 
@@ -114,6 +120,7 @@ constexpr defkey_table make_default_defkey(const keypad_codes& codes = default_k
   return table;
 }
 
+/// The DEFKEY table of the default keypad.
 inline constexpr defkey_table default_defkey = make_default_defkey();
 
 /// The key OFF character for a key ON character (docs/protocol.md 1.7, the default): on + 64 where that stays
