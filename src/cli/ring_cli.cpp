@@ -6,6 +6,7 @@
 
 #include "cli.hpp"
 #include "ring_cli.hpp"
+#include "ring_live.hpp"
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
@@ -20,6 +21,7 @@ constexpr const char* ring_usage =
     "  trionet ring decode [HEX...]          (no HEX: read standard input)\n"
     "  trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
     "  trionet ring simulate --node mc:FILE.bas|mc|keypad ... [options]   (trionet ring simulate --help)\n"
+    "  trionet ring monitor|send|join PORT ...   live ports (trionet ring monitor --help)\n"
     "N and M are BASIC addresses 10..24 (hops + 9); V is 0..16383; X is a real number.\n";
 
 std::string hex_line(const std::uint8_t* bytes, std::size_t length) {
@@ -248,7 +250,8 @@ int ring_main(const std::vector<std::string>& words) {
   if (words[0] == "encode") return encode_main(rest);
   if (words[0] == "decode") return decode_main(rest);
   if (words[0] == "simulate") return ring_simulate_main(rest);
-  return fail("unknown ring command '" + words[0] + "' (expected encode, decode or simulate)");
+  if (words[0] == "monitor" || words[0] == "send" || words[0] == "join") return ring_live_main(words[0], rest);
+  return fail("unknown ring command '" + words[0] + "' (expected encode, decode, simulate, monitor, send or join)");
 }
 
 }  // namespace trionet::cli

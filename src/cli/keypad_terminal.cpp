@@ -1,0 +1,170 @@
+// The membrane keypad in a terminal: see keypad_terminal.hpp.
+#include "keypad_terminal.hpp"
+
+#include <unistd.h>
+
+namespace trionet::cli {
+
+const char* const keyboard_map =
+    "keys: 0-9 . | + u Up: up | - d Down: down | c Backspace: CLR | y Enter: Y | n: N | s: start | t: stop | "
+    "q: quit";
+
+bool raw_terminal::enter(int fd) {
+  termios now{};
+  if (::isatty(fd) == 0 || ::tcgetattr(fd, &now) != 0) return false;
+  saved_ = now;
+  now.c_lflag &= ~static_cast<tcflag_t>(ICANON | ECHO | ECHONL | IEXTEN);
+  now.c_iflag &= ~static_cast<tcflag_t>(IXON | ICRNL | INLCR);
+  now.c_cc[VMIN] = 1;
+  now.c_cc[VTIME] = 0;
+  if (::tcsetattr(fd, TCSANOW, &now) != 0) return false;
+  fd_ = fd;
+  return true;
+}
+
+void raw_terminal::restore() noexcept {
+  if (fd_ < 0) return;
+  (void)::tcsetattr(fd_, TCSANOW, &saved_);
+  fd_ = -1;
+}
+
+void key_decoder::push(char c, std::vector<std::string>& words) {
+  if (!escape_.empty()) {  // ESC [ ... final byte
+    escape_ += c;
+    if (escape_.size() == 2 && c != '[' && c != 'O') {
+      escape_.clear();
+      return;
+    }
+    if (escape_.size() >= 3 && c >= 0x40 && c <= 0x7E) {
+      if (escape_ == "\x1b[A" || escape_ == "\x1bOA") words.emplace_back("up");
+      if (escape_ == "\x1b[B" || escape_ == "\x1bOB") words.emplace_back("down");
+      if (escape_ == "\x1b[3~") words.emplace_back("clr");
+      escape_.clear();
+    } else if (escape_.size() > 8) {
+      escape_.clear();
+    }
+    return;
+  }
+  if (c >= '0' && c <= '9') {
+    words.emplace_back(1, c);
+    return;
+  }
+  switch (c) {
+    case 0x1b:
+      escape_ = "\x1b";
+      return;
+    case '.':
+      words.emplace_back(".");
+      return;
+    case '+':
+    case 'u':
+    case 'U':
+      words.emplace_back("up");
+      return;
+    case '-':
+    case 'd':
+    case 'D':
+      words.emplace_back("down");
+      return;
+    case 'c':
+    case 'C':
+    case 0x7f:
+    case 0x08:
+      words.emplace_back("clr");
+      return;
+    case 'y':
+    case 'Y':
+    case '\r':
+    case '\n':
+      words.emplace_back("y");
+      return;
+    case 'n':
+    case 'N':
+      words.emplace_back("n");
+      return;
+    case 's':
+    case 'S':
+      words.emplace_back("start");
+      return;
+    case 't':
+    case 'T':
+      words.emplace_back("stop");
+      return;
+    case '\t':
+      words.emplace_back("next");
+      return;
+    case 'q':
+    case 'Q':
+    case 0x04:
+      words.emplace_back("quit");
+      return;
+    default:
+      return;
+  }
+}
+
+namespace {
+
+struct key_name {
+  const char* name;
+  ring::key key;
+};
+
+// The key script's names (docs/basic.md), the keys of docs/protocol.md 1.8.
+constexpr key_name key_names[] = {
+    {"0", ring::key::digit_0}, {"1", ring::key::digit_1}, {"2", ring::key::digit_2}, {"3", ring::key::digit_3},
+    {"4", ring::key::digit_4}, {"5", ring::key::digit_5}, {"6", ring::key::digit_6}, {"7", ring::key::digit_7},
+    {"8", ring::key::digit_8}, {"9", ring::key::digit_9}, {"up", ring::key::up},      {"+", ring::key::up},
+    {"down", ring::key::down}, {"-", ring::key::down},    {"clr", ring::key::clear},  {"y", ring::key::yes},
+    {"enter", ring::key::yes}, {"n", ring::key::no},      {".", ring::key::point},    {"start", ring::key::start},
+    {"stop", ring::key::stop}};
+
+}  // namespace
+
+bool keypad_key(const std::string& word, ring::key& out) {
+  std::string lower = word;
+  for (char& c : lower) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+  for (const key_name& k : key_names) {
+    if (lower == k.name) {
+      out = k.key;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string> panel_lines(const keypad_panel& panel) {
+  const std::string mark = panel.selected ? "> " : "  ";
+  return {mark + panel.title, "  +--------------------+", "  |" + panel.lines[0] + "|",
+          "  |" + panel.lines[1] + "|", "  +--------------------+", "  " + panel.status};
+}
+
+void terminal_screen::draw(const std::vector<keypad_panel>& panels, const std::vector<std::string>& footer) {
+  std::string out;
+  if (!drawn_) out += "\x1b[?25l";  // hide the cursor while drawing
+  if (drawn_lines_ != 0) out += "\x1b[" + std::to_string(drawn_lines_) + "F";  // back to the first line
+  std::size_t lines = 0;
+  const auto line = [&](const std::string& text) {
+    out += "\x1b[2K" + text + "\n";
+    ++lines;
+  };
+  for (const keypad_panel& panel : panels) {
+    for (const std::string& text : panel_lines(panel)) line(text);
+  }
+  for (const std::string& text : footer) line(text);
+  for (std::size_t i = lines; i < drawn_lines_; ++i) out += "\x1b[2K\n";  // a shorter drawing: clear the rest
+  if (drawn_lines_ > lines) out += "\x1b[" + std::to_string(drawn_lines_ - lines) + "F";
+  drawn_lines_ = lines;
+  drawn_ = true;
+  std::fwrite(out.data(), 1, out.size(), out_);
+  std::fflush(out_);
+}
+
+void terminal_screen::leave() {
+  if (!drawn_) return;
+  std::fputs("\x1b[?25h", out_);
+  std::fflush(out_);
+  drawn_ = false;
+}
+
+}  // namespace trionet::cli
