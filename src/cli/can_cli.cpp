@@ -8,6 +8,7 @@
 
 #include "trionet/host/candump.hpp"
 #include "cli.hpp"
+#include "live.hpp"
 
 namespace trionet::cli {
 namespace {
@@ -26,6 +27,8 @@ constexpr const char* can_usage =
     "      syntax, dlc, sign, fraction, unknown_id; blank lines are skipped (but counted in L)\n"
     "  table [--nodes K]\n"
     "      print the note's receive and transmit identifier tables\n"
+    "  monitor|send|node IFACE ...\n"
+    "      a live bus: SocketCAN or candump text (trionet can monitor --help)\n"
     "\n"
     "K is the number of controllers, 2..11 (default 5, the note's limit).\n";
 
@@ -185,7 +188,8 @@ int can_main(const std::vector<std::string>& args) {
   if (command == "encode") return encode_command(rest);
   if (command == "decode") return decode_command(rest);
   if (command == "table") return table_command(rest);
-  return fail("unknown can command '" + command + "' (expected encode, decode or table)");
+  if (command == "monitor" || command == "send" || command == "node") return can_live_main(command, rest);
+  return fail("unknown can command '" + command + "' (expected encode, decode, table, monitor, send or node)");
 }
 
 }  // namespace trionet::cli

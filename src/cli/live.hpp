@@ -121,3 +121,8 @@ std::vector<std::string> words_of(std::string_view line);
 bool unescape(std::string_view text, std::string& out, std::string& error);
 
 }  // namespace trionet::cli::live
+
+namespace trionet::cli {
+/// `trionet can monitor|send|node ...` (`command` is the word after `can`).
+int can_live_main(const std::string& command, const std::vector<std::string>& words);
+}  // namespace trionet::cli
