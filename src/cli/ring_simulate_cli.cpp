@@ -3,6 +3,7 @@
 // messages dropped and why, VRs written by the ring, program ends and errors, NETSTAT; with --trace every
 // message on every link and every display change), then every node's state; --json ends with one JSON line.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -52,7 +53,10 @@ constexpr const char* simulate_usage =
     "  --statements-per-byte-time S   BASIC statements each program runs per byte-time (default 1)\n"
     "  --key-gap N              byte-times each key press takes (default 1000)\n"
     "  --trace                  also every message on every link and every display change\n"
-    "  --json                   a JSON summary as the last line (alone, unless --trace)\n";
+    "  --json                   a JSON summary as the last line (alone, unless --trace)\n"
+    "  --interactive            run in real time with the keypads' displays on the terminal and the keyboard as\n"
+    "                           their keys (Tab: next keypad; q: quit); without a terminal, key words from\n"
+    "                           standard input (\"1:up 2:7 wait=MS quit\") and display changes printed\n";
 
 bool read_program(const std::string& path, std::string& text, std::string& error) {
   std::ifstream in(path, std::ios::binary);
@@ -205,7 +209,7 @@ int ring_simulate_main(const std::vector<std::string>& words) {
   std::string error;
   if (!parse_arguments(words,
                        {"--node", "--keys", "--byte-times", "--bit-rate", "--statements-per-byte-time", "--key-gap"},
-                       {"--trace", "--json"}, args, error, {"--node"})) {
+                       {"--trace", "--json", "--interactive"}, args, error, {"--node"})) {
     return fail(error);
   }
   const builtin_network* builtin = nullptr;
@@ -269,9 +273,15 @@ int ring_simulate_main(const std::vector<std::string>& words) {
 
   std::unique_ptr<host::ring_network> net = host::ring_network::build(nodes, config, error);
   if (!net) return fail(error);
-  const std::string keys = args.has("--keys") ? args.options.at("--keys") : builtin != nullptr ? builtin->keys : "";
+  const bool interactive = args.flags.count("--interactive") != 0;  // the keys are the user's, live
+  const std::string keys = args.has("--keys")                      ? args.options.at("--keys")
+                           : builtin != nullptr && !interactive ? builtin->keys
+                                                                : "";
   if (!net->set_keys(keys, error)) return fail(error);
 
+  if (interactive) {
+    return ring_simulate_interactive(*net, config.bit_rate, args.has("--byte-times") ? max_byte_times : UINT64_MAX);
+  }
   const bool json = args.flags.count("--json") != 0;
   const bool trace = args.flags.count("--trace") != 0;
   const bool narrate = trace || !json;
