@@ -132,6 +132,12 @@ candump_result parse_candump_line(std::string_view line) {
   }
   std::size_t end = 0;
   while (end < text.size() && !is_blank(text[end])) ++end;
+  // The log form may end with a direction flag, R (received) or T (sent): `candump -L -x`, asc2log.
+  const std::string_view rest = trim(text.substr(end));
+  if (result.record.has_timestamp && (rest == "R" || rest == "T")) {
+    result.status = parse_frame(text.substr(0, end), result.record.frame);
+    return result;
+  }
   if (end != text.size()) {
     result.status = candump_status::trailing;
     const candump_status frame_error = parse_frame(text.substr(0, end), result.record.frame);

@@ -7,6 +7,8 @@
 // bytes as pairs of hex digits, optionally separated by '.', either case on input, upper case on output. A
 // remote frame is `028#R` or `028#R8` (R and a length digit). CAN FD (`##`) and the `_` DLC suffix are not
 // classic TN20-17 frames and are syntax errors. Leading and trailing blanks (and a trailing CR) are ignored.
+// The log form may end with a direction flag, ` R` (received) or ` T` (sent), as `candump -L -x` and asc2log
+// write it; it is read and dropped.
 #pragma once
 
 #include <cstdint>
