@@ -147,6 +147,11 @@ TEST(LiveRing, SendWritesExactlyTheEncodedBytes) {
   const auto written = run_cli("ring send - print --to 10 AB");  // standard output: the raw bytes
   EXPECT_EQ(written.exit_code, 0);
   EXPECT_EQ(written.out, std::string("\x89" "AB" "\x88"));
+  const auto piped = run_cli("ring monitor - --json", written.out);  // and standard input, to its end
+  EXPECT_EQ(piped.exit_code, 0) << piped.err;
+  EXPECT_NE(piped.out.find("\"event\":\"message\",\"type\":\"char\",\"hops\":1,\"text\":\"AB\"}"),
+            std::string::npos)
+      << piped.out;
 }
 
 TEST(LiveRing, PortErrorsNameThePortAndTheCause) {
@@ -364,7 +369,7 @@ TEST(LiveRing, KeypadEmulatorInATerminal) {
 }
 
 TEST(LiveRing, SimulateInteractiveTakesKeyWordsWithoutATerminal) {
-  const auto r = run_cli("ring simulate example1 --interactive", "wait=300 1:1 2:2 wait=300 quit\n");
+  const auto r = run_cli("ring simulate example1 --interactive", "wait=300 1:1 2:2 wait=300\n");  // ends with them
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("keypad 1: key 1 sent to node 1"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("keypad 2: key 2 sent to node 1"), std::string::npos) << r.out;

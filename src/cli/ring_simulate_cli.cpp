@@ -56,7 +56,8 @@ constexpr const char* simulate_usage =
     "  --json                   a JSON summary as the last line (alone, unless --trace)\n"
     "  --interactive            run in real time with the keypads' displays on the terminal and the keyboard as\n"
     "                           their keys (Tab: next keypad; q: quit); without a terminal, key words from\n"
-    "                           standard input (\"1:up 2:7 wait=MS quit\") and display changes printed\n";
+    "                           standard input (\"1:up 2:7 wait=MS\", until they are done) and display changes\n"
+    "                           printed\n";
 
 bool read_program(const std::string& path, std::string& text, std::string& error) {
   std::ifstream in(path, std::ios::binary);

@@ -1,6 +1,7 @@
 // `trionet ring simulate ... --interactive`: the simulated ring in real time, its keypads' displays drawn live
 // and the keyboard as the selected keypad's keys (keypad_terminal.hpp). Without a terminal on standard input,
-// key words are read from it instead ("1:up", "2:7", "wait=MS", "quit") and display changes are printed.
+// key words are read from it instead ("1:up", "2:7", "wait=MS", "quit"; the run ends when they are done) and
+// display changes are printed.
 #include <poll.h>
 #include <unistd.h>
 
@@ -148,6 +149,8 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
       script.pop_front();
       script_word(word);
     }
+    // Key words from a file or pipe: the run ends when they are done.
+    if (!interactive && input.ended() && script.empty() && resume_at <= live::now_ns()) quit = true;
   }
   screen.leave();
   terminal.restore();
