@@ -3,6 +3,9 @@
 
 #include <unistd.h>
 
+#include "cli.hpp"
+#include "live.hpp"
+
 namespace trionet::cli {
 
 const char* const keyboard_map =
@@ -103,34 +106,44 @@ void key_decoder::push(char c, std::vector<std::string>& words) {
   }
 }
 
-namespace {
+std::vector<std::string> key_decoder::read(int fd) {
+  std::vector<std::string> words;
+  char bytes[64];
+  const ssize_t got = ::read(fd, bytes, sizeof bytes);
+  for (ssize_t i = 0; i < got; ++i) push(bytes[i], words);
+  return words;
+}
 
-struct key_name {
-  const char* name;
-  ring::key key;
-};
+void key_script::add_line(const std::string& line) {
+  for (const std::string& word : live::words_of(line)) words_.push_back(word);
+}
 
-// The key script's names (docs/basic.md), the keys of docs/protocol.md 1.8.
-constexpr key_name key_names[] = {
-    {"0", ring::key::digit_0}, {"1", ring::key::digit_1}, {"2", ring::key::digit_2}, {"3", ring::key::digit_3},
-    {"4", ring::key::digit_4}, {"5", ring::key::digit_5}, {"6", ring::key::digit_6}, {"7", ring::key::digit_7},
-    {"8", ring::key::digit_8}, {"9", ring::key::digit_9}, {"up", ring::key::up},      {"+", ring::key::up},
-    {"down", ring::key::down}, {"-", ring::key::down},    {"clr", ring::key::clear},  {"y", ring::key::yes},
-    {"enter", ring::key::yes}, {"n", ring::key::no},      {".", ring::key::point},    {"start", ring::key::start},
-    {"stop", ring::key::stop}};
-
-}  // namespace
-
-bool keypad_key(const std::string& word, ring::key& out) {
-  std::string lower = word;
-  for (char& c : lower) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
-  for (const key_name& k : key_names) {
-    if (lower == k.name) {
-      out = k.key;
-      return true;
+bool key_script::next(std::uint64_t now_ns, std::string& word, std::string& bad_wait) {
+  while (!words_.empty() && resume_at_ <= now_ns) {
+    word = words_.front();
+    words_.pop_front();
+    if (word.compare(0, 5, "wait=") != 0) return true;
+    long long ms = 0;
+    if (!parse_integer(word.substr(5), 0, 3600000, ms)) {
+      bad_wait = word;
+      continue;
     }
+    resume_at_ = now_ns + static_cast<std::uint64_t>(ms) * 1000000u;
   }
   return false;
+}
+
+int key_script::due_in_ms(std::uint64_t now_ns) const {
+  if (words_.empty()) return -1;
+  return resume_at_ <= now_ns ? 0 : static_cast<int>((resume_at_ - now_ns + 999999u) / 1000000u);
+}
+
+bool key_script::done(std::uint64_t now_ns) const {
+  return words_.empty() && resume_at_ <= now_ns;
+}
+
+bool keypad_key(const std::string& word, ring::key& out) {
+  return ring::key_named(word.data(), word.size(), out);
 }
 
 std::vector<std::string> panel_lines(const keypad_panel& panel) {

@@ -13,6 +13,8 @@
 #include <termios.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <deque>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -47,9 +49,29 @@ class raw_terminal {
 class key_decoder {
  public:
   void push(char c, std::vector<std::string>& words);
+  /// Reads what the keyboard `fd` has (after poll() said it is readable) and returns its words.
+  std::vector<std::string> read(int fd);
 
  private:
   std::string escape_;  // an escape sequence being read
+};
+
+/// Key words from a file or pipe, in order; a word "wait=MS" holds the ones after it back MS milliseconds.
+class key_script {
+ public:
+  /// Appends the words of one input line.
+  void add_line(const std::string& line);
+  /// The next word due at `now_ns` (wait=MS words are taken here, a bad one reported as `bad_wait`);
+  /// false if none is due.
+  bool next(std::uint64_t now_ns, std::string& word, std::string& bad_wait);
+  /// Milliseconds until a word is due: 0 if one is due now, -1 if none is queued.
+  [[nodiscard]] int due_in_ms(std::uint64_t now_ns) const;
+  /// True when no word is queued and no wait is running.
+  [[nodiscard]] bool done(std::uint64_t now_ns) const;
+
+ private:
+  std::deque<std::string> words_;
+  std::uint64_t resume_at_ = 0;
 };
 
 /// The key a word names: the key script's names (docs/basic.md: 0..9, up, +, down, -, clr, y, enter, n, .,

@@ -71,14 +71,25 @@ class watched_node final : public byte_port {
 template <class Node>
 class station {
  public:
-  station(Node& node, const join_settings& settings, live::capture_file* capture, ring_tap::sink on_in,
-          ring_tap::sink on_out)
+  // `print` gets the link's events: what arrives for this node (hops 1) and stray bytes; with --trace also
+  // what passes through and what the node sends. Each carries "link": "in" or "out".
+  station(Node& node, const join_settings& settings, live::capture_file* capture, ring_tap::sink print)
       : node_(&node),
         settings_(settings),
         in_(capture, "received on " + settings.port),
         out_(capture, "sent on " + settings.port),
-        watched_(node, in_, out_, std::move(on_in), std::move(on_out)),
+        print_(std::move(print)),
+        watched_(
+            node, in_, out_,
+            [this](const live::event& e) {
+              if (settings_.trace || in_.last_hops() <= 1) show(e, "in");
+            },
+            [this](const live::event& e) {
+              if (settings_.trace) show(e, "out");
+            }),
         link_(-1, watched_) {}
+  station(const station&) = delete;
+  station& operator=(const station&) = delete;
 
   bool open(std::string& error) {
     if (!port_.open(settings_.port, settings_.link, error)) return false;
@@ -155,11 +166,18 @@ class station {
   const std::string& port_name() const { return settings_.port; }
 
  private:
+  void show(const live::event& e, const char* link) {
+    live::event shown = e;
+    shown.text("link", link);
+    print_(shown);
+  }
+
   Node* node_;
   join_settings settings_;
   host::link_device port_;
   ring_tap in_;
   ring_tap out_;
+  ring_tap::sink print_;
   watched_node watched_;
   host::fd_link link_;
   std::uint64_t last_byte_ = 0;
@@ -251,21 +269,7 @@ int join_mc(const join_settings& settings) {
   auto mc = std::make_unique<host_mc>(*vrs);
   const bool json = settings.json;
   const auto print = [json](const live::event& e) { live::emit(e, json); };
-  std::unique_ptr<station<host_mc>> st;
-  const auto on_in = [&](const live::event& e) {
-    const std::uint8_t hops = st->in().last_hops();
-    if (!settings.trace && hops > 1) return;  // passing through: only with --trace
-    live::event shown = e;
-    shown.text("link", "in");
-    print(shown);
-  };
-  const auto on_out = [&](const live::event& e) {
-    if (!settings.trace) return;
-    live::event shown = e;
-    shown.text("link", "out");
-    print(shown);
-  };
-  st = std::make_unique<station<host_mc>>(*mc, settings, capture.is_open() ? &capture : nullptr, on_in, on_out);
+  auto st = std::make_unique<station<host_mc>>(*mc, settings, capture.is_open() ? &capture : nullptr, print);
   if (!st->open(error)) return fail("ring join: " + error);
 
   live::signal_watch signals;
@@ -438,21 +442,7 @@ int join_keypad(const join_settings& settings) {
     recent.push_back(live::format(e, false));
     if (recent.size() > 4) recent.pop_front();
   };
-  std::unique_ptr<station<host_keypad>> st;
-  const auto on_in = [&](const live::event& e) {
-    if (!settings.trace && st->in().last_hops() > 1) return;
-    live::event shown = e;
-    shown.text("link", "in");
-    print(shown);
-  };
-  const auto on_out = [&](const live::event& e) {
-    if (!settings.trace) return;
-    live::event shown = e;
-    shown.text("link", "out");
-    print(shown);
-  };
-  st = std::make_unique<station<host_keypad>>(*keypad, settings, capture.is_open() ? &capture : nullptr, on_in,
-                                              on_out);
+  auto st = std::make_unique<station<host_keypad>>(*keypad, settings, capture.is_open() ? &capture : nullptr, print);
   if (!st->open(error)) {
     terminal.restore();
     return fail("ring join: " + error);
@@ -462,8 +452,7 @@ int join_keypad(const join_settings& settings) {
   live::line_reader input(STDIN_FILENO);
   key_decoder keys;
   terminal_screen screen;
-  std::deque<std::string> script;  // key words read and not yet done
-  std::uint64_t resume_at = 0;     // a wait=MS word holds the script until then
+  key_script script;
   std::string ended;
   bool port_open = true;
   bool quit = false;
@@ -522,45 +511,33 @@ int join_keypad(const join_settings& settings) {
       st->out().add_counters(e, "out_");
       print(e);
     }
-    const std::uint64_t now = live::now_ns();
-    int wait = interactive ? 200 : 1000;
-    if (!script.empty() && resume_at > now) wait = static_cast<int>((resume_at - now) / 1000000u) + 1;
-    if (!script.empty() && resume_at <= now) wait = 0;
+    const int due = script.due_in_ms(live::now_ns());
+    const int wait = due >= 0 ? due : interactive ? 200 : 1000;
     short input_events = 0;
     port_open = st->step(wait, input.ended() ? -1 : input.fd(), input_events, ended);
     if (port_open && (input_events & (POLLIN | POLLHUP | POLLERR)) != 0) {
       if (interactive) {
-        char bytes[64];
-        const ssize_t got = ::read(STDIN_FILENO, bytes, sizeof bytes);
-        std::vector<std::string> words;
-        for (ssize_t i = 0; i < got; ++i) keys.push(bytes[i], words);
-        for (const std::string& word : words) {
+        for (const std::string& word : keys.read(STDIN_FILENO)) {
           if (word == "quit") quit = true;
           if (word != "quit" && word != "next") press(word);
         }
       } else {
         input.read_some();
         std::string line;
-        while (input.next(line)) {
-          for (const std::string& word : live::words_of(line)) script.push_back(word);
-        }
+        while (input.next(line)) script.add_line(line);
       }
     }
-    while (!quit && !script.empty() && resume_at <= live::now_ns()) {
-      const std::string word = script.front();
-      script.pop_front();
-      long long ms = 0;
-      if (word.compare(0, 5, "wait=") == 0) {
-        if (!parse_integer(word.substr(5), 0, 3600000, ms)) {
-          print(live::event(live::now_ns(), "error").text("word", word).text("reason", "wait=MS takes 0..3600000"));
-          continue;
-        }
-        resume_at = live::now_ns() + static_cast<std::uint64_t>(ms) * 1000000u;
-      } else if (word == "quit") {
+    std::string word;
+    std::string bad_wait;
+    while (!quit && script.next(live::now_ns(), word, bad_wait)) {
+      if (word == "quit") {
         quit = true;
       } else {
         press(word);
       }
+    }
+    if (!bad_wait.empty()) {
+      print(live::event(live::now_ns(), "error").text("word", bad_wait).text("reason", "wait=MS takes 0..3600000"));
     }
     show();
   }

@@ -62,31 +62,29 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
   live::signal_watch signals;
   live::line_reader input(STDIN_FILENO);
   key_decoder keys;
-  std::deque<std::string> script;
+  key_script script;
   std::size_t selected = 0;  // index into keypad_nodes
   bool quit = false;
   const std::uint64_t started = live::now_ns();
   const std::uint64_t start_time = net.now();
-  std::uint64_t resume_at = 0;  // a wait=MS word holds the script until then (wall clock)
   std::string error;
-  const auto press = [&](std::size_t keypad, const std::string& word) {
-    if (!net.press(keypad, word, error)) {
-      const std::string line = "error: " + error;
-      if (interactive) {
-        recent.push_back(line);
-        if (recent.size() > 5) recent.pop_front();
-        changed = true;
-      } else {
-        std::printf("%s\n", line.c_str());
-      }
+  const auto complain = [&](const std::string& why) {
+    const std::string line = "error: " + why;
+    if (interactive) {
+      recent.push_back(line);
+      if (recent.size() > 5) recent.pop_front();
+      changed = true;
+    } else {
+      std::printf("%s\n", line.c_str());
     }
+  };
+  const auto press = [&](std::size_t keypad, const std::string& word) {
+    if (!net.press(keypad, word, error)) complain(error);
   };
   const auto script_word = [&](const std::string& word) {
     long long number = 0;
     if (word == "quit") {
       quit = true;
-    } else if (word.compare(0, 5, "wait=") == 0 && parse_integer(word.substr(5), 0, 3600000, number)) {
-      resume_at = live::now_ns() + static_cast<std::uint64_t>(number) * 1000000u;
     } else if (const std::size_t colon = word.find(':'); colon != std::string::npos &&
                                                         parse_integer(word.substr(0, colon), 1, 1000, number)) {
       press(static_cast<std::size_t>(number), word.substr(colon + 1));
@@ -122,11 +120,7 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
     if (input.ended()) p.fd = -1;
     if (::poll(&p, 1, 10) > 0 && (p.revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
       if (interactive) {
-        char bytes[64];
-        const ssize_t got = ::read(STDIN_FILENO, bytes, sizeof bytes);
-        std::vector<std::string> words;
-        for (ssize_t i = 0; i < got; ++i) keys.push(bytes[i], words);
-        for (const std::string& word : words) {
+        for (const std::string& word : keys.read(STDIN_FILENO)) {
           if (word == "quit") {
             quit = true;
           } else if (word == "next") {
@@ -139,18 +133,15 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
       } else {
         input.read_some();
         std::string line;
-        while (input.next(line)) {
-          for (const std::string& word : live::words_of(line)) script.push_back(word);
-        }
+        while (input.next(line)) script.add_line(line);
       }
     }
-    while (!quit && !script.empty() && resume_at <= live::now_ns()) {
-      const std::string word = script.front();
-      script.pop_front();
-      script_word(word);
-    }
+    std::string word;
+    std::string bad_wait;
+    while (!quit && script.next(live::now_ns(), word, bad_wait)) script_word(word);
+    if (!bad_wait.empty()) complain(bad_wait + ": wait=MS takes 0..3600000");
     // Key words from a file or pipe: the run ends when they are done.
-    if (!interactive && input.ended() && script.empty() && resume_at <= live::now_ns()) quit = true;
+    if (!interactive && input.ended() && script.done(live::now_ns())) quit = true;
   }
   screen.leave();
   terminal.restore();
