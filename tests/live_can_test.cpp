@@ -71,6 +71,16 @@ TEST(LiveCan, MonitorDecodesCandumpTextAndCapturesIt) {
   std::remove(pcap.c_str());
 }
 
+// A line without end is cut at line_reader::max_line: memory stays bounded and the next line is read as usual.
+TEST(LiveCan, AnEndlessLineIsOneSyntaxErrorAndTheNextIsRead) {
+  const auto r = run_cli("can monitor - --json", std::string(300000, '0') + "\n028#0100000000020D7A\n");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"event\":\"error\",\"reason\":\"syntax\",\"line\":1}"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"line\":2}"), std::string::npos) << "the rest of the long line is not a line of its own";
+  EXPECT_NE(r.out.find("\"event\":\"vr\",\"id\":40"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"frames\":1,\"vr\":1,\"errors\":0,\"error_frames\":0,\"syntax\":1}"), std::string::npos) << r.out;
+}
+
 TEST(LiveCan, SendWritesACandumpLogLine) {
   const auto r = run_cli("can send - --from 1 --to 4 --vr 1 --value 2.345 --interface-name vcan0");
   EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -323,8 +323,11 @@ TEST(LiveRing, KeypadEmulatorInATerminal) {
   ASSERT_TRUE(pty.ok());
   const std::string session = "trionet-keypad-" + std::to_string(::getpid());
   const std::string socket = "-L " + session;
+  const std::string after = temp_path("stty-after");  // the terminal's settings once the keypad has quit
+  std::remove(after.c_str());
   const std::string start = "tmux " + socket + " new-session -d -s " + session + " -x 120 -y 24 '" +
-                            std::string(TRIONET_CLI_PATH) + " ring join " + pty.slave_path + " --as keypad'";
+                            std::string(TRIONET_CLI_PATH) + " ring join " + pty.slave_path + " --as keypad; stty -a >" +
+                            after + ".part; mv " + after + ".part " + after + "; sleep 60'";
   ASSERT_EQ(std::system(start.c_str()), 0);
   struct kill_session {
     std::string command;
@@ -362,10 +365,15 @@ TEST(LiveRing, KeypadEmulatorInATerminal) {
   EXPECT_NE(shown.find("|SPEED: 3            |"), std::string::npos) << shown;
   EXPECT_EQ(trionet::test::tool_process::occurrences(shown, "|SPEED:"), 1u) << "drawn in place, not scrolled:\n" << shown;
   ASSERT_EQ(std::system(("tmux " + socket + " send-keys -t " + session + " q").c_str()), 0);
-  for (int i = 0; i < 100 && std::system(("tmux " + socket + " has-session -t " + session + " 2>/dev/null").c_str()) == 0; ++i)
+  std::string settings;
+  for (int i = 0; i < patience_ms / 50 && settings.empty(); ++i) {
     ::usleep(50000);
-  EXPECT_NE(std::system(("tmux " + socket + " has-session -t " + session + " 2>/dev/null").c_str()), 0)
-      << "q ends the keypad";
+    settings = trionet::test::slurp(after);
+  }
+  ASSERT_FALSE(settings.empty()) << "q ends the keypad";
+  EXPECT_NE(settings.find(" icanon"), std::string::npos) << "line editing is back:\n" << settings;
+  EXPECT_NE(settings.find(" echo "), std::string::npos) << "echo is back:\n" << settings;
+  std::remove(after.c_str());
 }
 
 TEST(LiveRing, SimulateInteractiveTakesKeyWordsWithoutATerminal) {

@@ -207,7 +207,22 @@ bool line_reader::read_some() {
   char chunk[4096];
   const ssize_t got = ::read(fd_, chunk, sizeof chunk);
   if (got > 0) {
-    pending_.append(chunk, static_cast<std::size_t>(got));
+    for (ssize_t i = 0; i < got; ++i) {
+      const char c = chunk[i];
+      if (dropping_) {
+        dropping_ = c != '\n';
+      } else if (c == '\n') {
+        pending_ += c;
+        open_length_ = 0;
+      } else if (open_length_ == max_line) {  // cut: what came so far is the line, its rest is dropped
+        pending_ += '\n';
+        open_length_ = 0;
+        dropping_ = true;
+      } else {
+        pending_ += c;
+        ++open_length_;
+      }
+    }
     return true;
   }
   if (got < 0 && (errno == EAGAIN || errno == EINTR)) return true;

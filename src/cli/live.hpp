@@ -98,9 +98,12 @@ class capture_file {
 // ---- command lines on standard input ----
 
 /// Reads standard input without blocking the command: `read_some` after poll() said it is readable, then
-/// take the whole lines it completed. At the end of input the last unterminated line counts as a line.
+/// take the whole lines it completed. At the end of input the last unterminated line counts as a line. A line
+/// longer than `max_line` is cut there (the rest of it is dropped), so memory stays bounded whatever comes.
 class line_reader {
  public:
+  static constexpr std::size_t max_line = 65536;
+
   explicit line_reader(int fd = 0) : fd_(fd) {}
   /// One read(); false at the end of input or on an error.
   bool read_some();
@@ -112,6 +115,8 @@ class line_reader {
   int fd_;
   std::string pending_;
   bool ended_ = false;
+  std::size_t open_length_ = 0;  // characters of the line not yet ended
+  bool dropping_ = false;        // the rest of a line that was cut
 };
 
 /// Splits a line into blank-separated words.
