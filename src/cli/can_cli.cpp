@@ -10,6 +10,7 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
+#include "live.hpp"
 #include "trionet/host/candump.hpp"
 #include "trionet/host/capture.hpp"
 
@@ -335,11 +336,15 @@ const command can_commands[] = {
     {"encode", "print the frame that sets a VR on another node, as candump text", encode_usage, encode_command},
     {"decode", "read candump text or a capture; print one JSON event per frame", decode_usage, decode_command},
     {"table", "print the note's receive and transmit identifier tables", table_usage, table_command},
+    {"monitor", "watch a live bus (SocketCAN, or candump text with -): one event per frame", can_live_usage,
+     can_monitor_main},
+    {"send", "put one VR message on a live bus", can_live_usage, can_send_main},
+    {"node", "be a TN20-17 VR-exchange node on a live bus, commands on stdin", can_live_usage, can_node_main},
 };
 
 }  // namespace
 
-const part can_part = {"can", "Trio TN20-17 CANbus VR exchange (encode, decode, table)", can_commands,
+const part can_part = {"can", "Trio TN20-17 CANbus VR exchange (encode, decode, table, monitor, send, node)", can_commands,
                        sizeof can_commands / sizeof can_commands[0],
                        "K (--nodes) is the number of controllers, 2..11 (default 5, the note's limit).\n"};
 

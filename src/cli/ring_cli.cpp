@@ -7,6 +7,7 @@
 #include "capture_cli.hpp"
 #include "cli.hpp"
 #include "ring_cli.hpp"
+#include "ring_live.hpp"
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
@@ -339,6 +340,10 @@ const command ring_commands[] = {
      decode_main},
     {"simulate", "a ring of Motion Coordinators running BASIC programs and keypads", simulate_usage,
      ring_simulate_main},
+    {"monitor", "watch a live ring port: one event per message as it arrives", ring_live_usage, ring_monitor_main},
+    {"send", "put one message on a live ring port", ring_live_usage, ring_send_main},
+    {"join", "be a node on a live ring: a Motion Coordinator (--as mc) or a keypad (--as keypad)", ring_live_usage,
+     ring_join_main},
 };
 
 }  // namespace
@@ -395,7 +400,7 @@ const char* ring_event_kind(const ring::decode_result& result) {
   return "incomplete";
 }
 
-const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate)",
+const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join)",
                         ring_commands, sizeof ring_commands / sizeof ring_commands[0], ""};
 
 }  // namespace trionet::cli

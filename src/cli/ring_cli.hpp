@@ -30,3 +30,15 @@ extern const char* const simulate_usage;
 int ring_simulate_main(const words& args);
 
 }  // namespace trionet::cli
+
+namespace trionet::host {
+class ring_network;
+}
+
+namespace trionet::cli {
+
+/// `trionet ring simulate ... --interactive`: runs `net` in real time at `bit_rate` (10 bits per byte) until
+/// quit, a signal or `max_byte_times`, with its keypads on the terminal (ring_simulate_interactive.cpp).
+int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uint64_t max_byte_times);
+
+}  // namespace trionet::cli

@@ -3,6 +3,7 @@
 // messages dropped and why, VRs written by the ring, program ends and errors, NETSTAT; with --trace every
 // message on every link and every display change), then every node's state; --json ends with one JSON line.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -61,6 +62,10 @@ const char* const simulate_usage =
     "  --pcap FILE              write every byte of every link to a pcapng capture: one interface per link\n"
     "                           (\"link 0: node 1 (mc) -> node 2 (keypad)\"), one record per message, times\n"
     "                           from the byte-times at --bit-rate since the start (docs/wireshark.md)\n"
+    "  --interactive            run in real time with the keypads' displays on the terminal and the keyboard as\n"
+    "                           their keys (Tab: next keypad; q: quit); without a terminal, key words from\n"
+    "                           standard input (\"1:up 2:7 wait=MS\", until they are done) and display changes\n"
+    "                           printed\n"
     "Exit status 0 when the run ended without a program failing, 1 when a program failed or the capture\n"
     "could not be written, 2 for bad arguments.\n";
 
@@ -213,7 +218,7 @@ int ring_simulate_main(const words& all) {
   std::string error;
   if (!parse_arguments(all,
                        {"--pcap", "--node", "--keys", "--byte-times", "--bit-rate", "--statements-per-byte-time", "--key-gap"},
-                       {"--trace", "--json"}, args, error, {"--node"})) {
+                       {"--trace", "--json", "--interactive"}, args, error, {"--node"})) {
     return fail(error);
   }
   const builtin_network* builtin = nullptr;
@@ -277,7 +282,10 @@ int ring_simulate_main(const words& all) {
 
   std::unique_ptr<host::ring_network> net = host::ring_network::build(nodes, config, error);
   if (!net) return fail(error);
-  const std::string keys = args.has("--keys") ? args.options.at("--keys") : builtin != nullptr ? builtin->keys : "";
+  const bool interactive = args.flags.count("--interactive") != 0;  // the keys are the user's, live
+  const std::string keys = args.has("--keys")                      ? args.options.at("--keys")
+                           : builtin != nullptr && !interactive ? builtin->keys
+                                                                : "";
   if (!net->set_keys(keys, error)) return fail(error);
 
   // The capture: one interface per link, named after the nodes it joins.
@@ -304,6 +312,9 @@ int ring_simulate_main(const words& all) {
     });
   }
 
+  if (interactive) {
+    return ring_simulate_interactive(*net, config.bit_rate, args.has("--byte-times") ? max_byte_times : UINT64_MAX);
+  }
   const bool json = args.flags.count("--json") != 0;
   const bool trace = args.flags.count("--trace") != 0;
   const bool narrate = trace || !json;

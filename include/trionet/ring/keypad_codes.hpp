@@ -85,6 +85,33 @@ constexpr const char* to_string(key value) noexcept {
   return "unknown";
 }
 
+/// The key a name means, in the key script's words (docs/basic.md): "0".."9", "up" or "+", "down" or "-",
+/// "clr", "y" or "enter", "n", ".", "start", "stop", in any case. False for any other name.
+constexpr bool key_named(const char* name, std::size_t length, key& out) noexcept {
+  struct named {
+    const char* name;
+    key value;
+  };
+  constexpr named names[] = {{"0", key::digit_0},  {"1", key::digit_1},  {"2", key::digit_2},     {"3", key::digit_3},
+                             {"4", key::digit_4},  {"5", key::digit_5},  {"6", key::digit_6},     {"7", key::digit_7},
+                             {"8", key::digit_8},  {"9", key::digit_9},  {"up", key::up},         {"+", key::up},
+                             {"down", key::down},  {"-", key::down},     {"clr", key::clear},     {"y", key::yes},
+                             {"enter", key::yes},  {"n", key::no},       {".", key::point},       {"start", key::start},
+                             {"stop", key::stop}};
+  for (const named& candidate : names) {
+    std::size_t i = 0;
+    for (; i < length && candidate.name[i] != '\0'; ++i) {
+      const char c = name[i] >= 'A' && name[i] <= 'Z' ? static_cast<char>(name[i] - 'A' + 'a') : name[i];
+      if (c != candidate.name[i]) break;
+    }
+    if (i == length && candidate.name[i] == '\0') {
+      out = candidate.value;
+      return true;
+    }
+  }
+  return false;
+}
+
 /// The key for a digit 0..9 (taken modulo 10).
 constexpr key digit_key(unsigned digit) noexcept {
   return static_cast<key>(digit % 10);
