@@ -4,12 +4,14 @@
 // last 14 bytes also make a frame (identifier word, DLC, data) that is formatted and parsed back.
 // Invariants:
 //   - no crash, no undefined behaviour, whatever the text (ASan/UBSan in scripts/fuzz);
-//   - a parsed frame is a legal classic frame: an 11-bit identifier (or 29-bit with the extended flag), no
-//     other identifier bits, DLC 0..8;
-//   - parse -> format -> parse gives the same record (timestamp, interface, frame), and formatting that again
-//     gives the same text (the formatter's output is canonical); the compact form round-trips the frame too;
+//   - a parsed line's lengths are within its frame type's (classic 8, FD 64, XL 2048) and a classic frame
+//     with a legal identifier is a legal frame: an 11-bit identifier (or 29-bit with the extended flag), no
+//     other identifier bits, DLC 0..15;
+//   - such a frame formats to a compact frame that parses back to the same frame, and a line with a numeric
+//     timestamp formats to a log line that parses back to the same frame, interface, direction and time (to
+//     the digits written);
 //   - format -> parse: any frame the formatter can write (identifier within its width, DLC 0..15) parses back
-//     to the frame with the DLC it puts on the wire (min(DLC, 8)).
+//     to the same frame.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -26,18 +28,13 @@ namespace {
 using trionet::can::frame;
 using namespace trionet::host;
 
-bool same(const candump_record& a, const candump_record& b) {
-  return a.has_timestamp == b.has_timestamp && a.seconds == b.seconds && a.microseconds == b.microseconds &&
-         a.interface_name == b.interface_name && a.frame == b.frame;
-}
-
 void check_frame(const frame& f) {
   if (f.extended()) {
     FUZZ_CHECK((f.id & ~(frame::extended_flag | frame::remote_flag | frame::extended_mask)) == 0);
   } else {
     FUZZ_CHECK((f.id & ~(frame::remote_flag | frame::standard_mask)) == 0);
   }
-  FUZZ_CHECK(f.dlc <= 8);
+  FUZZ_CHECK(f.dlc <= 15);
   if (f.remote()) FUZZ_CHECK(f.payload().empty());
 }
 
@@ -48,21 +45,38 @@ void check_line(std::string_view line) {
     return;
   }
   const candump_record& record = parsed.record;
+  switch (record.type) {
+    case candump_frame_type::classic:
+    case candump_frame_type::error:
+      FUZZ_CHECK(record.length <= 8);
+      break;
+    case candump_frame_type::fd:
+      FUZZ_CHECK(record.length <= 64);
+      break;
+    case candump_frame_type::xl:
+      FUZZ_CHECK(record.length <= 2048);
+      break;
+  }
+  FUZZ_CHECK(record.nanoseconds <= 999999999);
+  FUZZ_CHECK(record.form == candump_form::compact || !record.interface_name.empty());
+  if (!record.classic_frame()) return;
   check_frame(record.frame);
-  FUZZ_CHECK(record.microseconds <= 999999);
-  FUZZ_CHECK(record.has_timestamp != record.interface_name.empty());
 
+  const candump_result bare = parse_candump_line(format_candump_frame(record.frame));
+  FUZZ_CHECK(bare.status == candump_status::ok);
+  FUZZ_CHECK(bare.record.form == candump_form::compact && bare.record.classic_frame());
+  FUZZ_CHECK(bare.record.frame == record.frame);
+
+  if (!record.has_timestamp) return;
   const std::string text = format_candump_line(record);
   const candump_result again = parse_candump_line(text);
   FUZZ_CHECK(again.status == candump_status::ok);
-  FUZZ_CHECK(same(again.record, record));
+  FUZZ_CHECK(again.record.frame == record.frame);
+  FUZZ_CHECK(again.record.direction == record.direction);
+  FUZZ_CHECK(again.record.seconds == record.seconds);
+  const std::uint32_t kept = record.fraction_digits == 9 ? record.nanoseconds : record.nanoseconds / 1000 * 1000;
+  FUZZ_CHECK(again.record.nanoseconds == kept);
   FUZZ_CHECK(format_candump_line(again.record) == text);
-
-  const std::string compact = format_candump_frame(record.frame);
-  const candump_result bare = parse_candump_line(compact);
-  FUZZ_CHECK(bare.status == candump_status::ok);
-  FUZZ_CHECK(!bare.record.has_timestamp && bare.record.interface_name.empty());
-  FUZZ_CHECK(bare.record.frame == record.frame);
 }
 
 void check_format(const std::uint8_t* bytes) {
@@ -74,23 +88,23 @@ void check_format(const std::uint8_t* bytes) {
   f.dlc = static_cast<std::uint8_t>(bytes[4] & 15u);
   for (std::size_t i = 0; i < 8; ++i) f.data[i] = bytes[5 + i];
 
-  frame wire = f;  // what the text carries: the DLC of the bytes on the wire
-  wire.dlc = f.dlc > 8 ? std::uint8_t{8} : f.dlc;
-
   candump_record record;
   record.frame = f;
   record.has_timestamp = (bytes[13] & 1u) != 0;
   record.seconds = bytes[13];
-  record.microseconds = bytes[12] * 3907u;
+  record.nanoseconds = bytes[12] * 3907000u;
+  record.fraction_digits = 6;
   record.interface_name = (bytes[13] & 2u) != 0 ? "vcan0" : "";
+  record.direction = (bytes[13] & 4u) != 0 ? 'T' : 0;
   const candump_result parsed = parse_candump_line(format_candump_line(record));
   FUZZ_CHECK(parsed.status == candump_status::ok);
-  FUZZ_CHECK(parsed.record.frame == wire);
+  FUZZ_CHECK(parsed.record.frame == f);
   FUZZ_CHECK(parsed.record.has_timestamp == record.has_timestamp);
   if (record.has_timestamp) {
     FUZZ_CHECK(parsed.record.seconds == record.seconds);
-    FUZZ_CHECK(parsed.record.microseconds == record.microseconds);
+    FUZZ_CHECK(parsed.record.nanoseconds == record.nanoseconds);
     FUZZ_CHECK(parsed.record.interface_name == (record.interface_name.empty() ? "can0" : "vcan0"));
+    FUZZ_CHECK(parsed.record.direction == record.direction);
   }
 }
 

@@ -65,32 +65,33 @@ TEST(CanCli, DecodeBothFormsAndEveryErrorReason) {
   EXPECT_EQ(r.err, "");
   EXPECT_EQ(
       r.out,
-      "{\"event\":\"vr\",\"id\":40,\"from\":1,\"to\":4,\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,"
-      "\"value\":2.345}\n"
-      "{\"event\":\"vr\",\"id\":23,\"from\":5,\"to\":2,\"vr\":255,\"negative\":true,\"int\":1,\"frac\":0,"
+      "{\"event\":\"vr\",\"line\":1,\"time\":\"1700000000.123456\",\"interface\":\"can0\",\"id\":40,\"from\":1,"
+      "\"to\":4,\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,\"value\":2.345}\n"
+      "{\"event\":\"vr\",\"line\":2,\"id\":23,\"from\":5,\"to\":2,\"vr\":255,\"negative\":true,\"int\":1,\"frac\":0,"
       "\"value\":-1}\n"
-      "{\"event\":\"error\",\"line\":4,\"reason\":\"syntax\"}\n"
-      "{\"event\":\"error\",\"line\":5,\"reason\":\"bad_dlc\"}\n"
-      "{\"event\":\"error\",\"line\":6,\"reason\":\"bad_sign\"}\n"
-      "{\"event\":\"error\",\"line\":7,\"reason\":\"bad_fraction\"}\n"
-      "{\"event\":\"error\",\"line\":8,\"reason\":\"unknown_id\"}\n"
-      "{\"event\":\"vr\",\"id\":10,\"from\":2,\"to\":1,\"vr\":0,\"negative\":false,\"int\":0,\"frac\":0,"
-      "\"value\":0}\n");
+      "{\"event\":\"error\",\"line\":4,\"reason\":\"syntax\",\"detail\":\"identifier\"}\n"
+      "{\"event\":\"error\",\"line\":5,\"reason\":\"bad_dlc\",\"id\":40}\n"
+      "{\"event\":\"error\",\"line\":6,\"reason\":\"bad_sign\",\"id\":40}\n"
+      "{\"event\":\"error\",\"line\":7,\"reason\":\"bad_fraction\",\"id\":40}\n"
+      "{\"event\":\"frame\",\"line\":8,\"kind\":\"foreign_id\",\"id\":60,\"length\":8}\n"
+      "{\"event\":\"vr\",\"line\":10,\"id\":10,\"from\":2,\"to\":1,\"vr\":0,\"negative\":false,\"int\":0,"
+      "\"frac\":0,\"value\":0}\n");
 }
 
 TEST(CanCli, DecodeNodeCountChangesWhichIdentifiersAreKnown) {
   const std::string input = "03C#0100000000000000\n(1.000001) can1 06D#0300FFFFFFFF270F\n";
   const auto five = run_cli("can decode --nodes 5", input);
   EXPECT_EQ(five.out,
-            "{\"event\":\"error\",\"line\":1,\"reason\":\"unknown_id\"}\n"
-            "{\"event\":\"error\",\"line\":2,\"reason\":\"unknown_id\"}\n");
+            "{\"event\":\"frame\",\"line\":1,\"kind\":\"foreign_id\",\"id\":60,\"length\":8}\n"
+            "{\"event\":\"frame\",\"line\":2,\"time\":\"1.000001\",\"interface\":\"can1\",\"kind\":\"foreign_id\","
+            "\"id\":109,\"length\":8}\n");
   const auto eleven = run_cli("can decode --nodes 11", input);
   EXPECT_EQ(
       eleven.out,
-      "{\"event\":\"vr\",\"id\":60,\"from\":1,\"to\":6,\"vr\":1,\"negative\":false,\"int\":0,\"frac\":0,"
-      "\"value\":0}\n"
-      "{\"event\":\"vr\",\"id\":109,\"from\":11,\"to\":10,\"vr\":3,\"negative\":false,\"int\":4294967295,"
-      "\"frac\":9999,\"value\":4294967295.9999}\n");
+      "{\"event\":\"vr\",\"line\":1,\"id\":60,\"from\":1,\"to\":6,\"vr\":1,\"negative\":false,\"int\":0,"
+      "\"frac\":0,\"value\":0}\n"
+      "{\"event\":\"vr\",\"line\":2,\"time\":\"1.000001\",\"interface\":\"can1\",\"id\":109,\"from\":11,\"to\":10,"
+      "\"vr\":3,\"negative\":false,\"int\":4294967295,\"frac\":9999,\"value\":4294967295.9999}\n");
   const auto bad = run_cli("can decode --nodes 0", input);
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(bad.out, "");
@@ -111,11 +112,13 @@ TEST(CanCli, EncodeThenDecodeEveryPairOfFiveNodes) {
   }
   const auto decoded = run_cli("can decode", lines);
   std::string expected;
+  int line = 0;
   for (int from = 1; from <= 5; ++from) {
     for (int to = 1; to <= 5; ++to) {
       if (from == to) continue;
       const int id = 10 * to + (from < to ? from : from - 1) - 1;
-      expected += "{\"event\":\"vr\",\"id\":" + std::to_string(id) + ",\"from\":" + std::to_string(from) +
+      expected += "{\"event\":\"vr\",\"line\":" + std::to_string(++line) + ",\"id\":" + std::to_string(id) +
+                  ",\"from\":" + std::to_string(from) +
                   ",\"to\":" + std::to_string(to) + ",\"vr\":" + std::to_string(from * 10 + to) +
                   ",\"negative\":true,\"int\":" + std::to_string(from) +
                   ",\"frac\":" + std::to_string(to * 1000) + ",\"value\":-" + std::to_string(from) + "." +
@@ -164,6 +167,58 @@ TEST(CanCli, HelpGoesToStdout) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("encode"), std::string::npos);
   EXPECT_EQ(r.err, "");
+}
+
+}  // namespace
+
+#include <fstream>
+
+#include "trionet/host/capture.hpp"
+#include "trionet/host/pcapng.hpp"
+
+namespace {
+
+TEST(CanCli, DecodeACaptureRecordByRecord) {
+  using namespace trionet::host;
+  const std::string capture = "/tmp/trionet-can-" + std::to_string(::getpid()) + ".pcapng";
+  {
+    std::ofstream file(capture, std::ios::binary);
+    pcapng_writer writer(file);
+    const std::uint32_t bus = writer.add_interface("can0", capture_network::can).id;
+    trionet::can::frame vr;
+    vr.id = 0x028;
+    vr.dlc = 8;
+    const std::uint8_t data[8] = {0x01, 0x00, 0x00, 0x00, 0x00, 0x02, 0x0D, 0x7A};
+    for (int i = 0; i < 8; ++i) vr.data[i] = data[i];
+    trionet::can::frame remote;
+    remote.id = 0x123 | trionet::can::frame::remote_flag;
+    for (const trionet::can::frame& f : {vr, remote}) {
+      const auto record = socketcan_record(f);
+      ASSERT_EQ(writer.write(bus, 1700000000123456789ull, trionet::byte_view(record.data(), record.size())),
+                pcapng_write_status::ok);
+    }
+  }
+  const auto r = run_cli("can decode --pcap " + capture);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "{\"event\":\"vr\",\"record\":1,\"interface_id\":0,\"interface\":\"can0\",\"time\":\"1700000000.123456789\","
+            "\"id\":40,\"from\":1,\"to\":4,\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,\"value\":2.345}\n"
+            "{\"event\":\"frame\",\"record\":2,\"interface_id\":0,\"interface\":\"can0\",\"time\":\"1700000000.123456789\","
+            "\"kind\":\"remote\",\"id\":291,\"length\":0}\n");
+  const auto fields = run_cli("can decode --pcap " + capture + " --json");
+  EXPECT_NE(fields.out.find("\"trionet_can.value\":2.3450000000000002"), std::string::npos) << fields.out;
+  const auto ring = run_cli("ring decode --pcap " + capture);
+  EXPECT_EQ(ring.out.find("{\"event\":\"other_network\",\"record\":1"), 0u) << ring.out;
+  std::remove(capture.c_str());
+}
+
+TEST(CanCli, HelpOnEveryCommand) {
+  for (const char* command : {"can encode --help", "can decode -h", "can table --help", "can --help"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_EQ(r.out.rfind("usage: trionet can", 0), 0u) << command << ": " << r.out;
+    EXPECT_EQ(r.err, "") << command;
+  }
 }
 
 }  // namespace

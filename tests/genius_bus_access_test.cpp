@@ -1,4 +1,4 @@
-// Genius bus access (docs/protocol.md 3.3): rates, turn timing, margins, the bus scan and scan-time terms.
+// Genius bus access (docs/protocol.md 3.3): rates, turn timing, margins and the bus scan.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -95,25 +95,6 @@ TEST(GeniusRates, TableOfProtocolSection33) {
   rate parsed{};
   EXPECT_FALSE(rate_from_name("153.6", parsed));
   EXPECT_FALSE(rate_from_name("", parsed));
-}
-
-// GE GFK-0825F: 0.0715 / 0.0715 / 0.143 / 0.286 ms per byte; these are one 11-bit character time.
-TEST(GeniusScanTime, PerByteTermsAgreeWithGeWithinHalfAPercent) {
-  const struct {
-    rate r;
-    double fixed_ms;
-    double per_byte_ms;
-  } published[] = {{rate::standard_153k6, 0.943, 0.0715},
-                   {rate::extended_153k6, 1.015, 0.0715},
-                   {rate::baud_76k8, 1.538, 0.143},
-                   {rate::baud_38k4, 2.583, 0.286}};
-  for (const auto& p : published) {
-    const scan_time_estimate e = device_scan_time(p.r, 10);
-    EXPECT_NEAR(e.per_byte_ms, p.per_byte_ms, p.per_byte_ms * 0.005) << properties(p.r).name;
-    EXPECT_NEAR(character_time_us(p.r) / 1000.0, p.per_byte_ms, p.per_byte_ms * 0.005);
-    EXPECT_DOUBLE_EQ(e.fixed_ms, p.fixed_ms);
-    EXPECT_DOUBLE_EQ(e.total_ms, e.fixed_ms + 10 * e.per_byte_ms);
-  }
 }
 
 TEST(GeniusTurns, OrderWrapsRoundSba31) {

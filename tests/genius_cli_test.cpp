@@ -93,7 +93,7 @@ TEST(GeniusCli, EncodeTheRunningExample) {
 
 TEST(GeniusCli, DecodeRoundTripsFromStdinAndArguments) {
   const std::string expected =
-      "transmission from SBA 4, directed to SBA 7\n"
+      "transmission from SBA 4, directed to SBA 7 (line 1, character 1)\n"
       "  data 11 22\n"
       "  block to SBA 9: aa bb\n"
       "  data 33\n"
@@ -107,26 +107,86 @@ TEST(GeniusCli, DecodeRoundTripsFromStdinAndArguments) {
   EXPECT_EQ(from_words.out, expected);
 }
 
-TEST(GeniusCli, DecodeReportsWireErrorsWithExit1) {
-  const auto r =
-      run_cli("genius decode", "11 c:04 07 11 22 c:89 aa bb c:ce 33 c:51 c:23 5a c:75 w:412 w:41c w:489");
-  EXPECT_EQ(r.exit_code, 1);
+TEST(GeniusCli, DecodeReportsWireErrorsWithWhereTheyAreAndExit0) {
+  const auto r = run_cli("genius decode",
+                         "11 c:04 07 11 22 c:89 aa bb c:ce 33 c:51\nc:23 5a c:75 w:412 w:41c w:489");
+  EXPECT_EQ(r.exit_code, 0) << "wire errors are events, not failures";
   EXPECT_EQ(r.out,
-            "error at character 1 (11): data_outside_transmission\n"
-            "error at character 11 (c:51): stop_crc_mismatch\n"
-            "transmission from SBA 3, broadcast\n"
+            "error at line 1, character 1 (11): data_outside_transmission\n"
+            "error at line 1, character 11 (c:51): stop_crc_mismatch\n"
+            "transmission from SBA 3, broadcast (line 2, character 12)\n"
             "  data 5a\n"
-            "error at character 17 (w:489): framing_error (start bit not 0)\n"
+            "error at line 2, character 17 (w:489): framing_error (start bit not 0)\n"
             "1 transmission, 3 errors, 0 characters skipped\n");
   const auto unfinished = run_cli("genius decode c:04 07");
-  EXPECT_EQ(unfinished.exit_code, 1);
+  EXPECT_EQ(unfinished.exit_code, 0);
   EXPECT_EQ(unfinished.out,
-            "error at end of input: transmission not finished\n"
+            "error at end of input: transmission not finished (its Start at line 1, character 1)\n"
             "0 transmissions, 1 error, 0 characters skipped\n");
 }
 
+TEST(GeniusCli, BadTokensAreErrorsWithTheTokenClippedAndEscaped) {
+  const std::string huge(100000, 'q');
+  const auto r = run_cli("genius decode", "c:4 w:800 c:23 zz\x01 5a c:75 " + huge + "\n11");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out,
+            "error at line 1, character 1 (c:4): not a character (XX, c:XX or w:XXX)\n"
+            "error at line 1, character 2 (w:800): not a character (XX, c:XX or w:XXX)\n"
+            "error at line 1, character 4 (zz\\x01): not a character (XX, c:XX or w:XXX)\n"
+            "error at line 1, character 7 (" + std::string(40, 'q') + "...): not a character (XX, c:XX or w:XXX)\n"
+            "0 transmissions, 4 errors, 3 characters skipped\n")
+      << "a bad token inside a transmission loses it, as a framing error would: 5a c:75 11 are skipped up to "
+         "the next Start";
+}
+
+TEST(GeniusCli, RawWordsWithOffsets) {
+  // c:23 5a c:75 as 11-bit words, two bytes each, big-endian; then a lone byte.
+  const auto r = run_cli("genius decode --raw", std::string("\x04\x8e\x05\x68\x05\xd6\x07", 7));
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "transmission from SBA 3, broadcast (offset 0)\n"
+            "  data 5a\n"
+            "error at offset 6: an odd byte at the end of the input\n"
+            "1 transmission, 1 error, 0 characters skipped\n");
+}
+
+TEST(GeniusCli, EncodeRefusesWhatTheDecoderRejects) {
+  const std::string most(2 * 256, 'a');
+  const auto ok = run_cli("genius encode --from 3 --broadcast " + most);
+  ASSERT_EQ(ok.exit_code, 0);
+  EXPECT_NE(run_cli("genius decode", ok.out).out.find("1 transmission, 0 errors"), std::string::npos);
+  expect_usage_error("genius encode --from 3 --broadcast " + most + "aa", "overflow");
+  std::string blocks;
+  for (int i = 0; i < 17; ++i) blocks += " block:1:aa";
+  expect_usage_error("genius encode --from 3 --broadcast" + blocks, "16 segments");
+}
+
+TEST(GeniusCli, TimingCheckFailsOnACollisionRisk) {
+  const auto risky = run_cli("genius timing --rate 153.6s " + seed_devices + " --check");
+  EXPECT_EQ(risky.exit_code, 3);
+  EXPECT_NE(risky.out.find("TOO SMALL"), std::string::npos);
+  EXPECT_EQ(run_cli("genius timing --rate 153.6s " + seed_devices + " --check --json").exit_code, 3);
+  EXPECT_EQ(run_cli("genius timing --rate 153.6s " + seed_devices + " --skip-us 26 --check").exit_code, 0);
+  EXPECT_EQ(run_cli("genius timing --rate 153.6s " + seed_devices).exit_code, 0) << "without --check: a report";
+}
+
+TEST(GeniusCli, TimingJsonIsAlwaysFinite) {
+  expect_usage_error("genius timing --rate 153.6s --after 4 --device 4@0 --device 5@1e308 --json", "5@1e308");
+  expect_usage_error("genius timing --rate 153.6s --after 4 --device 4@0 --device 5@1 --skip-us 1e300", "--skip-us");
+  const auto far = run_cli("genius timing --rate 38.4 --after 4 --device 4@0 --device 5@1000000 --skip-us 1000000 "
+                           "--prop-us-per-2000ft 1000000 --json");
+  EXPECT_EQ(far.exit_code, 0);
+  EXPECT_EQ(far.out.find("inf"), std::string::npos) << far.out;
+  EXPECT_EQ(far.out.find("nan"), std::string::npos) << far.out;
+}
+
 TEST(GeniusCli, BadArgumentsExit2WithAMessage) {
-  expect_usage_error("genius", "command");
+  const auto no_command = run_cli("genius");
+  EXPECT_EQ(no_command.exit_code, 2);
+  EXPECT_EQ(no_command.out, "");
+  EXPECT_EQ(no_command.err.rfind("trionet: genius needs a command", 0), 0u) << no_command.err;
+  EXPECT_NE(no_command.err.find("usage: trionet genius"), std::string::npos) << "the part's usage follows";
   expect_usage_error("genius frobnicate", "frobnicate");
   expect_usage_error("genius timing --after 4 --device 4@0", "--rate");
   expect_usage_error("genius timing --rate 153.6 --after 4 --device 4@0", "153.6");
@@ -151,9 +211,40 @@ TEST(GeniusCli, BadArgumentsExit2WithAMessage) {
   expect_usage_error("genius encode --from 3 --broadcast 123", "123");
   expect_usage_error("genius encode --from 3 --broadcast block:32:11", "block:32:11");
   expect_usage_error("genius encode --from 3 --broadcast block:3:", "block:3:");
-  expect_usage_error("genius decode c:4", "c:4");
-  expect_usage_error("genius decode w:800", "w:800");
-  expect_usage_error("genius decode 11 zz", "zz");
+  expect_usage_error("genius decode --raw 11", "--raw");
+  expect_usage_error("genius decode --json", "--json");
+  expect_usage_error("genius decode --rate 76.8", "--rate");
+  expect_usage_error("genius decode --write-pcap /tmp/x --rate 99", "99");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --check=1", "--check=1");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(GeniusCli, WritePcapThenReadItBack) {
+  const std::string capture = "/tmp/trionet-genius-" + std::to_string(::getpid()) + ".pcapng";
+  const auto written = run_cli("genius decode --write-pcap " + capture + " --rate 76.8",
+                               "c:04 07 11 22 c:89 aa bb c:ce 33 c:50 c:23 5a c:75 c:23 5a");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const auto read = run_cli("genius decode --pcap " + capture);
+  EXPECT_EQ(read.exit_code, 0) << read.err;
+  EXPECT_EQ(read.out,
+            "transmission from SBA 4, directed to SBA 7 (record 1 (genius 76.8) at 0.000000000, character 1)\n"
+            "  data 11 22\n"
+            "  block to SBA 9: aa bb\n"
+            "  data 33\n"
+            "transmission from SBA 3, broadcast (record 2 (genius 76.8) at 0.001432292, character 1)\n"
+            "  data 5a\n"
+            "error at end of record 3: transmission not finished (its Start at record 3 (genius 76.8) at "
+            "0.001861979, character 1)\n"
+            "2 transmissions, 1 error, 0 characters skipped\n")
+      << "one record per transmission, 11 bit times (143.2 us at 76.8 kbaud) per character";
+  const auto fields = run_cli("genius decode --pcap " + capture + " --json");
+  EXPECT_EQ(fields.exit_code, 0);
+  EXPECT_NE(fields.out.find("\"frame.interface_name\":\"genius 76.8\""), std::string::npos) << fields.out;
+  EXPECT_NE(fields.out.find("\"trionet_genius.status\":\"ok\""), std::string::npos) << fields.out;
+  std::remove(capture.c_str());
 }
 
 }  // namespace

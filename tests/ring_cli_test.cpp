@@ -23,14 +23,14 @@ TEST(RingCli, EncodePrintOffsetMode) {
 
 TEST(RingCli, DecodeGoldenExampleFromArgumentsAndStdin) {
   const std::string expected =
-      "{\"event\":\"message\",\"type\":\"var\",\"hops\":1,\"vr\":200,\"raw\":\"0x0000006300000000\","
+      "{\"event\":\"message\",\"line\":1,\"type\":\"var\",\"hops\":1,\"vr\":200,\"raw\":\"0x0000006300000000\","
       "\"value\":99}\n";
   auto r = run_cli("ring decode 8a 48 01 00 00 00 00 30 0c 00 00 00 00 7f 3e 88");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.out, expected);
   r = run_cli("ring decode", "8a4801000000\n0030 0c00000000 7f3e88\n");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_EQ(r.out, expected);
+  EXPECT_EQ(r.out, expected) << "the message is where its header is: line 1";
 }
 
 TEST(RingCli, DecodeEveryEventKind) {
@@ -50,30 +50,31 @@ TEST(RingCli, DecodeEveryEventKind) {
   );
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.out,
-            "{\"event\":\"message\",\"type\":\"char\",\"hops\":2,\"text\":\"HI\"}\n"
-            "{\"event\":\"message\",\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
-            "{\"event\":\"message\",\"type\":\"mode\",\"hops\":3,\"mode\":127}\n"
-            "{\"event\":\"crc_error\",\"hops\":1,\"vr\":200}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"stray_data\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"stray_eom\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"interrupted\"}\n"
-            "{\"event\":\"message\",\"type\":\"char\",\"hops\":2,\"text\":\"B\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"eom_mismatch\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"bad_length\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"bad_field\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"unknown_type\"}\n"
-            "{\"event\":\"frame_error\",\"reason\":\"zero_hops\"}\n");
+            "{\"event\":\"message\",\"line\":1,\"type\":\"char\",\"hops\":2,\"text\":\"HI\"}\n"
+            "{\"event\":\"message\",\"line\":1,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"message\",\"line\":1,\"type\":\"mode\",\"hops\":3,\"mode\":127}\n"
+            "{\"event\":\"crc_error\",\"line\":1,\"hops\":1,\"vr\":200}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"stray_data\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"stray_eom\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"interrupted\"}\n"
+            "{\"event\":\"message\",\"line\":1,\"type\":\"char\",\"hops\":2,\"text\":\"B\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"eom_mismatch\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"bad_length\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"bad_field\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"unknown_type\"}\n"
+            "{\"event\":\"frame_error\",\"line\":1,\"reason\":\"zero_hops\"}\n");
 }
 
 TEST(RingCli, DecodeEscapesControlCharactersInJson) {
   const auto r = run_cli("ring decode 89 0c 22 5c 41 88");
-  EXPECT_EQ(r.out, "{\"event\":\"message\",\"type\":\"char\",\"hops\":1,\"text\":\"\\u000c\\\"\\\\A\"}\n");
+  EXPECT_EQ(r.out,
+            "{\"event\":\"message\",\"line\":1,\"type\":\"char\",\"hops\":1,\"text\":\"\\u000c\\\"\\\\A\"}\n");
 }
 
 TEST(RingCli, DecodeNegativeAndFractionalValues) {
   const auto r = run_cli("ring decode $(" TRIONET_CLI_PATH " ring encode var --to 10 --vr 1 --value -2.5)");
   EXPECT_EQ(r.out,
-            "{\"event\":\"message\",\"type\":\"var\",\"hops\":1,\"vr\":1,\"raw\":\"0xfffffffd80000000\","
+            "{\"event\":\"message\",\"line\":1,\"type\":\"var\",\"hops\":1,\"vr\":1,\"raw\":\"0xfffffffd80000000\","
             "\"value\":-2.5}\n");
 }
 
@@ -83,10 +84,56 @@ TEST(RingCli, DecodeEmptyInputPrintsNothing) {
   EXPECT_EQ(r.out, "");
 }
 
-TEST(RingCli, BadInputIsAUsageError) {
-  expect_usage_error("ring decode", "not hex", "8a zz");
-  expect_usage_error("ring decode 8a4");
-  expect_usage_error("ring decode 0x8a");
+TEST(RingCli, BadHexIsAnEventWithItsLineAndDecodingGoesOn) {
+  const auto r = run_cli("ring decode", "89 41 88\n8a zz 01\n8a4 8b 03 88\n0x8b 8b 03 88\n\xc3\xa9 8b 03 88");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out,
+            "{\"event\":\"message\",\"line\":1,\"type\":\"char\",\"hops\":1,\"text\":\"A\"}\n"
+            "{\"event\":\"error\",\"line\":2,\"reason\":\"not_hex\",\"character\":\"z\"}\n"
+            "{\"event\":\"frame_error\",\"line\":2,\"reason\":\"interrupted\"}\n"
+            "{\"event\":\"error\",\"line\":3,\"reason\":\"odd_digits\"}\n"
+            "{\"event\":\"frame_error\",\"line\":3,\"reason\":\"interrupted\"}\n"
+            "{\"event\":\"message\",\"line\":3,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"error\",\"line\":4,\"reason\":\"not_hex\",\"character\":\"x\"}\n"
+            "{\"event\":\"message\",\"line\":4,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"error\",\"line\":5,\"reason\":\"not_hex\",\"character\":\"\\u00c3\"}\n"
+            "{\"event\":\"message\",\"line\":5,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n")
+      << "8a4: the byte 8a, then a lone digit; 0x8b: the word is skipped from the x on";
+}
+
+TEST(RingCli, UnfinishedMessageAtTheEndIsReported) {
+  const auto r = run_cli("ring decode", "8b 03 88\n91 48 49");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out,
+            "{\"event\":\"message\",\"line\":1,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"unfinished\",\"line\":2}\n");
+}
+
+TEST(RingCli, RawBytesWithOffsets) {
+  // Raw input is what a serial port gives: offset 0 a stray byte, 1.. an offset message, then "HI" cut short.
+  const auto r = run_cli("ring decode --raw", std::string("\x01\x8b\x03\x88\x91\x48\x49", 7));
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out,
+            "{\"event\":\"frame_error\",\"offset\":0,\"reason\":\"stray_data\"}\n"
+            "{\"event\":\"message\",\"offset\":1,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"unfinished\",\"offset\":4}\n");
+  const auto golden = run_cli("ring decode --raw < /dev/null");
+  EXPECT_EQ(golden.exit_code, 0);
+  EXPECT_EQ(golden.out, "");
+}
+
+TEST(RingCli, EncodePrintRefusesWhatTheDecoderRejects) {
+  const std::string longest(256, 'a');
+  const auto ok = run_cli("ring encode print --to 10 " + longest);
+  ASSERT_EQ(ok.exit_code, 0);
+  const auto back = run_cli("ring decode", ok.out);
+  EXPECT_NE(back.out.find("\"type\":\"char\""), std::string::npos) << back.out;
+  expect_usage_error("ring encode print --to 10 " + longest + "a", "at most 256");
+}
+
+TEST(RingCli, BadArgumentsAreUsageErrors) {
   expect_usage_error("ring encode print --to 9 HI");
   expect_usage_error("ring encode print --to 25 HI");
   expect_usage_error("ring encode print --to 10");
@@ -102,10 +149,58 @@ TEST(RingCli, BadInputIsAUsageError) {
   expect_usage_error("ring encode bogus --to 10");
   expect_usage_error("ring bogus");
   expect_usage_error("ring encode var --to 10 --to 11 --vr 1 --value 1");
+  expect_usage_error("ring decode --raw 8a");
+  expect_usage_error("ring decode --json");
+  expect_usage_error("ring decode --pcap");
+  expect_usage_error("ring decode --bogus");
 }
 
 TEST(RingCli, ErrorMessagesNameTheProblem) {
   EXPECT_NE(run_cli("ring encode print --to 9 HI").err.find("--to"), std::string::npos);
-  EXPECT_NE(run_cli("ring decode", "8a zz").err.find("'z'"), std::string::npos);
   EXPECT_NE(run_cli("ring encode var --to 10 --vr 1 --value 3e9").err.find("range"), std::string::npos);
+}
+
+TEST(RingCli, AMissingCaptureIsAnIoFailure) {
+  const auto r = run_cli("ring decode --pcap /nonexistent/capture.pcapng");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("cannot open"), std::string::npos) << r.err;
+}
+
+TEST(RingCli, HelpAndVersionEverywhere) {
+  for (const char* command : {"ring encode var --help", "ring decode --help", "ring simulate --help", "ring --help",
+                              "genius encode --help", "genius decode --help", "genius timing --help", "--help"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_EQ(r.out.rfind("usage: trionet", 0), 0u) << command << ": " << r.out;
+    EXPECT_EQ(r.err, "") << command;
+  }
+  for (const char* command : {"--version", "ring --version", "can --version", "genius --version"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_EQ(r.out.rfind("trionet ", 0), 0u) << command << ": " << r.out;
+  }
+  for (const char* part : {"ring", "can", "genius"}) {  // no command: the same for every part
+    const auto r = run_cli(part);
+    EXPECT_EQ(r.exit_code, 2) << part;
+    EXPECT_EQ(r.out, "") << part;
+    EXPECT_EQ(r.err.rfind(std::string("trionet: ") + part + " needs a command", 0), 0u) << r.err;
+  }
+}
+
+TEST(RingCli, SimulatePcapThenDecodeIt) {
+  const std::string capture = "/tmp/trionet-ring-" + std::to_string(::getpid()) + ".pcapng";
+  const auto simulated = run_cli("ring simulate example1 --pcap " + capture);
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const auto r = run_cli("ring decode --pcap " + capture);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("{\"event\":\"message\",\"record\":1,\"interface_id\":0,"
+                        "\"interface\":\"link 0: node 1 (mc) -> node 2 (keypad)\",\"time\":\"0.000080000\",", 0),
+            0u)
+      << r.out.substr(0, 300);
+  EXPECT_NE(r.out.find("\"interface\":\"link 2: node 3 (keypad) -> node 1 (mc)\""), std::string::npos);
+  EXPECT_EQ(r.out.find("frame_error"), std::string::npos) << "a simulated ring without faults";
+  std::remove(capture.c_str());
+  const auto missing_dir = run_cli("ring simulate example1 --pcap /nonexistent/dir/x.pcapng");
+  EXPECT_EQ(missing_dir.exit_code, 1);
 }

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <stdlib.h>
 #include <sys/socket.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <cstring>
@@ -74,8 +75,9 @@ TEST(RingPosixLink, SerialPortOnAPty) {
 
   EXPECT_EQ(trionet::host::open_serial("/nonexistent/tty", 9600, error), -1);
   EXPECT_NE(error.find("cannot open"), std::string::npos);
-  EXPECT_EQ(trionet::host::open_serial(slave, 12345, error), -1);
-  EXPECT_NE(error.find("unsupported baud rate"), std::string::npos);
+  EXPECT_EQ(trionet::host::open_serial(slave, 49, error), -1);
+  EXPECT_NE(error.find("unsupported baud rate 49 for " + slave), std::string::npos);
+  EXPECT_EQ(trionet::host::open_serial(slave, 4000001, error), -1);
   EXPECT_EQ(trionet::host::open_serial("/dev/null", 9600, error), -1);
   EXPECT_NE(error.find("not a serial port"), std::string::npos);
 }
@@ -105,4 +107,48 @@ TEST(RingPosixLink, ReadTimeoutIsTheIdleLine) {
   EXPECT_EQ(std::memcmp(got, expected, sizeof expected), 0);
   ::close(sv[0]);
   ::close(sv[1]);
+}
+
+// Any rate, not only the Bnnn constants (termios2), and the settings before are put back.
+TEST(RingPosixLink, SerialPortAtAnyRateIsRestored) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const std::string slave = ::ptsname(master);
+  const int keep = ::open(slave.c_str(), O_RDWR | O_NOCTTY);
+  ASSERT_GE(keep, 0);
+  termios before{};
+  ASSERT_EQ(::tcgetattr(keep, &before), 0);
+  before.c_lflag |= ECHO | ICANON;
+  ::cfsetspeed(&before, B4800);
+  ASSERT_EQ(::tcsetattr(keep, TCSANOW, &before), 0);
+  ASSERT_EQ(::tcgetattr(keep, &before), 0);
+
+  std::string error;
+  trionet::host::serial_settings saved;
+  const int fd = trionet::host::open_serial(slave, 125000, error, trionet::host::flow_control::none, &saved);
+  ASSERT_GE(fd, 0) << error;
+  EXPECT_TRUE(saved.saved);
+  termios during{};
+  ASSERT_EQ(::tcgetattr(fd, &during), 0);
+  EXPECT_EQ(during.c_lflag & (ECHO | ICANON | ISIG), 0u);
+  EXPECT_EQ(during.c_cflag & CSIZE, static_cast<tcflag_t>(CS8));
+  EXPECT_EQ(during.c_cflag & CRTSCTS, 0u);
+  EXPECT_EQ(during.c_iflag & (IXON | IXOFF), 0u);
+  EXPECT_TRUE(trionet::host::restore_serial(fd, saved));
+  termios after{};
+  ASSERT_EQ(::tcgetattr(keep, &after), 0);
+  EXPECT_EQ(after.c_lflag, before.c_lflag);
+  EXPECT_EQ(after.c_cflag, before.c_cflag);
+  EXPECT_EQ(::cfgetispeed(&after), B4800);
+  ::close(fd);
+
+  const int flow = trionet::host::open_serial(slave, 9600, error, trionet::host::flow_control::software);
+  ASSERT_GE(flow, 0) << error;
+  ASSERT_EQ(::tcgetattr(flow, &during), 0);
+  EXPECT_EQ(during.c_iflag & (IXON | IXOFF), static_cast<tcflag_t>(IXON | IXOFF));
+  ::close(flow);
+  ::close(keep);
+  ::close(master);
 }

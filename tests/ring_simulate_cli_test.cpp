@@ -188,7 +188,7 @@ TEST(RingSimulateCli, UsageErrors) {
   expect_usage_error("ring simulate example1 --byte-times 0", "--byte-times");
   expect_usage_error("ring simulate example1 --bit-rate 0", "--bit-rate");
   expect_usage_error("ring simulate example1 --statements-per-byte-time x", "--statements-per-byte-time");
-  expect_usage_error("ring simulate example1 --pcap x.pcap", "unknown option --pcap");
+  expect_usage_error("ring simulate example1 --colour red", "unknown option --colour");
 }
 
 TEST(RingSimulateCli, HelpDescribesTheOptions) {

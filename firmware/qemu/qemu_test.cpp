@@ -332,13 +332,13 @@ std::size_t read_all(Node& node, std::uint8_t* text, std::size_t size) {
 
 const std::uint8_t hello[5] = {'H', 'E', 'L', 'L', 'O'};
 
-template <class CrcA, class CrcB>
+template <class CrcA, class CrcB, class Layout = ring::default_variable_layout>
 void two_motion_coordinators(const char* name) {
   group(name);
   trionet::vr_table<256> vr_a;
   trionet::vr_table<256> vr_b;
-  ring::motion_coordinator<256, 48, 48, CrcA> a(vr_a);
-  ring::motion_coordinator<256, 48, 48, CrcB> b(vr_b);
+  ring::motion_coordinator<256, 48, 48, CrcA, ring::default_max_characters, Layout> a(vr_a);
+  ring::motion_coordinator<256, 48, 48, CrcB, ring::default_max_characters, Layout> b(vr_b);
 
   // SEND(10,1,200,99) and PRINT #10,"HELLO": a ring of two, so address 10 (one hop) is the other node.
   const double value = *opaque(&golden_frame[1]) == 0x48 ? 99.0 : 0.0;
@@ -423,6 +423,12 @@ int main() {
   using crc16_arc_polynomial = ring::crc16<0x8005, 0x0000, 0, ring::crc_table::none>;
   two_motion_coordinators<crc16_arc_polynomial, crc16_arc_polynomial>(
       "two-node ring: both nodes with a non-default CRC (poly 0x8005, init 0)");
+  // A profile's other choices: a reflected CRC and each field's most significant group first.
+  using crc16_modbus = ring::crc16<0x8005, 0xFFFF, 0, ring::crc_table::lookup, true, true>;
+  using most_significant_first = ring::variable_layout<ring::group_order::most_significant_first,
+                                                       ring::group_order::most_significant_first>;
+  two_motion_coordinators<crc16_modbus, crc16_modbus, most_significant_first>(
+      "two-node ring: reflected CRC (CRC-16/MODBUS), most significant group first");
 #endif
   can_example();
   can_conversions();

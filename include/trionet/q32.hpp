@@ -12,13 +12,15 @@
 
 namespace trionet {
 
+/// Why a number has no Q32.32 value.
 enum class q32_status : std::uint8_t {
-  ok,
+  ok,                     ///< converted
   out_of_range,           ///< outside [-2^31, 2^31 - 2^-32] after rounding
   not_a_number,           ///< NaN
   fraction_out_of_range,  ///< a decimal's fraction above 9999 ten-thousandths
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(q32_status status) noexcept {
   switch (status) {
     case q32_status::ok:
@@ -35,8 +37,9 @@ constexpr const char* to_string(q32_status status) noexcept {
 
 /// A Q32.32 value (`raw` = value * 2^32), or why there is none (`raw` is then 0).
 struct [[nodiscard]] q32_result {
-  q32_status status;
-  std::int64_t raw;
+  q32_status status;  ///< `ok`, or why there is no value
+  std::int64_t raw;   ///< the value times 2^32
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == q32_status::ok; }
 };
 
@@ -87,8 +90,8 @@ struct decimal {
   static constexpr std::uint16_t max_fraction = 9999;  ///< largest fraction, in ten-thousandths
   static constexpr std::uint32_t scale = 10000;        ///< ten-thousandths per unit
 
-  bool negative = false;
-  std::uint32_t integer_part = 0;
+  bool negative = false;           ///< the sign (true with a zero magnitude is -0)
+  std::uint32_t integer_part = 0;  ///< the integer part of the magnitude
   std::uint16_t fraction = 0;  ///< ten-thousandths, 0..9999
 };
 

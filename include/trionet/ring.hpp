@@ -15,3 +15,4 @@
 #include "trionet/ring/motion_coordinator.hpp"
 #include "trionet/ring/node.hpp"
 #include "trionet/ring/simulator.hpp"
+#include "trionet/ring/variable_layout.hpp"

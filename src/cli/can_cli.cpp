@@ -1,60 +1,76 @@
-// `trionet can ...`: encode a VR message as candump text, decode candump text, print the note's tables.
+// `trionet can ...`: encode a VR message as candump text, decode candump text or captures as they arrive,
+// print the note's tables; the command table of the part.
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <trionet/can.hpp>
 
-#include "trionet/host/candump.hpp"
+#include "capture_cli.hpp"
 #include "cli.hpp"
+#include "live.hpp"
+#include "trionet/host/candump.hpp"
+#include "trionet/host/capture.hpp"
 
 namespace trionet::cli {
 namespace {
 
-constexpr const char* can_usage =
-    "usage: trionet can <command> [options]\n"
-    "\n"
-    "commands (TN20-17 VR exchange over CANbus):\n"
-    "  encode --from I --to J --vr V --value X [--nodes K]\n"
-    "      print the frame node I sends to node J to set VR(V) = X, as compact candump text\n"
-    "      (3 hex digits of identifier, '#', 16 hex digits of data)\n"
-    "  decode [--nodes K]\n"
-    "      read candump lines (\"(secs.micros) can0 028#...\" or \"028#...\") from stdin, print one JSON\n"
-    "      object per line: {\"event\":\"vr\",...} or {\"event\":\"error\",\"line\":L,\"reason\":R} with R "
-    "one of\n"
-    "      syntax, dlc, sign, fraction, unknown_id; blank lines are skipped (but counted in L)\n"
-    "  table [--nodes K]\n"
-    "      print the note's receive and transmit identifier tables\n"
-    "\n"
-    "K is the number of controllers, 2..11 (default 5, the note's limit).\n";
+constexpr const char* encode_usage =
+    "usage: trionet can encode --from I --to J --vr V --value X [--nodes K]\n"
+    "Prints the frame node I sends to node J to set VR(V) = X, as compact candump text (3 hex digits of\n"
+    "identifier, '#', 16 hex digits of data). K is the number of controllers, 2..11 (default 5).\n";
+
+constexpr const char* decode_usage =
+    "usage: trionet can decode [--nodes K]                 candump text from standard input\n"
+    "       trionet can decode --pcap FILE [--json] [--nodes K]   the CAN records of a pcapng capture\n"
+    "Reads every form of candump text that can-utils reads or writes (docs/protocol.md 2.3): log lines\n"
+    "\"(1700000000.123456) can0 028#...\" with 6 or 9 fraction digits and an optional direction R/T, compact\n"
+    "frames \"028#...\", and candump's screen format \"  can0  028   [8]  01 00 ...\" with or without its\n"
+    "timestamp. Prints one JSON object per line as soon as the line is complete:\n"
+    "  {\"event\":\"vr\",...}      a TN20-17 VR message (id, from, to, vr, negative, int, frac, value)\n"
+    "  {\"event\":\"frame\",...}   a valid CAN frame that is no VR message; \"kind\" says what it is: remote,\n"
+    "                          error_frame, fd, xl, extended, bad_identifier (standard id above 7FF),\n"
+    "                          foreign_id (not an exchange identifier for K nodes)\n"
+    "  {\"event\":\"error\",...}   a frame on an exchange identifier that is no VR message (reason bad_dlc,\n"
+    "                          bad_sign, bad_fraction), or a line that is not candump text (reason syntax,\n"
+    "                          detail: where the line goes wrong, e.g. identifier, data, too_long)\n"
+    "Every event has \"line\" (blank lines are skipped but counted), and \"time\", \"interface\" and\n"
+    "\"direction\" where the line has them; from a capture, \"record\", \"interface\" and \"time\".\n"
+    "With --pcap, --json prints each record as the fields Wireshark shows (docs/wireshark.md).\n"
+    "Exit status 0 when the input was read, 1 when reading or writing failed, 2 for bad arguments.\n";
+
+constexpr const char* table_usage =
+    "usage: trionet can table [--nodes K]\n"
+    "Prints the note's receive-identifier table, a blank line, then its transmit-identifier table, tab-separated.\n";
 
 bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& error) {
   out = can::default_node_count;
   if (!parsed.has("--nodes")) return true;
   long long value = 0;
   if (!parse_integer(parsed.options.at("--nodes"), can::min_node_count, can::max_node_count, value)) {
-    error = "--nodes must be an integer from 2 to 11, got '" + parsed.options.at("--nodes") + "'";
+    error = "--nodes must be an integer from 2 to 11, got '" + host::clipped(parsed.options.at("--nodes")) + "'";
     return false;
   }
   out = static_cast<std::uint8_t>(value);
   return true;
 }
 
-bool parse_args(const std::vector<std::string>& words, const std::set<std::string>& options,
+bool parse_args(const words& all, const std::set<std::string>& options, const std::set<std::string>& flags,
                 arguments& parsed, std::string& error) {
-  if (!parse_arguments(words, options, {}, parsed, error)) return false;
+  if (!parse_arguments(all, options, flags, parsed, error)) return false;
   if (!parsed.positionals.empty()) {
-    error = "unexpected argument '" + parsed.positionals.front() + "'";
+    error = "unexpected argument '" + host::clipped(parsed.positionals.front()) + "'";
     return false;
   }
   return true;
 }
 
-int encode_command(const std::vector<std::string>& words) {
+int encode_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(words, {"--nodes", "--from", "--to", "--vr", "--value"}, parsed, error)) return fail(error);
+  if (!parse_args(all, {"--nodes", "--from", "--to", "--vr", "--value"}, {}, parsed, error)) return fail(error);
   std::uint8_t nodes = 0;
   if (!parse_node_count(parsed, nodes, error)) return fail(error);
   for (const char* required : {"--from", "--to", "--vr", "--value"}) {
@@ -65,18 +81,19 @@ int encode_command(const std::vector<std::string>& words) {
   long long vr = 0;
   double value = 0;
   const std::string node_range = "an integer from 1 to " + std::to_string(nodes);
+  const auto given = [&parsed](const char* name) { return "'" + host::clipped(parsed.options.at(name)) + "'"; };
   if (!parse_integer(parsed.options.at("--from"), 1, nodes, from)) {
-    return fail("--from must be " + node_range + ", got '" + parsed.options.at("--from") + "'");
+    return fail("--from must be " + node_range + ", got " + given("--from"));
   }
   if (!parse_integer(parsed.options.at("--to"), 1, nodes, to)) {
-    return fail("--to must be " + node_range + ", got '" + parsed.options.at("--to") + "'");
+    return fail("--to must be " + node_range + ", got " + given("--to"));
   }
   if (from == to) return fail("--from and --to are the same node; a node does not send to itself");
   if (!parse_integer(parsed.options.at("--vr"), 0, can::max_message_vr, vr)) {
-    return fail("--vr must be an integer from 0 to 255, got '" + parsed.options.at("--vr") + "'");
+    return fail("--vr must be an integer from 0 to 255, got " + given("--vr"));
   }
   if (!parse_real(parsed.options.at("--value"), value)) {
-    return fail("--value must be a finite decimal number, got '" + parsed.options.at("--value") + "'");
+    return fail("--value must be a finite decimal number, got " + given("--value"));
   }
   const can::identifier_result id =
       can::exchange_identifier(nodes, static_cast<std::uint8_t>(from), static_cast<std::uint8_t>(to));
@@ -85,62 +102,208 @@ int encode_command(const std::vector<std::string>& words) {
   out.dlc = can::vr_message_size;
   const can::encode_status encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data);
   if (encoded == can::encode_status::too_large) {
-    return fail("--value magnitude must round to less than 4294967296, got '" + parsed.options.at("--value") +
-                "'");
+    return fail("--value magnitude must round to less than 4294967296, got " + given("--value"));
   }
   if (encoded != can::encode_status::ok || id.status != can::scheme_status::ok) {
     return fail("cannot encode this message");  // unreachable: every input was checked above
+  }
+  // What is printed must be what `can decode` accepts.
+  if (!can::decode_vr_frame(out) || !can::route_of(nodes, out.identifier())) {
+    return fail("cannot encode this message: the decoder would reject it");
   }
   std::printf("%s\n", host::format_candump_frame(out).c_str());
   return exit_ok;
 }
 
-std::string error_event(std::size_t line, const char* reason) {
-  return "{\"event\":\"error\",\"line\":" + std::to_string(line) + ",\"reason\":\"" + reason + "\"}";
-}
+// ---------------------------------------------------------------------------------------------------------
+// decode
 
-std::string decode_line(std::uint8_t nodes, std::size_t line_number, std::string_view line) {
-  const host::candump_result parsed = host::parse_candump_line(line);
-  if (parsed.status != host::candump_status::ok) return error_event(line_number, "syntax");
-  const can::frame& frame = parsed.record.frame;
-  const can::route_result route = can::route_of(nodes, frame.id);
-  if (route.status != can::scheme_status::ok) return error_event(line_number, "unknown_id");
+// What a frame is to the VR exchange, and its event. `where` adds the event's position.
+template <class Where>
+void append_frame_event(std::string& out, std::uint8_t nodes, const host::candump_record& r, Where&& where) {
+  const auto other = [&](const char* kind, std::uint32_t id) {
+    event e(out, "frame");
+    where(e);
+    e.text("kind", kind).number("id", id).number("length", r.length);
+    if (r.type == host::candump_frame_type::xl) e.number("vcid", r.can_id >> 16U & 0xFFU);
+  };
+  const std::uint32_t id = r.can_id;
+  switch (r.type) {
+    case host::candump_frame_type::error:
+      return other("error_frame", id & can::frame::extended_mask);
+    case host::candump_frame_type::fd:
+      return other("fd", id & ((id & can::frame::extended_flag) != 0 ? can::frame::extended_mask : 0xFFFFFU));
+    case host::candump_frame_type::xl:
+      return other("xl", id & 0x7FFU);
+    case host::candump_frame_type::classic:
+      break;
+  }
+  if ((id & can::frame::extended_flag) != 0) return other("extended", id & can::frame::extended_mask);
+  if (!r.classic_frame()) return other("bad_identifier", id & ~can::frame::remote_flag);
+  const can::frame& frame = r.frame;
+  if (frame.remote()) return other("remote", frame.identifier());
+  const can::route_result route = can::route_of(nodes, frame.identifier());
+  if (!route) return other("foreign_id", frame.identifier());
   const can::decode_result decoded = can::decode_vr_frame(frame);
-  if (!decoded) return error_event(line_number, can::to_string(decoded.status));
+  if (!decoded) {
+    event e(out, "error");
+    where(e);
+    e.text("reason", can::to_string(decoded.status)).number("id", frame.identifier());
+    return;
+  }
   const can::vr_message& message = decoded.message;
-  return "{\"event\":\"vr\",\"id\":" + std::to_string(frame.identifier()) +
-         ",\"from\":" + std::to_string(route.value.sender) +
-         ",\"to\":" + std::to_string(route.value.receiver) + ",\"vr\":" + std::to_string(message.vr) +
-         ",\"negative\":" + (message.value.negative ? "true" : "false") +
-         ",\"int\":" + std::to_string(message.value.integer_part) +
-         ",\"frac\":" + std::to_string(message.value.fraction) +
-         ",\"value\":" + format_real(trionet::to_double(message.value)) + "}";
+  event e(out, "vr");
+  where(e);
+  e.number("id", frame.identifier()).number("from", route.value.sender).number("to", route.value.receiver);
+  e.number("vr", message.vr).boolean("negative", message.value.negative);
+  e.number("int", message.value.integer_part).number("frac", message.value.fraction);
+  e.real("value", trionet::to_double(message.value));
 }
 
-int decode_command(const std::vector<std::string>& words) {
+// Lines of candump text, read in pieces, one event per line that is not blank.
+class candump_reader {
+ public:
+  candump_reader(std::string& out, std::uint8_t nodes) : out_(out), nodes_(nodes) {}
+
+  void push(std::string_view text) {
+    while (!text.empty()) {
+      const void* found = std::memchr(text.data(), '\n', text.size());
+      if (found == nullptr) {
+        keep(text);
+        return;
+      }
+      const std::size_t end = static_cast<std::size_t>(static_cast<const char*>(found) - text.data());
+      if (pending_.empty() && !too_long_) {
+        line(text.substr(0, end));  // the whole line is in this piece: no copy
+      } else {
+        keep(text.substr(0, end));
+        line(pending_);
+      }
+      pending_.clear();
+      too_long_ = false;
+      text.remove_prefix(end + 1);
+    }
+  }
+
+  void finish() {
+    if (!pending_.empty() || too_long_) line(pending_);
+    pending_.clear();
+    too_long_ = false;
+  }
+
+ private:
+  // Part of a line that goes on in the next piece; past the longest line only the fact is kept.
+  void keep(std::string_view part) {
+    if (too_long_) return;
+    if (pending_.size() + part.size() > host::candump_max_line_length) {
+      too_long_ = true;
+      pending_.clear();
+      return;
+    }
+    pending_.append(part.data(), part.size());
+  }
+
+  void line(std::string_view text) {
+    ++number_;
+    const host::candump_status status =
+        too_long_ ? host::candump_status::too_long : host::parse_candump_line(text, record_);
+    if (status == host::candump_status::empty) return;
+    const auto where = [this](event& e) {
+      e.number("line", number_);
+      if (!record_.timestamp.empty()) e.text("time", record_.timestamp);
+      if (!record_.interface_name.empty()) e.text("interface", record_.interface_name);
+      if (record_.direction != 0) e.text("direction", std::string_view(&record_.direction, 1));
+    };
+    if (status != host::candump_status::ok) {
+      event e(out_, "error");
+      e.number("line", number_).text("reason", "syntax").text("detail", host::to_string(status));
+      return;
+    }
+    append_frame_event(out_, nodes_, record_, where);
+  }
+
+  std::string& out_;
+  std::uint8_t nodes_;
+  std::string pending_;
+  bool too_long_ = false;
+  std::uint64_t number_ = 0;
+  host::candump_record record_;
+};
+
+// A SocketCAN record of a capture as the fields of a candump record.
+bool record_of(const host::pcapng_record& record, host::candump_record& out, host::socketcan_record_status& status) {
+  const host::socketcan_record_result read = host::read_socketcan_record(record.bytes);
+  status = read.status;
+  out = host::candump_record{};
+  if (record.bytes.size() >= 8) {
+    out.can_id = std::uint32_t{record.bytes[0]} << 24U | std::uint32_t{record.bytes[1]} << 16U |
+                 std::uint32_t{record.bytes[2]} << 8U | record.bytes[3];
+    out.length = record.bytes[4];
+  }
+  switch (read.status) {
+    case host::socketcan_record_status::ok:
+      out.frame = read.frame;
+      out.can_id = read.frame.id;
+      out.length = read.frame.data_length();
+      return true;
+    case host::socketcan_record_status::not_classic:
+      out.type = (record.bytes[5] & 0x80U) != 0 ? host::candump_frame_type::xl : host::candump_frame_type::fd;
+      return true;
+    case host::socketcan_record_status::error_frame:
+      out.type = host::candump_frame_type::error;
+      return true;
+    case host::socketcan_record_status::bad_identifier:
+      return true;  // classic, identifier out of range: reported as bad_identifier
+    case host::socketcan_record_status::too_short:
+    case host::socketcan_record_status::bad_length:
+      break;
+  }
+  return false;
+}
+
+int decode_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(words, {"--nodes"}, parsed, error)) return fail(error);
+  if (!parse_args(all, {"--nodes", "--pcap"}, {"--json"}, parsed, error)) return fail(error);
   std::uint8_t nodes = 0;
   if (!parse_node_count(parsed, nodes, error)) return fail(error);
-  const std::string input = read_stdin();
-  std::string_view rest = input;
-  std::size_t line_number = 0;
-  while (!rest.empty()) {
-    const std::size_t newline = rest.find('\n');
-    const std::string_view line = rest.substr(0, newline);
-    rest = newline == std::string_view::npos ? std::string_view() : rest.substr(newline + 1);
-    ++line_number;
-    if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;  // blank line: skipped
-    std::printf("%s\n", decode_line(nodes, line_number, line).c_str());
+  if (parsed.has("--pcap")) {
+    return read_capture(parsed.options.at("--pcap"), host::capture_network::can, parsed.flag("--json"), nodes,
+                        [nodes](const host::pcapng_record& record, const capture_position& where, std::string& out) {
+                          host::candump_record frame;
+                          host::socketcan_record_status status{};
+                          const auto here = [&where](event& e) { add_position(e, where); };
+                          if (record_of(record, frame, status)) {
+                            append_frame_event(out, nodes, frame, here);
+                          } else {
+                            event e(out, "error");
+                            here(e);
+                            e.text("reason", host::to_string(status));
+                          }
+                        });
   }
-  return exit_ok;
+  if (parsed.flag("--json")) return fail("--json applies to --pcap (the output is JSON already)");
+  output out;
+  candump_reader reader(out.text(), nodes);
+  input in;
+  std::string_view chunk;
+  while (true) {
+    if (!in.read(chunk, error)) {
+      out.flush();
+      return fail_io(error);
+    }
+    if (chunk.empty()) break;
+    reader.push(chunk);
+    if (!out.flush()) return fail_io("cannot write standard output");
+  }
+  reader.finish();
+  return out.flush() ? exit_ok : fail_io("cannot write standard output");
 }
 
-int table_command(const std::vector<std::string>& words) {
+int table_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(words, {"--nodes"}, parsed, error)) return fail(error);
+  if (!parse_args(all, {"--nodes"}, {}, parsed, error)) return fail(error);
   std::uint8_t nodes = 0;
   if (!parse_node_count(parsed, nodes, error)) return fail(error);
   std::string out = "Node Base address";
@@ -169,23 +332,20 @@ int table_command(const std::vector<std::string>& words) {
   return exit_ok;
 }
 
+const command can_commands[] = {
+    {"encode", "print the frame that sets a VR on another node, as candump text", encode_usage, encode_command},
+    {"decode", "read candump text or a capture; print one JSON event per frame", decode_usage, decode_command},
+    {"table", "print the note's receive and transmit identifier tables", table_usage, table_command},
+    {"monitor", "watch a live bus (SocketCAN, or candump text with -): one event per frame", can_live_usage,
+     can_monitor_main},
+    {"send", "put one VR message on a live bus", can_live_usage, can_send_main},
+    {"node", "be a TN20-17 VR-exchange node on a live bus, commands on stdin", can_live_usage, can_node_main},
+};
+
 }  // namespace
 
-int can_main(const std::vector<std::string>& args) {
-  if (args.empty()) {
-    std::fputs(can_usage, stderr);
-    return exit_usage;
-  }
-  const std::string& command = args.front();
-  const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (command == "--help" || command == "-h" || command == "help") {
-    std::fputs(can_usage, stdout);
-    return exit_ok;
-  }
-  if (command == "encode") return encode_command(rest);
-  if (command == "decode") return decode_command(rest);
-  if (command == "table") return table_command(rest);
-  return fail("unknown can command '" + command + "' (expected encode, decode or table)");
-}
+const part can_part = {"can", "Trio TN20-17 CANbus VR exchange (encode, decode, table, monitor, send, node)", can_commands,
+                       sizeof can_commands / sizeof can_commands[0],
+                       "K (--nodes) is the number of controllers, 2..11 (default 5, the note's limit).\n"};
 
 }  // namespace trionet::cli

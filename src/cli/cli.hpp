@@ -1,25 +1,82 @@
-// Shared pieces of the host-side `trionet` tool: argument parsing, number parsing and JSON output.
-// Each protocol part has its own entry point (<part>_cli.cpp); main.cpp dispatches on the first word.
+// Shared pieces of the `trionet` tool (docs/cli.md): the command tables and their dispatcher, argument
+// parsing, streaming input and buffered output, and JSON events. Numbers and hex are read by the host
+// library's one parser (trionet/host/text.hpp).
 #pragma once
 
-#include <charconv>
-#include <cstdio>
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "trionet/host/text.hpp"
+
 namespace trionet::cli {
 
-constexpr int exit_ok = 0;
-constexpr int exit_usage = 2;
+using host::format_real;
+using host::hex_digit;
+using host::json_string;
+using host::parse_integer;
+
+constexpr int exit_ok = 0;     ///< the input was read (wire errors are events, not failures)
+constexpr int exit_io = 1;     ///< reading or writing failed
+constexpr int exit_usage = 2;  ///< misuse: bad arguments
+constexpr int exit_check = 3;  ///< a requested check failed (genius timing --check)
 
 /// Prints "trionet: <message>" on stderr and returns the usage exit code (2).
-inline int fail(const std::string& message) {
-  std::fprintf(stderr, "trionet: %s\n", message.c_str());
-  return exit_usage;
+int fail(const std::string& message);
+
+/// Prints "trionet: <message>" on stderr and returns the I/O failure exit code (1).
+int fail_io(const std::string& message);
+
+/// A whole finite decimal real number (see host::parse_real), any magnitude a double holds.
+inline bool parse_real(std::string_view text, double& out) {
+  return host::parse_real(text, -1.7976931348623157e308, 1.7976931348623157e308, out);
 }
+
+// ---------------------------------------------------------------------------------------------------------
+// commands
+
+/// The words after a command's name.
+using words = std::vector<std::string>;
+
+/// One command of a part: `trionet <part> <name> ...`. A part lists its commands in one table; adding a
+/// command is adding one entry.
+struct command {
+  const char* name;     ///< "decode"
+  const char* summary;  ///< one line for the part's usage ("read ring bytes, print one JSON event per ...")
+  const char* usage;    ///< the whole help text, printed by `trionet <part> <name> --help`
+  int (*run)(const words& args);  ///< runs with the words after the name; returns the exit status
+};
+
+/// A part of the tool (ring, can, genius) and its command table.
+struct part {
+  const char* name;        ///< "ring"
+  const char* summary;     ///< one line for the tool's usage
+  const command* commands;  ///< the table
+  std::size_t count;        ///< entries in the table
+  const char* notes;        ///< lines printed after the command list (may be "")
+};
+
+/// Runs `trionet <part> <words...>`: no command prints the part's usage on stderr (exit 2); `--help`/`-h`
+/// prints it on stdout; `--version` prints the version; `<command> ... --help` (anywhere before `--`) prints
+/// the command's help; an unknown command is a usage error.
+int dispatch(const part& p, const words& args);
+
+/// The part's usage text: its commands with their summaries, then its notes.
+std::string part_usage(const part& p);
+
+/// The tool's version line, "trionet 0.1.0".
+std::string version_line();
+
+extern const part ring_part;    ///< ring_cli.cpp
+extern const part can_part;     ///< can_cli.cpp
+extern const part genius_part;  ///< genius_cli.cpp
+
+// ---------------------------------------------------------------------------------------------------------
+// arguments
 
 /// Command-line words split into `--name value` options, bare `--flag`s and positionals.
 struct arguments {
@@ -28,119 +85,114 @@ struct arguments {
   std::vector<std::string> positionals;
 
   bool has(const std::string& name) const { return options.count(name) != 0; }
+  bool flag(const std::string& name) const { return flags.count(name) != 0; }
 };
 
 /// Splits `words` into options that take a value, flags, and positionals. Unknown options, a missing value
 /// or a repeated option are errors; `repeatable` options collect every value, joined by '\n'.
 /// "--" ends option parsing. Returns false with `error` set on failure.
-inline bool parse_arguments(const std::vector<std::string>& words, const std::set<std::string>& value_options,
-                            const std::set<std::string>& flag_options, arguments& out, std::string& error,
-                            const std::set<std::string>& repeatable = {}) {
-  bool options_done = false;
-  for (std::size_t i = 0; i < words.size(); ++i) {
-    const std::string& word = words[i];
-    const bool looks_like_option = word.size() > 2 && word.compare(0, 2, "--") == 0;
-    if (options_done || !looks_like_option) {
-      if (word == "--" && !options_done) {
-        options_done = true;
-        continue;
-      }
-      out.positionals.push_back(word);
-      continue;
-    }
-    if (flag_options.count(word) != 0) {
-      out.flags.insert(word);
-      continue;
-    }
-    if (value_options.count(word) == 0) {
-      error = "unknown option " + word;
-      return false;
-    }
-    if (i + 1 >= words.size()) {
-      error = "option " + word + " needs a value";
-      return false;
-    }
-    const std::string& value = words[++i];
-    auto found = out.options.find(word);
-    if (found != out.options.end()) {
-      if (repeatable.count(word) == 0) {
-        error = "option " + word + " given twice";
-        return false;
-      }
-      found->second += '\n';
-      found->second += value;
-    } else {
-      out.options.emplace(word, value);
-    }
+bool parse_arguments(const words& args, const std::set<std::string>& value_options,
+                     const std::set<std::string>& flag_options, arguments& out, std::string& error,
+                     const std::set<std::string>& repeatable = {});
+
+// ---------------------------------------------------------------------------------------------------------
+// streaming input and output
+
+/// Standard output with a buffer: events are appended to `text()` and written by `flush`, which the decoders
+/// call after every read of input (so an event is out as soon as the read that completed it) and whenever
+/// the buffer passes 64 KiB (so memory stays bounded).
+class output {
+ public:
+  static constexpr std::size_t flush_at = 1U << 16U;
+
+  output() { text_.reserve(flush_at + 16384); }
+
+  std::string& text() { return text_; }
+  /// Writes when the buffer is past `flush_at`.
+  bool maybe_flush() { return text_.size() < flush_at || flush(); }
+  /// Writes everything buffered to standard output. False if writing failed (then and ever after).
+  bool flush();
+  bool failed() const { return failed_; }
+
+ private:
+  std::string text_;
+  bool failed_ = false;
+};
+
+/// Reads standard input (or a file) in chunks of at most 64 KiB, each as soon as it is available.
+class input {
+ public:
+  static constexpr std::size_t chunk = 1U << 16U;
+
+  input();  ///< standard input
+  ~input();
+  input(const input&) = delete;
+  input& operator=(const input&) = delete;
+
+  /// Opens `path` instead (for --pcap-like readers that want a descriptor). False with `error` set.
+  bool open(const std::string& path, std::string& error);
+  /// The next chunk: empty at the end of input. False (with `error` set) when reading failed.
+  bool read(std::string_view& data, std::string& error);
+
+ private:
+  int fd_ = 0;
+  bool owned_ = false;
+  std::vector<char> buffer_;
+};
+
+/// Appends one JSON event line, `{"event":"<kind>",...}\n`, to a string as its fields are added. The line is
+/// put together in a buffer of its own and appended at once (the decoders' output is their hot path).
+class event {
+ public:
+  event(std::string& out, std::string_view kind) : out_(out) {
+    put("{\"event\":\"", 10);
+    put(kind.data(), kind.size());
+    put("\"", 1);
   }
-  return true;
-}
-
-/// Parses a whole decimal integer in [min, max]. Returns false on anything else.
-inline bool parse_integer(std::string_view text, long long min, long long max, long long& out) {
-  long long value = 0;
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
-  if (first != last && *first == '+') ++first;
-  auto [end, ec] = std::from_chars(first, last, value);
-  if (ec != std::errc() || end != last || first == last) return false;
-  if (value < min || value > max) return false;
-  out = value;
-  return true;
-}
-
-/// Parses a whole finite decimal real number ("99", "-2.345", "1e3").
-inline bool parse_real(std::string_view text, double& out) {
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
-  if (first != last && *first == '+') ++first;
-  double value = 0;
-  auto [end, ec] = std::from_chars(first, last, value, std::chars_format::general);
-  if (ec != std::errc() || end != last || first == last) return false;
-  if (!(value == value) || value > 1.7976931348623157e308 || value < -1.7976931348623157e308) return false;
-  out = value;
-  return true;
-}
-
-/// The shortest decimal text that reads back as the same double ("99", "2.345", "-0.5").
-inline std::string format_real(double value) {
-  char text[32];
-  auto [end, ec] = std::to_chars(text, text + sizeof text, value);
-  (void)ec;
-  return std::string(text, end);
-}
-
-/// `text` as a JSON string literal, quotes included; bytes below 0x20, '"' and '\' are escaped.
-inline std::string json_string(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (byte < 0x20 || byte == 0x7f) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\u%04x", byte);
-      out += escape;
-    } else {
-      out += c;
-    }
+  ~event() {
+    put("}\n", 2);
+    out_.append(line_, size_);
   }
-  out += '"';
-  return out;
-}
+  event(const event&) = delete;
+  event& operator=(const event&) = delete;
 
-/// Reads all of standard input.
-inline std::string read_stdin() {
-  std::string all;
-  char chunk[4096];
-  std::size_t got = 0;
-  while ((got = std::fread(chunk, 1, sizeof chunk, stdin)) > 0) all.append(chunk, got);
-  return all;
-}
+  event& number(std::string_view name, std::uint64_t value);
+  event& signed_number(std::string_view name, std::int64_t value);
+  /// A real number, shortest form; null if not finite.
+  event& real(std::string_view name, double value);
+  event& boolean(std::string_view name, bool value);
+  /// A string field; the text is escaped (host::append_json_string).
+  event& text(std::string_view name, std::string_view value);
+  /// A field whose value is already JSON.
+  event& json(std::string_view name, std::string_view value);
 
-int ring_main(const std::vector<std::string>& args);
-int can_main(const std::vector<std::string>& args);
-int genius_main(const std::vector<std::string>& args);
+  /// Raw text (for host::append_json_string, which escapes into the event).
+  void push_back(char c) { put(&c, 1); }
+  /// Raw text (for host::append_json_string).
+  void append(const char* text, std::size_t size) { put(text, size); }
+
+ private:
+  void key(std::string_view name);
+  void put(const char* text, std::size_t size) {
+    if (size > sizeof line_ - size_) {  // a long field: what is gathered goes first
+      out_.append(line_, size_);
+      size_ = 0;
+      if (size > sizeof line_) {
+        out_.append(text, size);
+        return;
+      }
+    }
+    for (std::size_t i = 0; i < size; ++i) line_[size_ + i] = text[i];
+    size_ += size;
+  }
+
+  std::string& out_;
+  char line_[480];
+  std::size_t size_ = 0;
+};
+
+/// Nanoseconds since 1970 as decimal seconds with 9 digits, "1700000000.123456789" (as Wireshark's
+/// frame.time_epoch).
+std::string epoch_text(std::uint64_t time_ns);
 
 }  // namespace trionet::cli

@@ -2,32 +2,57 @@
 // Formats are documented in docs/genius.md.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <trionet/genius.hpp>
 
+#include "capture_cli.hpp"
 #include "cli.hpp"
+#include "trionet/host/capture.hpp"
+#include "trionet/host/capture_view.hpp"
 
 namespace trionet::cli {
 namespace {
 
 namespace genius = trionet::genius;
 
-constexpr const char* genius_usage =
-    "usage: trionet genius <command> [options]\n"
-    "\n"
-    "commands:\n"
-    "  encode --from S (--to D | --broadcast) [--words] [SEGMENT ...]\n"
-    "      Encode a transmission. SEGMENT is plain data as hex bytes (\"1122\") or a block\n"
-    "      \"block:D:HEX\". Prints the characters: data \"XX\", control \"c:XX\" (--words: 11-bit words\n"
-    "      \"w:XXX\").\n"
-    "  decode [TOKEN ...]\n"
-    "      Decode characters (\"XX\", \"c:XX\" or \"w:XXX\"; from standard input if none are given).\n"
-    "      Exit 0 if every character belonged to a good transmission, 1 on wire errors.\n"
-    "  timing --rate 153.6s|153.6e|76.8|38.4 --after S --device SBA@FEET ... [--skip-us U]\n"
-    "         [--prop-us-per-2000ft P] [--detect-us D] [--json]\n"
-    "      Turn start times and margins after the Stop of SBA S.\n";
+constexpr const char* encode_usage =
+    "usage: trionet genius encode --from S (--to D | --broadcast) [--words] [SEGMENT ...]\n"
+    "Encodes a transmission. SEGMENT is plain data as hex bytes (\"1122\") or a block \"block:D:HEX\". Prints\n"
+    "the characters: data \"XX\", control \"c:XX\" (--words: 11-bit words \"w:XXX\"). A transmission carries\n"
+    "at most 256 data bytes in 16 segments (what `genius decode` takes).\n";
+
+constexpr const char* decode_usage =
+    "usage: trionet genius decode [TOKEN ...] [--write-pcap FILE [--rate R]]   tokens from the arguments,\n"
+    "                                                                          else from standard input\n"
+    "       trionet genius decode --raw [--write-pcap FILE [--rate R]]         2-byte words from standard input\n"
+    "       trionet genius decode --pcap FILE [--json]                         the Genius records of a capture\n"
+    "Tokens: a data character \"XX\", a control character \"c:XX\", an 11-bit word \"w:XXX\". --raw: each\n"
+    "character as two bytes, the 11-bit word big-endian (as in a capture record, docs/wireshark.md).\n"
+    "Prints each transmission and each error as soon as it is complete, with where it is (line and character,\n"
+    "byte offset, or capture record), then a summary line. A token that is not a character is an error (the\n"
+    "character is lost, as with a framing error) and decoding goes on. --write-pcap also writes every\n"
+    "character to a capture, one record per transmission, timed at rate R (default 153.6s).\n"
+    "With --pcap, --json prints each record as the fields Wireshark shows (docs/wireshark.md).\n"
+    "Exit status 0 when the input was read (wire errors included), 1 when reading or writing failed, 2 for\n"
+    "bad arguments.\n";
+
+constexpr const char* timing_usage =
+    "usage: trionet genius timing --rate 153.6s|153.6e|76.8|38.4 --after S --device SBA@FEET ... [--skip-us U]\n"
+    "                             [--prop-us-per-2000ft P] [--detect-us D] [--json] [--check]\n"
+    "Turn start times and margins after the Stop of SBA S (docs/genius.md). FEET is 0..1000000; U (> 0), P and\n"
+    "D are microseconds up to 1000000. --check: exit status 3 when a margin is below the detection time (a\n"
+    "collision risk), so that a script or CI job can fail on it.\n";
+
+constexpr const char* scan_time_usage =
+    "usage: trionet genius scan-time --rate 153.6s|153.6e|76.8|38.4 --device BYTES[,BYTES...] ... [--json]\n"
+    "The scan time of a Genius bus by GE's published figures (GFK-0825F): each device contributes a fixed\n"
+    "term plus a term per byte of its inputs and outputs (BYTES, inputs + outputs together); the bus's scan\n"
+    "time is the sum over its devices. --device is repeatable and takes a comma-separated list. The results\n"
+    "are exact (GE's figures in milliseconds); the computed 11-bit character time is shown beside them.\n";
 
 std::string hex2(unsigned value) {
   char text[8];
@@ -35,34 +60,11 @@ std::string hex2(unsigned value) {
   return text;
 }
 
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
 // Whole hex number of 1..max_digits digits.
 bool parse_hex(const std::string& text, std::size_t max_digits, unsigned& out) {
-  if (text.empty() || text.size() > max_digits) return false;
-  unsigned value = 0;
-  for (char c : text) {
-    const int digit = hex_digit(c);
-    if (digit < 0) return false;
-    value = value * 16u + static_cast<unsigned>(digit);
-  }
+  std::uint32_t value = 0;
+  if (!host::parse_hex_number(text, max_digits, value)) return false;
   out = value;
-  return true;
-}
-
-// An even number of hex digits ("", "11", "1122") as bytes.
-bool parse_hex_bytes(const std::string& text, std::vector<std::uint8_t>& out) {
-  if (text.size() % 2 != 0) return false;
-  for (std::size_t i = 0; i < text.size(); i += 2) {
-    unsigned byte = 0;
-    if (!parse_hex(text.substr(i, 2), 2, byte)) return false;
-    out.push_back(static_cast<std::uint8_t>(byte));
-  }
   return true;
 }
 
@@ -85,20 +87,9 @@ std::vector<std::string> split_lines(const std::string& joined) {
   return parts;
 }
 
-std::vector<std::string> split_words(const std::string& text) {
-  std::vector<std::string> words;
-  std::string word;
-  for (char c : text) {
-    if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
-      if (!word.empty()) words.push_back(word);
-      word.clear();
-    } else {
-      word += c;
-    }
-  }
-  if (!word.empty()) words.push_back(word);
-  return words;
-}
+// The parser `genius decode` uses (the library's defaults, as the Wireshark dissector): what `encode` checks
+// its output against.
+using decode_parser = genius::transmission_parser<>;
 
 // ---------------------------------------------------------------------------------------------------
 // encode
@@ -123,16 +114,16 @@ int encode_main(const std::vector<std::string>& words) {
     const std::string& text = args.positionals[i];
     if (text.compare(0, 6, "block:") == 0) {
       const std::size_t colon = text.find(':', 6);
-      if (colon == std::string::npos) return fail("block segment '" + text + "' must be block:SBA:HEX");
+      if (colon == std::string::npos) return fail("block segment '" + host::clipped(text) + "' must be block:SBA:HEX");
       segments[i].block = true;
       if (!parse_sba(text.substr(6, colon - 6), segments[i].destination)) {
-        return fail("block segment '" + text + "': destination must be an SBA 0..31");
+        return fail("block segment '" + host::clipped(text) + "': destination must be an SBA 0..31");
       }
-      if (!parse_hex_bytes(text.substr(colon + 1), bytes[i]) || bytes[i].empty()) {
-        return fail("block segment '" + text + "': data must be one or more hex bytes");
+      if (!host::parse_hex_bytes(std::string_view(text).substr(colon + 1), bytes[i]) || bytes[i].empty()) {
+        return fail("block segment '" + host::clipped(text) + "': data must be one or more hex bytes");
       }
-    } else if (!parse_hex_bytes(text, bytes[i]) || bytes[i].empty()) {
-      return fail("data segment '" + text + "' must be one or more hex bytes (e.g. 1122)");
+    } else if (!host::parse_hex_bytes(text, bytes[i]) || bytes[i].empty()) {
+      return fail("data segment '" + host::clipped(text) + "' must be one or more hex bytes (e.g. 1122)");
     }
     segments[i].data = byte_view(bytes[i].data(), bytes[i].size());
   }
@@ -147,6 +138,18 @@ int encode_main(const std::vector<std::string>& words) {
   const genius::encode_result written =
       genius::encode_transmission(span<genius::character>(out.data(), out.size()), t);
   if (!written) return fail("cannot encode this transmission");
+  // What is printed must be what `genius decode` accepts: parse it with the same parser.
+  decode_parser check;
+  genius::parse_status parsed = genius::parse_status::in_progress;
+  for (const genius::character& c : out) {
+    parsed = check.push(c);
+    if (parsed != genius::parse_status::in_progress) break;
+  }
+  if (parsed != genius::parse_status::ok) {
+    return fail(std::string("cannot encode: the decoder would report ") + genius::to_string(parsed) + " (at most " +
+                std::to_string(decode_parser::data_capacity) + " data bytes in " +
+                std::to_string(decode_parser::segment_capacity) + " segments)");
+  }
 
   const bool as_words = args.flags.count("--words") != 0;
   std::string line;
@@ -167,92 +170,302 @@ int encode_main(const std::vector<std::string>& words) {
 // ---------------------------------------------------------------------------------------------------
 // decode
 
-struct token {
-  std::string text;
-  bool is_word = false;
-  std::uint16_t word = 0;
-  genius::character value{};
-};
-
-bool parse_token(const std::string& text, token& out, std::string& error) {
-  out.text = text;
+// A token as an 11-bit word: "XX" data, "c:XX" control, "w:XXX" any word (framing errors included).
+bool parse_token(std::string_view text, std::uint16_t& word) {
   unsigned value = 0;
-  if (text.compare(0, 2, "w:") == 0) {
-    if (!parse_hex(text.substr(2), 3, value) || value > genius::word_mask) {
-      error = "token '" + text + "': an 11-bit word is w: and 1..3 hex digits up to 7ff";
-      return false;
-    }
-    out.is_word = true;
-    out.word = static_cast<std::uint16_t>(value);
+  if (text.substr(0, 2) == "w:") {
+    if (!parse_hex(std::string(text.substr(2)), 3, value) || value > genius::word_mask) return false;
+    word = static_cast<std::uint16_t>(value);
     return true;
   }
-  const bool control = text.compare(0, 2, "c:") == 0;
-  const std::string digits = control ? text.substr(2) : text;
-  if (digits.size() != 2 || !parse_hex(digits, 2, value)) {
-    error = "token '" + text + "' is not a character (XX, c:XX or w:XXX)";
-    return false;
-  }
-  out.value = genius::character{static_cast<std::uint8_t>(value), control};
+  const bool control = text.substr(0, 2) == "c:";
+  const std::string_view digits = control ? text.substr(2) : text;
+  if (digits.size() != 2 || !parse_hex(std::string(digits), 2, value)) return false;
+  word = genius::encode_character(genius::character{static_cast<std::uint8_t>(value), control});
   return true;
 }
 
-void print_transmission(const genius::transmission& t) {
-  std::string line = "transmission from SBA " + std::to_string(t.sender);
-  line += t.broadcast ? ", broadcast" : ", directed to SBA " + std::to_string(t.destination);
-  std::printf("%s\n", line.c_str());
-  for (const genius::segment& s : t.segments) {
-    std::string text = s.block ? "  block to SBA " + std::to_string(s.destination) + ":" : "  data";
-    for (std::uint8_t byte : s.data) text += " " + hex2(byte);
-    std::printf("%s\n", text.c_str());
-  }
+// Text for a message: the bytes with anything unprintable as \xNN, at most 40 of them.
+std::string shown(std::string_view token) {
+  const std::string cut = host::clipped(token);
+  return host::escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
 }
 
-int decode_main(const std::vector<std::string>& words) {
-  arguments args;
-  std::string error;
-  if (!parse_arguments(words, {}, {}, args, error)) return fail(error);
-  const std::vector<std::string> texts =
-      args.positionals.empty() ? split_words(read_stdin()) : args.positionals;
-  std::vector<token> tokens(texts.size());
-  for (std::size_t i = 0; i < texts.size(); ++i) {
-    if (!parse_token(texts[i], tokens[i], error)) return fail(error);
+// Characters in, transmissions and errors out, each line printed with where it is. Optionally every
+// character also goes to a capture.
+class genius_stream {
+ public:
+  explicit genius_stream(std::string& out) : out_(out) {}
+
+  void capture_to(host::pcapng_writer* writer, std::uint32_t interface, double character_ns) {
+    writer_ = writer;
+    interface_ = interface;
+    character_ns_ = character_ns;
   }
 
-  // Plenty for any transmission given on a command line; a longer one is reported as overflow.
-  genius::transmission_parser<4096, 256> parser;
-  std::size_t transmissions = 0;
-  for (std::size_t i = 0; i < tokens.size(); ++i) {
-    const token& t = tokens[i];
+  // One word, and where it is ("line 1, character 3"); `token` is the text it came from, for messages.
+  void word(std::uint16_t w, const std::string& where, std::string_view token) {
+    record(w);
+    const genius::character_result decoded = genius::decode_character(w);
     genius::parse_status status;
     std::string detail;
-    if (t.is_word) {
-      const genius::character_result decoded = genius::decode_character(t.word);
-      if (decoded) {
-        status = parser.push(decoded.value);
-      } else {
-        status = parser.push_framing_error();
-        detail = decoded.status == genius::character_status::start_bit_not_0 ? " (start bit not 0)"
-                                                                             : " (stop bit not 1)";
+    if (decoded) {
+      if (decoded.value.control && genius::read_control(decoded.value.byte).kind == genius::control_kind::start) {
+        start_ = where;
       }
+      status = parser_.push(decoded.value);
     } else {
-      status = parser.push(t.value);
+      status = parser_.push_framing_error();
+      detail = decoded.status == genius::character_status::start_bit_not_0  ? " (start bit not 0)"
+               : decoded.status == genius::character_status::stop_bit_not_1 ? " (stop bit not 1)"
+                                                                             : " (more than 11 bits)";
     }
     if (status == genius::parse_status::ok) {
-      ++transmissions;
-      print_transmission(parser.received());
+      ++transmissions_;
+      print_transmission(parser_.received());
     } else if (genius::is_error(status)) {
-      std::printf("error at character %zu (%s): %s%s\n", i + 1, t.text.c_str(), genius::to_string(status),
-                  detail.c_str());
+      out_ += "error at " + where + " (" + shown(token) + "): " + genius::to_string(status) + detail + "\n";
     }
   }
-  const bool unfinished = parser.in_transmission();
-  if (unfinished) std::printf("error at end of input: transmission not finished\n");
-  const std::uint32_t errors = parser.errors() + (unfinished ? 1u : 0u);
-  std::printf("%zu transmission%s, %u error%s, %u character%s skipped\n", transmissions,
-              transmissions == 1 ? "" : "s", static_cast<unsigned>(errors), errors == 1 ? "" : "s",
-              static_cast<unsigned>(parser.count(genius::parse_status::skipped)),
-              parser.count(genius::parse_status::skipped) == 1 ? "" : "s");
-  return errors == 0 ? exit_ok : 1;
+
+  // A token that is no character: the character is lost, as with a framing error.
+  void bad_token(const std::string& where, std::string_view token) {
+    if (parser_.in_transmission()) {
+      (void)parser_.push_framing_error();  // counted by the parser
+    } else {
+      ++bad_tokens_;
+    }
+    out_ += "error at " + where + " (" + shown(token) + "): not a character (XX, c:XX or w:XXX)\n";
+  }
+
+  // Another error of the input (e.g. an odd byte at the end of raw input).
+  void input_error(const std::string& text) {
+    ++bad_tokens_;
+    out_ += "error at " + text + "\n";
+  }
+
+  // The end of a unit of input (the whole input, or one capture record): an open transmission is unfinished.
+  void end(const std::string& what) {
+    if (parser_.in_transmission()) {
+      ++unfinished_;
+      out_ += "error at end of " + what + ": transmission not finished (its Start at " + start_ + ")\n";
+    }
+    parser_.reset();
+    if (writer_ != nullptr) splitter_.flush(sink{this});
+  }
+
+  void summary() {
+    const std::uint64_t errors = parser_.errors() + bad_tokens_ + unfinished_;
+    const std::uint32_t skipped = parser_.count(genius::parse_status::skipped);
+    out_ += std::to_string(transmissions_) + " transmission" + (transmissions_ == 1 ? "" : "s") + ", " +
+            std::to_string(errors) + " error" + (errors == 1 ? "" : "s") + ", " + std::to_string(skipped) +
+            " character" + (skipped == 1 ? "" : "s") + " skipped\n";
+  }
+
+  bool capture_ok() const { return written_ == host::pcapng_write_status::ok; }
+
+ private:
+  void print_transmission(const genius::transmission& t) {
+    out_ += "transmission from SBA " + std::to_string(t.sender);
+    out_ += t.broadcast ? ", broadcast" : ", directed to SBA " + std::to_string(t.destination);
+    out_ += " (" + start_ + ")\n";
+    for (const genius::segment& s : t.segments) {
+      out_ += s.block ? "  block to SBA " + std::to_string(s.destination) + ":" : "  data";
+      for (std::uint8_t byte : s.data) out_ += " " + hex2(byte);
+      out_ += '\n';
+    }
+  }
+
+  struct sink {
+    genius_stream* self;
+    void operator()(byte_view record, std::uint64_t time_ns) const {
+      const host::pcapng_write_status status = self->writer_->write(self->interface_, time_ns, record);
+      if (self->written_ == host::pcapng_write_status::ok) self->written_ = status;
+    }
+  };
+
+  void record(std::uint16_t w) {
+    if (writer_ == nullptr) return;
+    const auto time_ns = static_cast<std::uint64_t>(static_cast<double>(characters_++) * character_ns_ + 0.5);
+    splitter_.push(w, time_ns, sink{this});
+  }
+
+  std::string& out_;
+  decode_parser parser_;
+  std::string start_ = "the start";
+  std::uint64_t transmissions_ = 0;
+  std::uint64_t bad_tokens_ = 0;
+  std::uint64_t unfinished_ = 0;
+  host::pcapng_writer* writer_ = nullptr;
+  std::uint32_t interface_ = 0;
+  double character_ns_ = 0;
+  std::uint64_t characters_ = 0;
+  host::genius_record_splitter splitter_;
+  host::pcapng_write_status written_ = host::pcapng_write_status::ok;
+};
+
+// Tokens of text, read in pieces: words separated by blanks, each kept to at most 41 bytes (no valid token
+// is longer, and a longer one is only echoed in part).
+class token_reader {
+ public:
+  explicit token_reader(genius_stream& stream) : stream_(stream) {}
+
+  void push(std::string_view text) {
+    for (const char c : text) {
+      if (host::is_blank(c)) {
+        end_token();
+        if (c == '\n') ++line_;
+      } else if (token_.size() <= 40) {
+        token_ += c;
+      } else {
+        long_ = true;
+      }
+    }
+  }
+
+  void finish() {
+    end_token();
+    stream_.end("input");
+  }
+
+ private:
+  void end_token() {
+    if (token_.empty()) return;
+    ++number_;
+    const std::string where = "line " + std::to_string(line_) + ", character " + std::to_string(number_);
+    std::uint16_t w = 0;
+    if (!long_ && parse_token(token_, w)) {
+      stream_.word(w, where, token_);
+    } else {
+      stream_.bad_token(where, token_);
+    }
+    token_.clear();
+    long_ = false;
+  }
+
+  genius_stream& stream_;
+  std::string token_;
+  bool long_ = false;
+  std::uint64_t line_ = 1;
+  std::uint64_t number_ = 0;
+};
+
+int decode_capture(const arguments& args) {
+  // One parser per record, as the dissector sees it; the summary covers every record.
+  std::string pending;
+  genius_stream stream(pending);
+  const int status = read_capture(
+      args.options.at("--pcap"), host::capture_network::genius, args.flag("--json"), 5,
+      [&](const host::pcapng_record& record, const capture_position& where, std::string& out) {
+        std::string place = "record " + std::to_string(where.record);
+        if (!where.interface_name.empty()) place += " (" + host::escaped_text(byte_view(
+            reinterpret_cast<const std::uint8_t*>(where.interface_name.data()), where.interface_name.size())) + ")";
+        place += " at " + epoch_text(where.time_ns) + ", character ";
+        std::size_t n = 0;
+        for (std::uint16_t w : host::genius_record_words(record.bytes)) {
+          char token[8];
+          std::snprintf(token, sizeof token, "w:%03x", static_cast<unsigned>(w & 0xFFFFU));
+          stream.word(w, place + std::to_string(++n), token);
+        }
+        if (record.bytes.size() % 2 != 0) stream.input_error(place + std::to_string(n + 1) + ": an odd byte at the end");
+        stream.end("record " + std::to_string(where.record));
+        out += pending;
+        pending.clear();
+      });
+  if (status != exit_ok || args.flag("--json")) return status;
+  stream.summary();
+  output out;
+  out.text() = pending;
+  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+}
+
+int decode_main(const std::vector<std::string>& all) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(all, {"--pcap", "--write-pcap", "--rate"}, {"--raw", "--json"}, args, error)) return fail(error);
+  const bool raw = args.flag("--raw");
+  if (args.has("--pcap")) {
+    if (raw || !args.positionals.empty() || args.has("--write-pcap") || args.has("--rate")) {
+      return fail("--pcap reads a capture: no --raw, --write-pcap, --rate or TOKEN with it");
+    }
+    return decode_capture(args);
+  }
+  if (args.flag("--json")) return fail("--json applies to --pcap");
+  if (raw && !args.positionals.empty()) return fail("--raw reads standard input: no TOKEN arguments with it");
+  if (args.has("--rate") && !args.has("--write-pcap")) return fail("--rate sets the times of --write-pcap");
+  genius::rate rate = genius::rate::standard_153k6;
+  if (args.has("--rate") && !genius::rate_from_name(args.options.at("--rate"), rate)) {
+    return fail("unknown rate '" + host::clipped(args.options.at("--rate")) +
+                "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
+  }
+
+  output out;
+  genius_stream stream(out.text());
+  std::ofstream capture_file;
+  std::unique_ptr<host::pcapng_writer> writer;
+  if (args.has("--write-pcap")) {
+    const std::string& path = args.options.at("--write-pcap");
+    capture_file.open(path, std::ios::binary | std::ios::trunc);
+    if (!capture_file) return fail_io("cannot write " + path);
+    writer = std::make_unique<host::pcapng_writer>(capture_file, version_line());
+    const host::pcapng_interface_result line =
+        writer->add_interface(std::string("genius ") + genius::properties(rate).name, host::capture_network::genius);
+    if (!line) return fail_io("cannot write " + path);
+    stream.capture_to(writer.get(), line.id, genius::character_time_us(rate) * 1000.0);
+  }
+
+  token_reader tokens(stream);
+  std::uint64_t offset = 0;
+  int odd = -1;  // --raw: the first byte of a word whose second has not come yet
+  if (!args.positionals.empty()) {
+    for (const std::string& token : args.positionals) {
+      tokens.push(token);
+      tokens.push(" ");
+    }
+  } else {
+    input in;
+    std::string_view chunk;
+    while (true) {
+      if (!in.read(chunk, error)) {
+        out.flush();
+        return fail_io(error);
+      }
+      if (chunk.empty()) break;
+      if (!raw) {
+        tokens.push(chunk);
+      } else {
+        for (const char c : chunk) {
+          const auto byte = static_cast<std::uint8_t>(c);
+          if (odd < 0) {
+            odd = byte;
+          } else {
+            const auto w = static_cast<std::uint16_t>(odd << 8 | byte);
+            char token[8];
+            std::snprintf(token, sizeof token, "w:%03x", static_cast<unsigned>(w));
+            stream.word(w, "offset " + std::to_string(offset), token);
+            offset += 2;
+            odd = -1;
+          }
+        }
+      }
+      if (!out.flush()) return fail_io("cannot write standard output");
+    }
+  }
+  if (raw) {
+    if (odd >= 0) stream.input_error("offset " + std::to_string(offset) + ": an odd byte at the end of the input");
+    stream.end("input");
+  } else {
+    tokens.finish();
+  }
+  stream.summary();
+  if (writer) {
+    capture_file.flush();
+    if (!stream.capture_ok() || !capture_file) {
+      out.flush();
+      return fail_io("cannot write " + args.options.at("--write-pcap"));
+    }
+  }
+  return out.flush() ? exit_ok : fail_io("cannot write standard output");
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -293,19 +506,28 @@ const char* layout_problem(genius::layout_status status) {
   return "invalid layout";
 }
 
+// The largest position and time the analysis takes: far beyond any real bus, small enough that every
+// result is a finite number (JSON has no infinity).
+constexpr double max_feet = 1e6;
+constexpr double max_us = 1e6;
+
+bool parse_bounded(const std::string& text, double min, double max, double& out) {
+  return host::parse_real(text, min, max, out);
+}
+
 int timing_main(const std::vector<std::string>& words) {
   arguments args;
   std::string error;
   if (!parse_arguments(words,
                        {"--rate", "--after", "--device", "--skip-us", "--prop-us-per-2000ft", "--detect-us"},
-                       {"--json"}, args, error, {"--device"})) {
+                       {"--json", "--check"}, args, error, {"--device"})) {
     return fail(error);
   }
   if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
   if (!args.has("--rate")) return fail("timing needs --rate 153.6s|153.6e|76.8|38.4");
   genius::rate rate{};
   if (!genius::rate_from_name(args.options["--rate"], rate)) {
-    return fail("unknown rate '" + args.options["--rate"] + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
+    return fail("unknown rate '" + host::clipped(args.options["--rate"]) + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
   }
   genius::bus_timing timing = genius::default_timing(rate);
   if (!args.has("--after")) return fail("timing needs --after SBA (the SBA whose Stop just ended)");
@@ -318,8 +540,8 @@ int timing_main(const std::vector<std::string>& words) {
     genius::device d;
     double feet = 0;
     if (at == std::string::npos || !parse_sba(text.substr(0, at), d.sba) ||
-        !parse_real(text.substr(at + 1), feet) || feet < 0) {
-      return fail("--device '" + text + "' must be SBA@FEET with SBA 0..31 and FEET >= 0");
+        !parse_bounded(text.substr(at + 1), 0, max_feet, feet)) {
+      return fail("--device '" + host::clipped(text) + "' must be SBA@FEET with SBA 0..31 and FEET 0..1000000");
     }
     d.position_ft = feet;
     for (const genius::device& other : devices) {
@@ -328,17 +550,15 @@ int timing_main(const std::vector<std::string>& words) {
     devices.push_back(d);
   }
   const bool explicit_skip = args.has("--skip-us");
-  if (explicit_skip && (!parse_real(args.options["--skip-us"], timing.skip_us) || !(timing.skip_us > 0))) {
-    return fail("--skip-us must be a number > 0");
+  if (explicit_skip && (!parse_bounded(args.options["--skip-us"], 0, max_us, timing.skip_us) || !(timing.skip_us > 0))) {
+    return fail("--skip-us must be a number of microseconds > 0 and <= 1000000");
   }
   if (args.has("--prop-us-per-2000ft") &&
-      (!parse_real(args.options["--prop-us-per-2000ft"], timing.propagation_us_per_2000ft) ||
-       timing.propagation_us_per_2000ft < 0)) {
-    return fail("--prop-us-per-2000ft must be a number >= 0");
+      !parse_bounded(args.options["--prop-us-per-2000ft"], 0, max_us, timing.propagation_us_per_2000ft)) {
+    return fail("--prop-us-per-2000ft must be a number of microseconds 0..1000000");
   }
-  if (args.has("--detect-us") &&
-      (!parse_real(args.options["--detect-us"], timing.detection_us) || timing.detection_us < 0)) {
-    return fail("--detect-us must be a number >= 0");
+  if (args.has("--detect-us") && !parse_bounded(args.options["--detect-us"], 0, max_us, timing.detection_us)) {
+    return fail("--detect-us must be a number of microseconds 0..1000000");
   }
 
   const genius::turn_analysis analysis =
@@ -348,6 +568,8 @@ int timing_main(const std::vector<std::string>& words) {
   }
   if (analysis.status != genius::layout_status::ok) return fail(layout_problem(analysis.status));
   const genius::rate_properties props = genius::properties(rate);
+  // --check: a margin below the detection time (a negative one included) is a collision risk.
+  const int verdict = args.flag("--check") && analysis.too_small_count != 0 ? exit_check : exit_ok;
 
   if (args.flags.count("--json") != 0) {
     std::string out =
@@ -366,7 +588,7 @@ int timing_main(const std::vector<std::string>& words) {
     }
     out += "]}";
     std::printf("%s\n", out.c_str());
-    return exit_ok;
+    return verdict;
   }
 
   const genius::device* sender = nullptr;
@@ -411,24 +633,99 @@ int timing_main(const std::vector<std::string>& words) {
     std::printf("warning: %zu devices; %s allows %u\n", devices.size(), props.name,
                 static_cast<unsigned>(props.max_devices));
   }
+  return verdict;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// scan-time: GE's published scan-time figures (docs/protocol.md 3.3), per device and for the bus.
+
+int scan_time_main(const std::vector<std::string>& words) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(words, {"--rate", "--device"}, {"--json"}, args, error, {"--device"})) return fail(error);
+  if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
+  if (!args.has("--rate")) return fail("scan-time needs --rate 153.6s|153.6e|76.8|38.4");
+  genius::rate rate{};
+  if (!genius::rate_from_name(args.options["--rate"], rate)) {
+    return fail("unknown rate '" + args.options["--rate"] + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
+  }
+  if (!args.has("--device")) return fail("scan-time needs at least one --device BYTES");
+  std::vector<std::uint32_t> bytes;
+  for (const std::string& list : split_lines(args.options["--device"])) {
+    std::size_t from = 0;
+    while (true) {
+      const std::size_t comma = list.find(',', from);
+      const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+      long long value = 0;
+      if (!parse_integer(item, 0, 4294967295LL, value)) {
+        return fail("--device '" + list + "': each BYTES must be a whole number 0..4294967295");
+      }
+      bytes.push_back(static_cast<std::uint32_t>(value));
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+  }
+  const genius::rate_properties props = genius::properties(rate);
+  const genius::scan_time_result bus =
+      genius::bus_scan_time(rate, span<const std::uint32_t>(bytes.data(), bytes.size()));
+  if (bus.status == genius::scan_time_status::too_many_devices) {
+    return fail(std::to_string(bytes.size()) + " devices; " + props.name + " allows " +
+                std::to_string(props.max_devices));
+  }
+  if (!bus) return fail(genius::to_string(bus.status));
+
+  // Milliseconds as exact decimal text from nanoseconds ("0.943", "0.0715", "4.831"), no floating point.
+  const auto ms = [](std::uint64_t ns) {
+    std::string text = std::to_string(ns / 1000000u);
+    std::string fraction = std::to_string(ns % 1000000u);
+    fraction.insert(0, 6 - fraction.size(), '0');
+    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+    return fraction.empty() ? text : text + "." + fraction;
+  };
+  const genius::scan_time_terms terms = genius::published_scan_time_terms(rate);
+  // The computed character time, rounded to the nanosecond: a separate figure, not used in the sums.
+  const auto character_ns = static_cast<std::uint64_t>(std::llround(genius::character_time_us(rate) * 1000.0));
+
+  if (args.flags.count("--json") != 0) {
+    std::string out = "{\"rate\":" + json_string(props.name) + ",\"fixed_ms\":" + ms(terms.fixed_ns) +
+                      ",\"per_byte_ms\":" + ms(terms.per_byte_ns) + ",\"devices\":[";
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      if (i != 0) out += ',';
+      out += "{\"io_bytes\":" + std::to_string(bytes[i]) +
+             ",\"scan_time_ms\":" + ms(genius::device_scan_time_ns(rate, bytes[i])) + "}";
+    }
+    out += "],\"io_bytes\":" + std::to_string(bus.io_bytes) + ",\"total_ms\":" + ms(bus.total_ns) +
+           ",\"character_time_ms\":" + ms(character_ns) + "}";
+    std::printf("%s\n", out.c_str());
+    return exit_ok;
+  }
+  std::printf("rate %s (%s): %s ms per device + %s ms per byte of inputs and outputs (GE GFK-0825F)\n",
+              props.name, props.description, ms(terms.fixed_ns).c_str(), ms(terms.per_byte_ns).c_str());
+  std::printf("  device  io_bytes  scan_time_ms\n");
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    std::printf("  %6zu  %8u  %12s\n", i + 1, static_cast<unsigned>(bytes[i]),
+                ms(genius::device_scan_time_ns(rate, bytes[i])).c_str());
+  }
+  std::printf("bus: %zu device%s, %llu byte%s, %s ms\n", bus.devices, bus.devices == 1 ? "" : "s",
+              static_cast<unsigned long long>(bus.io_bytes), bus.io_bytes == 1 ? "" : "s",
+              ms(bus.total_ns).c_str());
+  std::printf("computed character time (11 bits at %u bit/s): %s ms, not used above\n",
+              static_cast<unsigned>(props.baud), ms(character_ns).c_str());
   return exit_ok;
 }
 
+const command genius_commands[] = {
+    {"encode", "encode a transmission as characters", encode_usage, encode_main},
+    {"decode", "read characters, raw words or a capture; print transmissions and errors", decode_usage,
+     decode_main},
+    {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main},
+    {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
+     scan_time_main},
+};
+
 }  // namespace
 
-int genius_main(const std::vector<std::string>& args) {
-  if (args.empty())
-    return fail("genius needs a command: encode, decode or timing (see trionet genius --help)");
-  const std::string& command = args[0];
-  if (command == "--help" || command == "-h" || command == "help") {
-    std::fputs(genius_usage, stdout);
-    return exit_ok;
-  }
-  const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (command == "encode") return encode_main(rest);
-  if (command == "decode") return decode_main(rest);
-  if (command == "timing") return timing_main(rest);
-  return fail("unknown genius command '" + command + "' (expected encode, decode or timing)");
-}
+const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time)", genius_commands,
+                          sizeof genius_commands / sizeof genius_commands[0], ""};
 
 }  // namespace trionet::cli

@@ -1,4 +1,5 @@
-// `trionet`: encode, decode, simulate and analyse Trio fibre-ring, TN20-17 CAN and Genius bus traffic.
+// `trionet`: encode, decode, simulate and analyse Trio fibre-ring, TN20-17 CAN and Genius bus traffic
+// (docs/cli.md). The parts and their command tables are in <part>_cli.cpp; cli.cpp dispatches.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -7,28 +8,41 @@
 
 namespace {
 
-constexpr const char* usage_text =
-    "usage: trionet <part> <command> [options]\n"
-    "\n"
-    "parts:\n"
-    "  ring     Trio Motion Coordinator fibre-optic ring (encode, decode, simulate)\n"
-    "  can      Trio TN20-17 CANbus VR exchange (encode, decode, table)\n"
-    "  genius   GE Genius bus (encode, decode, timing)\n"
-    "\n"
-    "Run `trionet <part> --help` for a part's commands.\n";
+using trionet::cli::part;
+
+const part* const parts[] = {&trionet::cli::ring_part, &trionet::cli::can_part, &trionet::cli::genius_part};
+
+std::string usage() {
+  std::string out = "usage: trionet <part> <command> [options]\n       trionet --version\n\nparts:\n";
+  for (const part* p : parts) {
+    std::string name = p->name;
+    name.resize(8, ' ');
+    out += "  " + name + " " + p->summary + "\n";
+  }
+  out += "\nRun `trionet <part> --help` for a part's commands, `trionet <part> <command> --help` for a command's\n"
+         "options. Exit status: 0 the input was read (wire errors are reported as events), 1 reading or\n"
+         "writing failed, 2 bad arguments, 3 a --check failed.\n";
+  return out;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> words(argv + 1, argv + argc);
-  if (words.empty() || words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
-    std::fputs(usage_text, words.empty() ? stderr : stdout);
-    return words.empty() ? trionet::cli::exit_usage : trionet::cli::exit_ok;
+  if (words.empty()) {
+    std::fputs(("trionet: a part is needed: ring, can or genius\n" + usage()).c_str(), stderr);
+    return trionet::cli::exit_usage;
   }
-  const std::string part = words[0];
-  words.erase(words.begin());
-  if (part == "ring") return trionet::cli::ring_main(words);
-  if (part == "can") return trionet::cli::can_main(words);
-  if (part == "genius") return trionet::cli::genius_main(words);
-  return trionet::cli::fail("unknown part '" + part + "' (expected ring, can or genius)");
+  if (words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
+    std::fputs(usage().c_str(), stdout);
+    return trionet::cli::exit_ok;
+  }
+  if (words[0] == "--version") {
+    std::printf("%s\n", trionet::cli::version_line().c_str());
+    return trionet::cli::exit_ok;
+  }
+  for (const part* p : parts) {
+    if (words[0] == p->name) return trionet::cli::dispatch(*p, std::vector<std::string>(words.begin() + 1, words.end()));
+  }
+  return trionet::cli::fail("unknown part '" + trionet::host::clipped(words[0]) + "' (expected ring, can or genius)");
 }

@@ -1,26 +1,39 @@
-// `trionet ring ...`: encode and decode fibre-ring frames from the shell.
+// `trionet ring ...`: encode and decode fibre-ring frames from the shell; the command table of the part.
 #include <cinttypes>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "capture_cli.hpp"
 #include "cli.hpp"
 #include "ring_cli.hpp"
+#include "ring_live.hpp"
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
 namespace {
 
-constexpr const char* ring_usage =
-    "usage:\n"
-    "  trionet ring encode print  --to N TEXT\n"
-    "  trionet ring encode var    --to N --vr V --value X\n"
-    "  trionet ring encode offset --to N --offset M\n"
-    "  trionet ring encode mode   --to N --mode 0|127\n"
-    "  trionet ring decode [HEX...]          (no HEX: read standard input)\n"
-    "  trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
-    "  trionet ring simulate --node mc:FILE.bas|mc|keypad ... [options]   (trionet ring simulate --help)\n"
-    "N and M are BASIC addresses 10..24 (hops + 9); V is 0..16383; X is a real number.\n";
+constexpr const char* encode_usage =
+    "usage: trionet ring encode print  --to N TEXT\n"
+    "       trionet ring encode var    --to N --vr V --value X\n"
+    "       trionet ring encode offset --to N --offset M\n"
+    "       trionet ring encode mode   --to N --mode 0|127\n"
+    "Prints the frame as hex bytes. N and M are BASIC addresses 10..24 (hops + 9); TEXT is 1..256 characters\n"
+    "of 7 bits (what a decoder accepts); V is 0..16383; X is a real number in the Q32.32 range.\n";
+
+constexpr const char* decode_usage =
+    "usage: trionet ring decode [HEX...]               hex bytes from the arguments, else from standard input\n"
+    "       trionet ring decode --raw                  raw bytes from standard input (a serial port, a file)\n"
+    "       trionet ring decode --pcap FILE [--json]   the ring records of a pcapng capture\n"
+    "Prints one JSON object per event as soon as it is complete:\n"
+    "  {\"event\":\"message\",...}, {\"event\":\"crc_error\",...}, {\"event\":\"frame_error\",\"reason\":R,...},\n"
+    "  {\"event\":\"unfinished\",...} (a message still open at the end of the input),\n"
+    "  {\"event\":\"error\",\"reason\":\"not_hex\"|\"odd_digits\",...} (hex text that is not a byte; the rest of\n"
+    "  that word is skipped and decoding goes on).\n"
+    "Every event says where it is: \"line\" for hex text, \"offset\" (of the message's first byte) for --raw,\n"
+    "\"record\", \"interface\" and \"time\" for --pcap. Hex text: pairs of hex digits, words separated by blanks.\n"
+    "With --pcap, --json prints each record as the fields Wireshark's dissector shows (docs/wireshark.md).\n"
+    "Exit status 0 when the input was read, 1 when reading or writing failed, 2 for bad arguments.\n";
 
 std::string hex_line(const std::uint8_t* bytes, std::size_t length) {
   std::string line;
@@ -41,17 +54,17 @@ bool basic_address(const arguments& args, const std::string& name, std::uint8_t&
   }
   long long n = 0;
   if (!parse_integer(found->second, ring::first_basic_address, ring::last_basic_address, n)) {
-    error = name + " must be a BASIC address 10..24, got '" + found->second + "'";
+    error = name + " must be a BASIC address 10..24, got '" + host::clipped(found->second) + "'";
     return false;
   }
   hops = *ring::hops_from_basic_address(static_cast<int>(n));
   return true;
 }
 
-int encode_main(const std::vector<std::string>& words) {
-  if (words.empty()) return fail("ring encode needs a message kind: print, var, offset or mode");
-  const std::string kind = words[0];
-  const std::vector<std::string> rest(words.begin() + 1, words.end());
+int encode_main(const words& all) {
+  if (all.empty()) return fail("ring encode needs a message kind: print, var, offset or mode");
+  const std::string kind = all[0];
+  const words rest(all.begin() + 1, all.end());
   arguments args;
   std::string error;
   if (!parse_arguments(rest, {"--to", "--vr", "--value", "--offset", "--mode"}, {}, args, error))
@@ -64,14 +77,14 @@ int encode_main(const std::vector<std::string>& words) {
     return {};
   }();
   if (allowed_for.empty())
-    return fail("unknown message kind '" + kind + "' (expected print, var, offset or mode)");
+    return fail("unknown message kind '" + host::clipped(kind) + "' (expected print, var, offset or mode)");
   for (const auto& option : args.options) {
     bool allowed = false;
     for (const auto& name : allowed_for) allowed = allowed || option.first == name;
     if (!allowed) return fail("option " + option.first + " does not apply to 'ring encode " + kind + "'");
   }
   if (kind != "print" && !args.positionals.empty())
-    return fail("unexpected argument '" + args.positionals[0] + "'");
+    return fail("unexpected argument '" + host::clipped(args.positionals[0]) + "'");
 
   std::uint8_t hops = 0;
   if (!basic_address(args, "--to", hops, error)) return fail(error);
@@ -82,6 +95,10 @@ int encode_main(const std::vector<std::string>& words) {
     if (args.positionals.size() != 1) return fail("ring encode print takes exactly one TEXT argument");
     text = args.positionals[0];
     if (text.empty()) return fail("TEXT is empty: a character transfer needs at least one character");
+    if (text.size() > ring::default_max_characters) {
+      return fail("TEXT has " + std::to_string(text.size()) + " characters; a character transfer carries at most " +
+                  std::to_string(ring::default_max_characters) + " (docs/protocol.md 1.4)");
+    }
     for (std::size_t i = 0; i < text.size(); ++i) {
       if (static_cast<unsigned char>(text[i]) > 127) {
         return fail("TEXT has a character above 127 at byte " + std::to_string(i) +
@@ -95,15 +112,15 @@ int encode_main(const std::vector<std::string>& words) {
     if (!args.has("--value")) return fail("missing --value (a real number)");
     long long vr = 0;
     if (!parse_integer(args.options.at("--vr"), 0, ring::max_vr, vr)) {
-      return fail("--vr must be a VR number 0..16383, got '" + args.options.at("--vr") + "'");
+      return fail("--vr must be a VR number 0..16383, got '" + host::clipped(args.options.at("--vr")) + "'");
     }
     double value = 0;
     if (!parse_real(args.options.at("--value"), value)) {
-      return fail("--value must be a real number, got '" + args.options.at("--value") + "'");
+      return fail("--value must be a real number, got '" + host::clipped(args.options.at("--value")) + "'");
     }
     const trionet::q32_result q = trionet::q32_from_double(value);
     if (!q)
-      return fail("--value " + args.options.at("--value") +
+      return fail("--value " + host::clipped(args.options.at("--value")) +
                   " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]");
     m = ring::message::variable(hops, static_cast<std::uint16_t>(vr), q.raw);
   } else if (kind == "offset") {
@@ -114,8 +131,8 @@ int encode_main(const std::vector<std::string>& words) {
     if (!args.has("--mode")) return fail("missing --mode (0 or 127)");
     long long mode = 0;
     if (!parse_integer(args.options.at("--mode"), 0, 127, mode) || (mode != 0 && mode != 127)) {
-      return fail("--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + args.options.at("--mode") +
-                  "'");
+      return fail("--mode must be 0 (key ON) or 127 (key ON and OFF), got '" +
+                  host::clipped(args.options.at("--mode")) + "'");
     }
     m = ring::message::keypad_mode(hops, static_cast<std::uint8_t>(mode));
   }
@@ -123,132 +140,267 @@ int encode_main(const std::vector<std::string>& words) {
   std::vector<std::uint8_t> frame(ring::frame_length(m));
   const ring::encode_result result = ring::encode(byte_buffer(frame.data(), frame.size()), m);
   if (!result) return fail(std::string("cannot encode: ") + ring::to_string(result.status));
+  // What is printed must be what `ring decode` accepts: decode it with the same decoder.
+  ring::decoder<> check;
+  ring::decode_status decoded = ring::decode_status::incomplete;
+  check.push(byte_view(frame.data(), result.length),
+             [&decoded](const ring::decode_result& r) { decoded = r.status; });
+  if (decoded != ring::decode_status::ok) {
+    return fail(std::string("cannot encode: the decoder would report ") + ring::to_string(decoded));
+  }
   std::printf("%s\n", hex_line(frame.data(), result.length).c_str());
   return exit_ok;
 }
 
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
+// ---------------------------------------------------------------------------------------------------------
+// decode
 
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-}
+// How an event says where it is.
+enum class where_kind : std::uint8_t { line, offset };
 
-}  // namespace
+// A decoder over a stream of bytes that knows where each byte came from, printing events to `out`.
+class ring_stream {
+ public:
+  ring_stream(std::string& out, where_kind kind) : out_(out), kind_(kind) {}
 
-bool parse_hex_bytes(const std::string& text, std::vector<std::uint8_t>& bytes, std::string& error) {
-  int high = -1;
-  std::size_t high_at = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (is_space(c)) {
-      continue;
-    }
-    const int digit = hex_digit(c);
-    if (digit < 0) {
-      const auto byte = static_cast<unsigned char>(c);
-      char shown[8];
-      if (byte >= 0x20 && byte < 0x7f) {
-        std::snprintf(shown, sizeof shown, "'%c'", c);
-      } else {
-        std::snprintf(shown, sizeof shown, "0x%02x", byte);
+  void push(std::uint8_t byte, std::uint64_t at) {
+    const bool header = !ring::is_data(byte) && ring::type_of(byte) != 0;
+    const std::uint64_t message_at = start_;
+    if (header) start_ = at;
+    const ring::decode_result r = decoder_.push(byte);
+    if (r.status == ring::decode_status::incomplete) return;
+    const bool about_this_byte = r.status == ring::decode_status::frame_error &&
+                                 (r.error == ring::frame_error::stray_data || r.error == ring::frame_error::stray_eom ||
+                                  r.error == ring::frame_error::zero_hops);
+    append_ring_event(out_, r, [&](event& e) { e.number(key(), about_this_byte ? at : message_at); });
+  }
+
+  // Many bytes, the first at offset `at`: runs of data go to the decoder whole (its fast path); only a run
+  // outside a message gives a result (stray_data), and that is about the run's first byte.
+  void push(const std::uint8_t* first, const std::uint8_t* last, std::uint64_t at) {
+    while (first != last) {
+      const std::uint8_t* run = ring::find_control(first, last);
+      if (run != first) {
+        const std::uint64_t run_at = at;
+        decoder_.push(byte_view(first, static_cast<std::size_t>(run - first)), [&](const ring::decode_result& r) {
+          append_ring_event(out_, r, [&](event& e) { e.number(key(), run_at); });
+        });
+        at += static_cast<std::uint64_t>(run - first);
+        first = run;
+        if (first == last) break;
       }
-      error = std::string("not hex: ") + shown + " at offset " + std::to_string(i);
-      return false;
-    }
-    if (high < 0) {
-      high = digit;
-      high_at = i;
-    } else {
-      bytes.push_back(static_cast<std::uint8_t>(high * 16 + digit));
-      high = -1;
+      push(*first++, at++);
     }
   }
-  if (high >= 0) {
-    error = "odd number of hex digits: the last byte (offset " + std::to_string(high_at) + ") has one digit";
-    return false;
-  }
-  return true;
-}
 
-std::string ring_result_json(const ring::decode_result& result) {
-  std::string line;
-  if (result.status == ring::decode_status::frame_error) {
-    return std::string("{\"event\":\"frame_error\",\"reason\":\"") + ring::to_string(result.error) + "\"}";
+  // The end of the input: a message still open is reported.
+  void finish() {
+    if (!decoder_.in_message()) return;
+    event e(out_, "unfinished");
+    e.number(key(), start_);
   }
-  const ring::message& m = result.msg;
-  const std::string hops = std::to_string(m.hops);
-  if (result.status == ring::decode_status::no_room) {  // only with a store smaller than the maximum
-    return "{\"event\":\"no_room\",\"hops\":" + hops + "}";
-  }
-  if (result.status == ring::decode_status::crc_error) {
-    return "{\"event\":\"crc_error\",\"hops\":" + hops + ",\"vr\":" + std::to_string(m.vr) + "}";
-  }
-  switch (m.type) {
-    case ring::message_type::character:
-      return "{\"event\":\"message\",\"type\":\"char\",\"hops\":" + hops + ",\"text\":" +
-             json_string(std::string(reinterpret_cast<const char*>(m.text.data()), m.text.size())) + "}";
-    case ring::message_type::variable: {
-      char raw[24];
-      std::snprintf(raw, sizeof raw, "0x%016" PRIx64, trionet::q32_to_raw(m.value));
-      return "{\"event\":\"message\",\"type\":\"var\",\"hops\":" + hops + ",\"vr\":" + std::to_string(m.vr) +
-             ",\"raw\":\"" + raw + "\",\"value\":" + format_real(trionet::q32_to_double(m.value)) + "}";
-    }
-    case ring::message_type::keypad_offset:
-      return "{\"event\":\"message\",\"type\":\"offset\",\"hops\":" + hops +
-             ",\"offset\":" + std::to_string(m.offset) + "}";
-    case ring::message_type::keypad_mode:
-      return "{\"event\":\"message\",\"type\":\"mode\",\"hops\":" + hops +
-             ",\"mode\":" + std::to_string(m.mode) + "}";
-  }
-  return "{}";
-}
 
-namespace {
+ private:
+  const char* key() const { return kind_ == where_kind::line ? "line" : "offset"; }
 
-int decode_main(const std::vector<std::string>& words) {
-  std::string text;
-  if (words.empty()) {
-    text = read_stdin();
-  } else {
-    for (const auto& word : words) {
-      text += word;
-      text += ' ';
+  std::string& out_;
+  where_kind kind_;
+  ring::decoder<> decoder_;
+  std::uint64_t start_ = 0;
+};
+
+// Hex text, read in pieces: pairs of hex digits in words separated by blanks. A character that is not hex is
+// an error event and the rest of its word is skipped; a word with an odd number of digits loses its last
+// digit (an error event too).
+class hex_reader {
+ public:
+  hex_reader(std::string& out, ring_stream& bytes) : out_(out), bytes_(bytes) {}
+
+  void push(std::string_view text) {
+    for (const char c : text) {
+      const int digit = hex_digit(c);
+      if (digit >= 0) {
+        if (skipping_) continue;
+        if (high_ < 0) {
+          high_ = digit;
+        } else {
+          bytes_.push(static_cast<std::uint8_t>(high_ << 4 | digit), line_);
+          high_ = -1;
+        }
+      } else if (host::is_blank(c)) {
+        end_word();
+        if (c == '\n') ++line_;
+      } else if (!skipping_) {
+        event(out_, "error").number("line", line_).text("reason", "not_hex").text("character", std::string_view(&c, 1));
+        skipping_ = true;
+        high_ = -1;
+      }
     }
   }
-  std::vector<std::uint8_t> bytes;
+
+  void finish() {
+    end_word();
+    bytes_.finish();
+  }
+
+ private:
+  void end_word() {
+    if (high_ >= 0) event(out_, "error").number("line", line_).text("reason", "odd_digits");
+    high_ = -1;
+    skipping_ = false;
+  }
+
+  std::string& out_;
+  ring_stream& bytes_;
+  int high_ = -1;
+  bool skipping_ = false;
+  std::uint64_t line_ = 1;
+};
+
+// Standard input through `feed` in chunks, flushing the output after each.
+template <class Feed>
+int stream_stdin(output& out, Feed&& feed) {
+  input in;
   std::string error;
-  if (!parse_hex_bytes(text, bytes, error)) return fail("ring decode: " + error);
-  ring::decoder<> decoder;
-  std::string out;
-  decoder.push(byte_view(bytes.data(), bytes.size()), [&](const ring::decode_result& result) {
-    out += ring_result_json(result);
-    out += '\n';
-  });
-  std::fwrite(out.data(), 1, out.size(), stdout);
+  std::string_view chunk;
+  while (true) {
+    if (!in.read(chunk, error)) {
+      out.flush();
+      return fail_io(error);
+    }
+    if (chunk.empty()) break;
+    feed(chunk);
+    if (!out.flush()) return fail_io("cannot write standard output");
+  }
   return exit_ok;
 }
 
+int decode_capture(const arguments& args) {
+  return read_capture(args.options.at("--pcap"), host::capture_network::ring, args.flag("--json"), 5,
+                      [](const host::pcapng_record& record, const capture_position& where, std::string& out) {
+                        // Each record on its own, through a fresh decoder, as the dissector sees it.
+                        ring::decoder<> decoder;
+                        const auto here = [&where](event& e) { add_position(e, where); };
+                        bool any = false;
+                        for (std::uint8_t byte : record.bytes) {
+                          const ring::decode_result r = decoder.push(byte);
+                          if (r.status == ring::decode_status::incomplete) continue;
+                          append_ring_event(out, r, here);
+                          any = true;
+                        }
+                        if (decoder.in_message() || !any) {
+                          event e(out, "unfinished");
+                          add_position(e, where);
+                        }
+                      });
+}
+
+int decode_main(const words& all) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(all, {"--pcap"}, {"--raw", "--json"}, args, error)) return fail(error);
+  const bool raw = args.flag("--raw");
+  if (args.has("--pcap")) {
+    if (raw || !args.positionals.empty()) return fail("--pcap reads a capture file: no --raw and no HEX with it");
+    return decode_capture(args);
+  }
+  if (args.flag("--json")) return fail("--json applies to --pcap (the output is JSON already)");
+  output out;
+  if (raw) {
+    if (!args.positionals.empty()) return fail("--raw reads standard input: no HEX arguments with it");
+    ring_stream bytes(out.text(), where_kind::offset);
+    std::uint64_t offset = 0;
+    const int status = stream_stdin(out, [&](std::string_view chunk) {
+      const auto* first = reinterpret_cast<const std::uint8_t*>(chunk.data());
+      bytes.push(first, first + chunk.size(), offset);
+      offset += chunk.size();
+    });
+    if (status != exit_ok) return status;
+    bytes.finish();
+    return out.flush() ? exit_ok : fail_io("cannot write standard output");
+  }
+  ring_stream bytes(out.text(), where_kind::line);
+  hex_reader hex(out.text(), bytes);
+  if (!args.positionals.empty()) {
+    for (const std::string& word : args.positionals) {
+      hex.push(word);
+      hex.push(" ");
+    }
+  } else {
+    const int status = stream_stdin(out, [&](std::string_view chunk) { hex.push(chunk); });
+    if (status != exit_ok) return status;
+  }
+  hex.finish();
+  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+}
+
+const command ring_commands[] = {
+    {"encode", "print, var, offset or mode: print one frame as hex bytes", encode_usage, encode_main},
+    {"decode", "read hex, raw bytes or a capture; print one JSON event per message or error", decode_usage,
+     decode_main},
+    {"simulate", "a ring of Motion Coordinators running BASIC programs and keypads", simulate_usage,
+     ring_simulate_main},
+    {"monitor", "watch a live ring port: one event per message as it arrives", ring_live_usage, ring_monitor_main},
+    {"send", "put one message on a live ring port", ring_live_usage, ring_send_main},
+    {"join", "be a node on a live ring: a Motion Coordinator (--as mc) or a keypad (--as keypad)", ring_live_usage,
+     ring_join_main},
+};
+
 }  // namespace
 
-int ring_main(const std::vector<std::string>& words) {
-  if (words.empty()) {
-    std::fputs(ring_usage, stderr);
-    return exit_usage;
+void append_ring_event_body(event& e, const ring::decode_result& result) {
+  const ring::message& m = result.msg;
+  if (result.status == ring::decode_status::frame_error) {
+    e.text("reason", ring::to_string(result.error));
+    return;
   }
-  if (words[0] == "--help" || words[0] == "-h") {
-    std::fputs(ring_usage, stdout);
-    return exit_ok;
+  if (result.status != ring::decode_status::ok) {  // crc_error, no_room
+    e.number("hops", m.hops);
+    if (result.status == ring::decode_status::crc_error) e.number("vr", m.vr);
+    return;
   }
-  const std::vector<std::string> rest(words.begin() + 1, words.end());
-  if (words[0] == "encode") return encode_main(rest);
-  if (words[0] == "decode") return decode_main(rest);
-  if (words[0] == "simulate") return ring_simulate_main(rest);
-  return fail("unknown ring command '" + words[0] + "' (expected encode, decode or simulate)");
+  switch (m.type) {
+    case ring::message_type::character:
+      e.text("type", "char").number("hops", m.hops);
+      e.text("text", std::string_view(reinterpret_cast<const char*>(m.text.data()), m.text.size()));
+      return;
+    case ring::message_type::variable: {
+      static constexpr char digits[] = "0123456789abcdef";
+      char raw[21] = {'"', '0', 'x'};
+      const auto bits = static_cast<std::uint64_t>(trionet::q32_to_raw(m.value));
+      for (unsigned i = 0; i < 16; ++i) raw[3 + i] = digits[bits >> (60U - 4U * i) & 0xFU];
+      raw[19] = '"';
+      raw[20] = 0;
+      e.text("type", "var").number("hops", m.hops).number("vr", m.vr).json("raw", std::string_view(raw, 20));
+      e.real("value", trionet::q32_to_double(m.value));
+      return;
+    }
+    case ring::message_type::keypad_offset:
+      e.text("type", "offset").number("hops", m.hops).number("offset", m.offset);
+      return;
+    case ring::message_type::keypad_mode:
+      e.text("type", "mode").number("hops", m.hops).number("mode", m.mode);
+      return;
+  }
 }
+
+const char* ring_event_kind(const ring::decode_result& result) {
+  switch (result.status) {
+    case ring::decode_status::ok:
+      return "message";
+    case ring::decode_status::frame_error:
+      return "frame_error";
+    case ring::decode_status::crc_error:
+      return "crc_error";
+    case ring::decode_status::no_room:
+      return "no_room";
+    case ring::decode_status::incomplete:
+      break;
+  }
+  return "incomplete";
+}
+
+const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join)",
+                        ring_commands, sizeof ring_commands / sizeof ring_commands[0], ""};
 
 }  // namespace trionet::cli

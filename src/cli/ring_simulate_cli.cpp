@@ -3,9 +3,11 @@
 // messages dropped and why, VRs written by the ring, program ends and errors, NETSTAT; with --trace every
 // message on every link and every display change), then every node's state; --json ends with one JSON line.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,8 @@
 #include "embedded_files.hpp"
 #include "ring_cli.hpp"
 #include "ring_network.hpp"
+#include "trionet/host/capture.hpp"
+#include "trionet/host/pcapng.hpp"
 
 namespace trionet::cli {
 namespace {
@@ -42,7 +46,9 @@ const builtin_network builtins[] = {
      ""},
 };
 
-constexpr const char* simulate_usage =
+}  // namespace
+
+const char* const simulate_usage =
     "usage: trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
     "       trionet ring simulate --node mc:FILE.bas|mc|keypad ... [options]   (nodes in ring order)\n"
     "options:\n"
@@ -52,7 +58,18 @@ constexpr const char* simulate_usage =
     "  --statements-per-byte-time S   BASIC statements each program runs per byte-time (default 1)\n"
     "  --key-gap N              byte-times each key press takes (default 1000)\n"
     "  --trace                  also every message on every link and every display change\n"
-    "  --json                   a JSON summary as the last line (alone, unless --trace)\n";
+    "  --json                   a JSON summary as the last line (alone, unless --trace)\n"
+    "  --pcap FILE              write every byte of every link to a pcapng capture: one interface per link\n"
+    "                           (\"link 0: node 1 (mc) -> node 2 (keypad)\"), one record per message, times\n"
+    "                           from the byte-times at --bit-rate since the start (docs/wireshark.md)\n"
+    "  --interactive            run in real time with the keypads' displays on the terminal and the keyboard as\n"
+    "                           their keys (Tab: next keypad; q: quit); without a terminal, key words from\n"
+    "                           standard input (\"1:up 2:7 wait=MS\", until they are done) and display changes\n"
+    "                           printed\n"
+    "Exit status 0 when the run ended without a program failing, 1 when a program failed or the capture\n"
+    "could not be written, 2 for bad arguments.\n";
+
+namespace {
 
 bool read_program(const std::string& path, std::string& text, std::string& error) {
   std::ifstream in(path, std::ios::binary);
@@ -196,16 +213,12 @@ std::string summary_json(const host::ring_network& net, host::run_end end) {
 
 }  // namespace
 
-int ring_simulate_main(const std::vector<std::string>& words) {
-  if (!words.empty() && (words[0] == "--help" || words[0] == "-h")) {
-    std::fputs(simulate_usage, stdout);
-    return exit_ok;
-  }
+int ring_simulate_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(words,
-                       {"--node", "--keys", "--byte-times", "--bit-rate", "--statements-per-byte-time", "--key-gap"},
-                       {"--trace", "--json"}, args, error, {"--node"})) {
+  if (!parse_arguments(all,
+                       {"--pcap", "--node", "--keys", "--byte-times", "--bit-rate", "--statements-per-byte-time", "--key-gap"},
+                       {"--trace", "--json", "--interactive"}, args, error, {"--node"})) {
     return fail(error);
   }
   const builtin_network* builtin = nullptr;
@@ -227,10 +240,10 @@ int ring_simulate_main(const std::vector<std::string>& words) {
   if (builtin != nullptr) {
     specs.assign(builtin->nodes.begin(), builtin->nodes.end());
   } else {
-    const std::string& all = args.options.at("--node");
-    for (std::size_t start = 0; start <= all.size();) {
-      const std::size_t end = all.find('\n', start);
-      specs.push_back(all.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    const std::string& node_list = args.options.at("--node");
+    for (std::size_t start = 0; start <= node_list.size();) {
+      const std::size_t end = node_list.find('\n', start);
+      specs.push_back(node_list.substr(start, end == std::string::npos ? std::string::npos : end - start));
       if (end == std::string::npos) break;
       start = end + 1;
     }
@@ -269,9 +282,39 @@ int ring_simulate_main(const std::vector<std::string>& words) {
 
   std::unique_ptr<host::ring_network> net = host::ring_network::build(nodes, config, error);
   if (!net) return fail(error);
-  const std::string keys = args.has("--keys") ? args.options.at("--keys") : builtin != nullptr ? builtin->keys : "";
+  const bool interactive = args.flags.count("--interactive") != 0;  // the keys are the user's, live
+  const std::string keys = args.has("--keys")                      ? args.options.at("--keys")
+                           : builtin != nullptr && !interactive ? builtin->keys
+                                                                : "";
   if (!net->set_keys(keys, error)) return fail(error);
 
+  // The capture: one interface per link, named after the nodes it joins.
+  std::ofstream capture_file;
+  std::unique_ptr<host::pcapng_writer> writer;
+  std::vector<host::ring_link_recorder> links;
+  if (args.has("--pcap")) {
+    capture_file.open(args.options.at("--pcap"), std::ios::binary | std::ios::trunc);
+    if (!capture_file) return fail_io("cannot write " + args.options.at("--pcap"));
+    writer = std::make_unique<host::pcapng_writer>(capture_file, version_line());
+    const auto node_name = [&](std::size_t i) {
+      return "node " + std::to_string(i + 1) +
+             (net->report(i + 1).what == host::node_spec::kind::keypad ? " (keypad)" : " (mc)");
+    };
+    links.reserve(nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const std::string name = "link " + std::to_string(i) + ": " + node_name(i) + " -> " + node_name((i + 1) % nodes.size());
+      const host::pcapng_interface_result added = writer->add_interface(name, host::capture_network::ring);
+      if (!added) return fail_io("cannot write " + args.options.at("--pcap") + ": " + host::to_string(added.status));
+      links.emplace_back(*writer, added.id, config.bit_rate, config.bits_per_byte);
+    }
+    net->on_link_byte([&links](std::uint64_t time, std::size_t link, std::uint8_t byte) {
+      links[link].byte_at(time, byte);
+    });
+  }
+
+  if (interactive) {
+    return ring_simulate_interactive(*net, config.bit_rate, args.has("--byte-times") ? max_byte_times : UINT64_MAX);
+  }
   const bool json = args.flags.count("--json") != 0;
   const bool trace = args.flags.count("--trace") != 0;
   const bool narrate = trace || !json;
@@ -320,6 +363,16 @@ int ring_simulate_main(const std::vector<std::string>& words) {
     print_summary(*net);
   }
   if (json) std::printf("%s\n", summary_json(*net, end).c_str());
+  if (writer) {
+    for (host::ring_link_recorder& link : links) {
+      link.flush();
+      if (link.status() != host::pcapng_write_status::ok) {
+        return fail_io("cannot write " + args.options.at("--pcap") + ": " + host::to_string(link.status()));
+      }
+    }
+    capture_file.flush();
+    if (!capture_file) return fail_io("cannot write " + args.options.at("--pcap"));
+  }
   for (std::size_t i = 1; i <= net->size(); ++i) {
     if (net->report(i).state == "failed") return 1;
   }

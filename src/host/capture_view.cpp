@@ -11,6 +11,7 @@
 #include "trionet/can/vr_codec.hpp"
 #include "trionet/genius/transmission.hpp"
 #include "trionet/host/capture.hpp"
+#include "trionet/host/text.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/q32.hpp"
 
@@ -395,24 +396,6 @@ capture_fields record_fields(const pcapng_reader& reader, const pcapng_record& r
 // JSON
 
 namespace {
-
-void append_json_string(std::string& out, std::string_view text) {
-  out += '"';
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (c < 0x20) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\u%04x", c);
-      out += escape;
-    } else {
-      out += ch;
-    }
-  }
-  out += '"';
-}
 
 void append_json_value(std::string& out, const capture_field& field) {
   char number[40];

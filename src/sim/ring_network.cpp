@@ -117,29 +117,8 @@ basic::io_status io_status_of(ring::send_status r) {
   return basic::io_status::bad_type;
 }
 
-struct key_name {
-  const char* name;
-  ring::key key;
-};
-// The key names of docs/protocol.md 1.8.
-constexpr key_name key_names[] = {
-    {"0", ring::key::digit_0}, {"1", ring::key::digit_1},  {"2", ring::key::digit_2},   {"3", ring::key::digit_3},
-    {"4", ring::key::digit_4}, {"5", ring::key::digit_5},  {"6", ring::key::digit_6},   {"7", ring::key::digit_7},
-    {"8", ring::key::digit_8}, {"9", ring::key::digit_9},  {"up", ring::key::up},       {"+", ring::key::up},
-    {"down", ring::key::down}, {"-", ring::key::down},     {"clr", ring::key::clear},   {"y", ring::key::yes},
-    {"enter", ring::key::yes}, {"n", ring::key::no},       {".", ring::key::point},     {"start", ring::key::start},
-    {"stop", ring::key::stop}};
-
 bool find_key(const std::string& name, ring::key& out) {
-  std::string lower = name;
-  for (char& c : lower) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
-  for (const key_name& k : key_names) {
-    if (lower == k.name) {
-      out = k.key;
-      return true;
-    }
-  }
-  return false;
+  return ring::key_named(name.data(), name.size(), out);
 }
 
 // A BASIC program's controller: a Motion Coordinator of the library with its VR table, its axis parameters

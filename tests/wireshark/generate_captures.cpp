@@ -69,14 +69,12 @@ std::size_t write_view(const std::string& capture, const std::string& jsonl, con
 // ---------------------------------------------------------------------------------------------------------
 // ring
 
-// One link: bytes with their byte-times, cut into records (and at an idle line, as 1.10 says a receiver does).
+// One link: bytes with their byte-times, cut into records (and at an idle line, as 1.10 says a receiver does)
+// by the host library's recorder, the one the tool's `ring simulate --pcap` uses.
 class ring_link {
  public:
-  ring_link(pcapng_writer& writer, const std::string& name) : writer_(writer) {
-    const pcapng_interface_result added = writer.add_interface(name, capture_network::ring);
-    if (!added) die("add_interface");
-    id_ = added.id;
-  }
+  ring_link(pcapng_writer& writer, const std::string& name)
+      : recorder_(writer, add(writer, name), 1e9 * 10 / ring_byte_ns, 10, epoch) {}
 
   void send(const bytes& b) {
     for (std::uint8_t byte : b) byte_at(now_++, byte);
@@ -85,26 +83,21 @@ class ring_link {
     now_ += byte_times;
     flush();
   }
-  // A byte at byte-time `time`; a gap of more than two byte-times is an idle line (docs/protocol.md 1.10).
-  void byte_at(std::uint64_t time, std::uint8_t byte) {
-    if (started_ && time > last_ + 2) flush();
-    started_ = true;
-    last_ = time;
-    splitter_.push(byte, epoch + time * ring_byte_ns, sink());
+  void byte_at(std::uint64_t time, std::uint8_t byte) { recorder_.byte_at(time, byte); }
+  void flush() {
+    recorder_.flush();
+    check(recorder_.status());
   }
-  void flush() { splitter_.flush(sink()); }
 
  private:
-  std::function<void(byte_view, std::uint64_t)> sink() {
-    return [this](byte_view record, std::uint64_t time_ns) { check(writer_.write(id_, time_ns, record)); };
+  static std::uint32_t add(pcapng_writer& writer, const std::string& name) {
+    const pcapng_interface_result added = writer.add_interface(name, capture_network::ring);
+    if (!added) die("add_interface");
+    return added.id;
   }
 
-  pcapng_writer& writer_;
-  std::uint32_t id_ = 0;
-  ring_record_splitter splitter_;
+  ring_link_recorder recorder_;
   std::uint64_t now_ = 0;
-  std::uint64_t last_ = 0;
-  bool started_ = false;
 };
 
 bytes encoded(const ring::message& m) {

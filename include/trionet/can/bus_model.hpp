@@ -70,6 +70,7 @@ enum class stuffing : std::uint8_t {
   none,        ///< every frame takes its unstuffed length (the best case)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(stuffing value) noexcept {
   switch (value) {
     case stuffing::worst_case:
@@ -83,11 +84,11 @@ constexpr const char* to_string(stuffing value) noexcept {
 /// One frame that went over the bus: who sent it, and when it was queued, won arbitration and was delivered
 /// (end of its intermission), in bit times.
 struct bus_delivery {
-  std::size_t station = 0;
-  frame sent{};
-  std::uint64_t queued_at = 0;
-  std::uint64_t started_at = 0;
-  std::uint64_t delivered_at = 0;
+  std::size_t station = 0;         ///< the sending station, 0..Stations-1
+  frame sent{};                    ///< the frame
+  std::uint64_t queued_at = 0;     ///< when its port queued it
+  std::uint64_t started_at = 0;    ///< when it started the arbitration it won
+  std::uint64_t delivered_at = 0;  ///< the end of its intermission
 
   /// Time from queueing to delivery, bit times.
   [[nodiscard]] constexpr std::uint64_t latency() const noexcept { return delivered_at - queued_at; }
@@ -97,12 +98,13 @@ struct bus_delivery {
 /// a controller's own-message reception); the listener decides who handles it.
 class bus_listener {
  public:
+  /// Called once for every frame the bus delivers, in delivery order.
   virtual void on_delivery(const bus_delivery& delivery) noexcept = 0;
 
  protected:
   bus_listener() = default;
-  bus_listener(const bus_listener&) = default;
-  bus_listener& operator=(const bus_listener&) = default;
+  bus_listener(const bus_listener&) = default;             ///< copyable by implementations only
+  bus_listener& operator=(const bus_listener&) = default;  ///< assignable by implementations only
   ~bus_listener() = default;
 };
 
@@ -114,6 +116,7 @@ class bus_model {
   static_assert(QueueDepth > 0, "a station queues at least one frame");
 
  public:
+  /// An idle bus at time 0 whose frames take the length `sizing` gives them.
   explicit bus_model(stuffing sizing = stuffing::worst_case) noexcept : sizing_(sizing) {
     for (std::size_t i = 0; i < Stations; ++i) ports_[i].attach(this, i);
   }

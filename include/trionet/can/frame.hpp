@@ -27,9 +27,9 @@ struct frame {
   static constexpr std::uint32_t extended_mask = 0x1FFFFFFFU;  ///< bits of a 29-bit identifier
   static constexpr std::uint32_t standard_mask = 0x7FFU;       ///< bits of an 11-bit identifier
 
-  std::uint32_t id = 0;
-  std::uint8_t dlc = 0;
-  std::uint8_t data[8] = {};
+  std::uint32_t id = 0;       ///< identifier and flags, as Linux's can_id
+  std::uint8_t dlc = 0;       ///< data length code, 0..15
+  std::uint8_t data[8] = {};  ///< the data bytes
 
   /// True for a 29-bit identifier.
   [[nodiscard]] constexpr bool extended() const noexcept { return (id & extended_flag) != 0; }
@@ -56,6 +56,7 @@ struct frame {
   }
   return true;
 }
+/// Not `a == b`.
 [[nodiscard]] constexpr bool operator!=(const frame& a, const frame& b) noexcept {
   return !(a == b);
 }

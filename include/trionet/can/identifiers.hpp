@@ -27,8 +27,8 @@ namespace trionet::can {
 
 /// Node counts the scheme supports: 2..5 as in the note, generalised up to 11. 5 is the note's default.
 constexpr std::uint8_t min_node_count = 2;
-constexpr std::uint8_t max_node_count = 11;
-constexpr std::uint8_t default_node_count = 5;
+constexpr std::uint8_t max_node_count = 11;     ///< the most controllers
+constexpr std::uint8_t default_node_count = 5;  ///< the note's node count
 
 /// The first transmit channel number (message buffer 5 in the note).
 constexpr std::uint8_t first_transmit_channel = 5;
@@ -46,6 +46,7 @@ enum class scheme_status : std::uint8_t {
   not_exchange_identifier,  ///< the identifier is not a receive identifier of any node of this exchange
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(scheme_status status) noexcept {
   switch (status) {
     case scheme_status::ok:
@@ -66,36 +67,40 @@ constexpr const char* to_string(scheme_status status) noexcept {
 
 /// An identifier, or why there is none.
 struct [[nodiscard]] identifier_result {
-  scheme_status status = scheme_status::ok;
-  std::uint16_t identifier = 0;
+  scheme_status status = scheme_status::ok;  ///< `ok`, or why there is no identifier
+  std::uint16_t identifier = 0;              ///< the 11-bit identifier
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == scheme_status::ok; }
 };
 
 /// A node number, or why there is none.
 struct [[nodiscard]] node_result {
-  scheme_status status = scheme_status::ok;
-  std::uint8_t node = 0;
+  scheme_status status = scheme_status::ok;  ///< `ok`, or why there is no node
+  std::uint8_t node = 0;                     ///< the node, 1..N
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == scheme_status::ok; }
 };
 
 /// A channel number (receive 1..N-1 or transmit 5..N+3), or why there is none.
 struct [[nodiscard]] channel_result {
-  scheme_status status = scheme_status::ok;
-  std::uint8_t channel = 0;
+  scheme_status status = scheme_status::ok;  ///< `ok`, or why there is no channel
+  std::uint8_t channel = 0;                  ///< the channel number
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == scheme_status::ok; }
 };
 
 /// What an exchange identifier means: who sent it, who receives it, and on which receive channel.
 struct route {
-  std::uint8_t sender = 0;
-  std::uint8_t receiver = 0;
-  std::uint8_t receive_channel = 0;
+  std::uint8_t sender = 0;           ///< the sending node, 1..N
+  std::uint8_t receiver = 0;         ///< the receiving node, 1..N
+  std::uint8_t receive_channel = 0;  ///< the receiver's channel for it, 1..N-1
 };
 
 /// A route, or why the identifier is not one.
 struct [[nodiscard]] route_result {
-  scheme_status status = scheme_status::ok;
-  route value{};
+  scheme_status status = scheme_status::ok;  ///< `ok`, or why the identifier has no route
+  route value{};                             ///< the route
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == scheme_status::ok; }
 };
 

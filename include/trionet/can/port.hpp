@@ -16,6 +16,7 @@ enum class transmit_status : std::uint8_t {
   failed,  ///< the controller or driver failed (bus off, I/O error); nothing was queued
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(transmit_status status) noexcept {
   switch (status) {
     case transmit_status::ok:
@@ -38,8 +39,8 @@ class port {
 
  protected:
   constexpr port() = default;
-  port(const port&) = default;
-  port& operator=(const port&) = default;
+  port(const port&) = default;             ///< copyable by implementations only
+  port& operator=(const port&) = default;  ///< assignable by implementations only
   ~port() = default;
 };
 

@@ -51,19 +51,20 @@ using vr_value = decimal;
 
 /// One decoded or to-be-encoded message: VR(vr) = value.
 struct vr_message {
-  std::uint8_t vr = 0;
-  vr_value value{};
+  std::uint8_t vr = 0;  ///< the VR number, 0..255
+  vr_value value{};     ///< its value
 };
 
 /// What became of an encode (API misuse is reported to the caller; on anything but `ok` nothing is written).
 enum class encode_status : std::uint8_t {
-  ok,
+  ok,                     ///< encoded
   vr_out_of_range,        ///< vr > 255
   not_a_number,           ///< the value is NaN
   too_large,              ///< |value| is 2^32 or more (infinities included), or rounds up to 2^32
   fraction_out_of_range,  ///< a parts-based fraction > 9999
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(encode_status status) noexcept {
   switch (status) {
     case encode_status::ok:
@@ -82,12 +83,13 @@ constexpr const char* to_string(encode_status status) noexcept {
 
 /// Whether 8 bytes from the wire are a VR message (bad wire data: classify, count, drop).
 enum class decode_status : std::uint8_t {
-  ok,
+  ok,            ///< a VR message
   bad_dlc,       ///< the frame does not carry exactly 8 data bytes
   bad_sign,      ///< byte 1 is neither 0 nor 1
   bad_fraction,  ///< bytes 6..7 exceed 9999
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(decode_status status) noexcept {
   switch (status) {
     case decode_status::ok:
@@ -104,15 +106,17 @@ constexpr const char* to_string(decode_status status) noexcept {
 
 /// A rounded value, or why there is none.
 struct [[nodiscard]] value_result {
-  encode_status status = encode_status::ok;
-  vr_value value{};
+  encode_status status = encode_status::ok;  ///< `ok`, or why there is no value
+  vr_value value{};                          ///< the value rounded to 4 decimals
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
 /// A decoded message, or why there is none.
 struct [[nodiscard]] decode_result {
-  decode_status status = decode_status::ok;
-  vr_message message{};
+  decode_status status = decode_status::ok;  ///< `ok`, or why the bytes are not a message
+  vr_message message{};                      ///< the message
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 

@@ -1,5 +1,5 @@
-// Genius bus access (docs/protocol.md 3.3): rates, turn timing after a Stop, margins between turns, a
-// discrete-event bus scan that finds collisions, and the per-device scan-time estimate.
+// Genius bus access (docs/protocol.md 3.3): rates, turn timing after a Stop, margins between turns and a
+// discrete-event bus scan that finds collisions. GE's scan-time figures are in scan_time.hpp.
 //
 // Bus model. Devices sit on one line at positions in feet; a signal needs `propagation_us_per_2000ft`
 // (default 3 us) per 2000 ft. Time 0 is the end of the Stop character of SBA s at s's position. Device d
@@ -34,6 +34,7 @@ enum class rate : std::uint8_t {
   baud_38k4,       ///< 38.4 kbaud ("38.4")
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(rate value) noexcept {
   switch (value) {
     case rate::standard_153k6:
@@ -48,31 +49,29 @@ constexpr const char* to_string(rate value) noexcept {
   return "unknown";
 }
 
-/// One row of docs/protocol.md 3.3's rate table plus GE's published scan-time terms (GFK-0825F).
+/// One row of docs/protocol.md 3.3's rate table.
 struct rate_properties {
   const char* name;         ///< the CLI name: "153.6s", "153.6e", "76.8", "38.4"
   const char* description;  ///< e.g. "153.6 kbaud standard"
-  std::uint32_t baud;
+  std::uint32_t baud;       ///< bits per second
   std::uint8_t skip_bits;  ///< the skip-time rule, in bit times
-  std::uint16_t max_length_ft;
-  std::uint8_t max_devices;
-  double published_fixed_ms;     ///< GE's fixed scan-time term per device
-  double published_per_byte_ms;  ///< GE's per-byte scan-time term
+  std::uint16_t max_length_ft;  ///< the longest bus the rate allows, in feet
+  std::uint8_t max_devices;     ///< the most devices the rate allows
 };
 
 /// The properties of `r`. Cost: a table lookup; ISR-safe.
 [[nodiscard]] constexpr rate_properties properties(rate r) noexcept {
   switch (r) {
     case rate::standard_153k6:
-      return {"153.6s", "153.6 kbaud standard", 153600, 1, 2000, 32, 0.943, 0.0715};
+      return {"153.6s", "153.6 kbaud standard", 153600, 1, 2000, 32};
     case rate::extended_153k6:
-      return {"153.6e", "153.6 kbaud extended", 153600, 2, 3500, 32, 1.015, 0.0715};
+      return {"153.6e", "153.6 kbaud extended", 153600, 2, 3500, 32};
     case rate::baud_76k8:
-      return {"76.8", "76.8 kbaud", 76800, 1, 4500, 32, 1.538, 0.143};
+      return {"76.8", "76.8 kbaud", 76800, 1, 4500, 32};
     case rate::baud_38k4:
-      return {"38.4", "38.4 kbaud", 38400, 1, 7500, 16, 2.583, 0.286};
+      return {"38.4", "38.4 kbaud", 38400, 1, 7500, 16};
   }
-  return {"?", "?", 1, 1, 0, 0, 0.0, 0.0};
+  return {"?", "?", 1, 1, 0, 0};
 }
 
 /// Looks a rate up by its CLI name ("153.6s", "153.6e", "76.8", "38.4"). Returns false if unknown.
@@ -102,8 +101,8 @@ struct rate_properties {
 
 /// The timing parameters of a bus. Start from `default_timing(rate)` and override what differs.
 struct bus_timing {
-  rate bus_rate = rate::standard_153k6;
-  double bit_time_us = 0;
+  rate bus_rate = rate::standard_153k6;    ///< the rate (limits of length and devices)
+  double bit_time_us = 0;                  ///< one bit period (the character time is 11 bits)
   double skip_us = 0;                      ///< the skip time (rule by default, or explicit)
   double propagation_us_per_2000ft = 3.0;  ///< docs/protocol.md 3.3, configurable
   double detection_us = 0;                 ///< time a device needs to detect a start bit
@@ -122,14 +121,14 @@ struct bus_timing {
 
 /// A device on the bus. `data_bytes` is used only by the bus scan (length of its transmission).
 struct device {
-  std::uint8_t sba = 0;
-  double position_ft = 0;
-  std::uint16_t data_bytes = 1;
+  std::uint8_t sba = 0;          ///< its Serial Bus Address, 0..31
+  double position_ft = 0;        ///< where it sits on the line, in feet
+  std::uint16_t data_bytes = 1;  ///< data characters it sends per turn (bus scan only)
 };
 
 /// Why a layout cannot be analysed (misuse of the API).
 enum class layout_status : std::uint8_t {
-  ok,
+  ok,                 ///< the layout can be analysed
   sba_out_of_range,   ///< an SBA > 31
   duplicate_sba,      ///< two devices with the same SBA
   sender_not_on_bus,  ///< the SBA whose Stop ended is not one of the devices
@@ -137,6 +136,7 @@ enum class layout_status : std::uint8_t {
   bad_timing,         ///< skip <= 0, or a negative or non-finite propagation, detection or bit time
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(layout_status value) noexcept {
   switch (value) {
     case layout_status::ok:
@@ -162,29 +162,29 @@ constexpr const char* to_string(layout_status value) noexcept {
 
 /// When a device's turn starts, at its own position, after the Stop.
 struct turn {
-  std::uint8_t sba = 0;
-  double position_ft = 0;
-  double start_us = 0;
+  std::uint8_t sba = 0;    ///< the device
+  double position_ft = 0;  ///< its position, in feet
+  double start_us = 0;     ///< when its turn starts, after the Stop
 };
 
 /// The margin between two consecutive turns: time from the arrival of `first`'s start bit at `second`
 /// to `second`'s own turn. `too_small` when below the detection time (negative: certain collision).
 struct turn_margin {
-  std::uint8_t first = 0;
-  std::uint8_t second = 0;
-  double margin_us = 0;
-  bool too_small = false;
+  std::uint8_t first = 0;   ///< the SBA whose turn comes first
+  std::uint8_t second = 0;  ///< the SBA whose turn follows
+  double margin_us = 0;     ///< second's turn minus the arrival of first's start bit
+  bool too_small = false;   ///< below the detection time
 };
 
 /// Turns and margins after one Stop. Turns are in SBA order after the sender (the order the protocol
 /// intends), the sender excluded. Cost: about 1.5 KB; fill it with `analyse_turns`.
 struct turn_analysis {
-  layout_status status = layout_status::ok;
-  std::uint8_t after = 0;
-  turn turns[31] = {};
-  std::size_t turn_count = 0;
-  turn_margin margins[30] = {};
-  std::size_t margin_count = 0;
+  layout_status status = layout_status::ok;    ///< `ok`, or why nothing was analysed
+  std::uint8_t after = 0;                      ///< the SBA whose Stop starts the turns
+  turn turns[31] = {};                         ///< the turns, in SBA order after `after`
+  std::size_t turn_count = 0;                  ///< how many of `turns` are used
+  turn_margin margins[30] = {};                ///< the margin between each consecutive pair
+  std::size_t margin_count = 0;                ///< how many of `margins` are used
   std::size_t too_small_count = 0;             ///< margins below the detection time
   double bus_length_ft = 0;                    ///< from the first to the last device
   bool longer_than_rate_allows = false;        ///< bus length over the rate's maximum
@@ -263,9 +263,9 @@ inline const device* find_device(span<const device> devices, std::uint8_t sba) n
 
 /// One transmission in a simulated bus scan, times at the transmitter.
 struct scan_transmission {
-  std::uint8_t sba = 0;
-  double start_us = 0;
-  double end_us = 0;
+  std::uint8_t sba = 0;   ///< the transmitting device
+  double start_us = 0;    ///< its Start begins
+  double end_us = 0;      ///< its Stop ends
   bool collided = false;  ///< another device transmitted at the same time
 };
 
@@ -274,9 +274,9 @@ constexpr std::size_t max_scan_transmissions = 64;
 
 /// The result of `simulate_scan`. Cost: about 2 KB.
 struct bus_scan {
-  layout_status status = layout_status::ok;
-  scan_transmission transmissions[max_scan_transmissions] = {};
-  std::size_t count = 0;
+  layout_status status = layout_status::ok;                      ///< `ok`, or why nothing was simulated
+  scan_transmission transmissions[max_scan_transmissions] = {};  ///< in the order they started
+  std::size_t count = 0;                                         ///< how many of `transmissions` are used
   std::size_t collisions = 0;  ///< turns in which two or more devices transmitted
   bool complete = false;       ///< the scan came round to the starting device again
 };
@@ -351,22 +351,6 @@ struct bus_scan {
     }
   }
   return result;
-}
-
-/// GE's scan-time contribution of one device with `io_bytes` input + output bytes: a fixed term
-/// (GE's published figure: it includes device processing, so it is not derived from the character timing)
-/// plus one 11-bit character time per byte (computed from the bit rate).
-struct scan_time_estimate {
-  double fixed_ms = 0;
-  double per_byte_ms = 0;
-  double total_ms = 0;
-};
-
-/// See `scan_time_estimate`. Cost: a few operations; ISR-safe.
-[[nodiscard]] constexpr scan_time_estimate device_scan_time(rate r, std::size_t io_bytes) noexcept {
-  const double per_byte = character_time_us(r) / 1000.0;
-  const double fixed = properties(r).published_fixed_ms;
-  return scan_time_estimate{fixed, per_byte, fixed + per_byte * static_cast<double>(io_bytes)};
 }
 
 }  // namespace trionet::genius

@@ -21,12 +21,14 @@ namespace trionet::genius {
 /// One Genius character: a data byte and the control flag (true: control character, false: data).
 /// Cost: two bytes. A plain value; any context may use it.
 struct character {
-  std::uint8_t byte = 0;
-  bool control = false;
+  std::uint8_t byte = 0;  ///< the 8 data bits
+  bool control = false;   ///< the control bit
 
+  /// Same byte and same control flag.
   friend constexpr bool operator==(character a, character b) noexcept {
     return a.byte == b.byte && a.control == b.control;
   }
+  /// Not `a == b`.
   friend constexpr bool operator!=(character a, character b) noexcept { return !(a == b); }
 };
 
@@ -59,6 +61,7 @@ enum class character_status : std::uint8_t {
   not_11_bits,      ///< the word has bits above bit 10 set: not an 11-bit word at all
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(character_status value) noexcept {
   switch (value) {
     case character_status::ok:
@@ -75,8 +78,9 @@ constexpr const char* to_string(character_status value) noexcept {
 
 /// The result of decoding one word: `value` is meaningful only when `status` is ok.
 struct [[nodiscard]] character_result {
-  character_status status = character_status::ok;
-  character value{};
+  character_status status = character_status::ok;  ///< `ok`, or what is wrong with the word
+  character value{};                               ///< the character
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == character_status::ok; }
 };
 
@@ -105,6 +109,7 @@ enum class bit_status : std::uint8_t {
   stop_bit_not_1,   ///< framing error: the 11th bit of a character was 0
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(bit_status value) noexcept {
   switch (value) {
     case bit_status::nothing_yet:
@@ -170,8 +175,11 @@ class bit_receiver {
   /// True while a character is being received (a start bit was seen, the stop bit not yet).
   [[nodiscard]] bool receiving() const noexcept { return state_ == state::receiving; }
 
+  /// Characters received whole (counters only grow, and wrap).
   [[nodiscard]] std::uint32_t characters() const noexcept { return characters_; }
+  /// Framing errors `start_bit_not_0`.
   [[nodiscard]] std::uint32_t start_bit_errors() const noexcept { return start_bit_errors_; }
+  /// Framing errors `stop_bit_not_1`.
   [[nodiscard]] std::uint32_t stop_bit_errors() const noexcept { return stop_bit_errors_; }
 
   /// Back to an idle line; counters are kept.

@@ -75,10 +75,12 @@ struct crc6 {
   /// The working register: with RefIn the 6 bits sit reflected in bits 5..0, otherwise in bits 7..2.
   using register_type = std::uint8_t;
 
+  /// The register before the first byte.
   [[nodiscard]] static constexpr register_type begin() noexcept {
     return RefIn ? detail::reflect6(Init) : static_cast<register_type>(Init << 2);
   }
 
+  /// The register after one more byte.
   [[nodiscard]] static constexpr register_type update(register_type reg, std::uint8_t byte) noexcept {
     const auto index = static_cast<std::uint8_t>(reg ^ byte);
     if constexpr (Table) {
@@ -88,6 +90,7 @@ struct crc6 {
     }
   }
 
+  /// The CRC-6 (0..63) of the bytes taken into `reg`.
   [[nodiscard]] static constexpr std::uint8_t finish(register_type reg) noexcept {
     const std::uint8_t normal = RefIn ? detail::reflect6(reg) : static_cast<std::uint8_t>(reg >> 2);
     const std::uint8_t out = RefOut ? detail::reflect6(normal) : normal;
@@ -100,6 +103,58 @@ struct crc6 {
     for (std::uint8_t byte : bytes) reg = update(reg, byte);
     return finish(reg);
   }
+};
+
+/// The parameters of a 6-bit CRC as values (a profile read at run time), in the usual (non-reflected)
+/// notation. The default is the Genius CRC, CRC-6/G-704.
+struct crc6_parameters {
+  std::uint8_t polynomial = 0x03;  ///< without the x^6 term
+  std::uint8_t initial = 0x00;
+  bool reflect_in = true;
+  bool reflect_out = true;
+  std::uint8_t xor_out = 0x00;
+
+  friend constexpr bool operator==(const crc6_parameters& a, const crc6_parameters& b) noexcept {
+    return a.polynomial == b.polynomial && a.initial == b.initial && a.reflect_in == b.reflect_in &&
+           a.reflect_out == b.reflect_out && a.xor_out == b.xor_out;
+  }
+  friend constexpr bool operator!=(const crc6_parameters& a, const crc6_parameters& b) noexcept {
+    return !(a == b);
+  }
+};
+
+/// A 6-bit CRC whose parameters are chosen at run time (host tools reading a profile), bitwise: 8 steps a
+/// byte, no table. Values above 6 bits are masked. Cost: 5 bytes; no allocation.
+class crc6_runtime {
+ public:
+  constexpr crc6_runtime() noexcept = default;
+  constexpr explicit crc6_runtime(const crc6_parameters& parameters) noexcept
+      : parameters_{static_cast<std::uint8_t>(parameters.polynomial & 0x3f),
+                    static_cast<std::uint8_t>(parameters.initial & 0x3f), parameters.reflect_in,
+                    parameters.reflect_out, static_cast<std::uint8_t>(parameters.xor_out & 0x3f)} {}
+
+  [[nodiscard]] constexpr const crc6_parameters& parameters() const noexcept { return parameters_; }
+
+  /// The CRC (0..63) of `bytes`: the register in non-reflected order, each byte fed most significant bit
+  /// first, or least significant first when reflected in.
+  [[nodiscard]] constexpr std::uint8_t compute(byte_view bytes) const noexcept {
+    unsigned reg = parameters_.initial;
+    for (std::uint8_t byte : bytes) {
+      for (unsigned k = 0; k < 8; ++k) {
+        const unsigned value = byte;
+        const unsigned bit = parameters_.reflect_in ? (value >> k) & 1u : (value >> (7 - k)) & 1u;
+        const unsigned top = ((reg >> 5) & 1u) ^ bit;
+        reg = (reg << 1) & 0x3fu;
+        if (top != 0) reg ^= parameters_.polynomial;
+      }
+    }
+    const auto normal = static_cast<std::uint8_t>(reg);
+    const std::uint8_t out = parameters_.reflect_out ? detail::reflect6(normal) : normal;
+    return static_cast<std::uint8_t>(out ^ parameters_.xor_out);
+  }
+
+ private:
+  crc6_parameters parameters_{};
 };
 
 /// The default Genius CRC (docs/protocol.md 3.2, configurable): CRC-6/G-704.

@@ -43,8 +43,15 @@ namespace trionet::genius {
 constexpr std::uint8_t max_sba = 31;
 
 /// The four control characters (bits 7..6 of the byte), plus `unknown` for a Start of block with bit 5 set.
-enum class control_kind : std::uint8_t { start, stop, start_of_block, end_of_block, unknown };
+enum class control_kind : std::uint8_t {
+  start,           ///< bits 7..6 = 00: starts a transmission
+  stop,            ///< bits 7..6 = 01: ends a transmission
+  start_of_block,  ///< bits 7..6 = 10, bit 5 = 0: starts a block
+  end_of_block,    ///< bits 7..6 = 11: ends a block
+  unknown,         ///< a Start of block with bit 5 set
+};
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(control_kind value) noexcept {
   switch (value) {
     case control_kind::start:
@@ -63,7 +70,7 @@ constexpr const char* to_string(control_kind value) noexcept {
 
 /// The fields of a control character's byte. Only the fields of its `kind` are meaningful.
 struct control_fields {
-  control_kind kind = control_kind::unknown;
+  control_kind kind = control_kind::unknown;  ///< which control character
   std::uint8_t sba = 0;    ///< Start: sender; Start of block: destination
   bool broadcast = false;  ///< Start only
   std::uint8_t crc = 0;    ///< Stop and End of block
@@ -99,34 +106,37 @@ struct control_fields {
 [[nodiscard]] constexpr character start_character(std::uint8_t sender, bool broadcast) noexcept {
   return control_character(static_cast<std::uint8_t>((broadcast ? 0x20u : 0u) | (sender & 0x1fu)));
 }
+/// Stop carrying the transmission's CRC-6.
 [[nodiscard]] constexpr character stop_character(std::uint8_t crc) noexcept {
   return control_character(static_cast<std::uint8_t>(0x40u | (crc & 0x3fu)));
 }
+/// Start of block to SBA `destination`.
 [[nodiscard]] constexpr character start_of_block_character(std::uint8_t destination) noexcept {
   return control_character(static_cast<std::uint8_t>(0x80u | (destination & 0x1fu)));
 }
+/// End of block carrying the block's CRC-6.
 [[nodiscard]] constexpr character end_of_block_character(std::uint8_t crc) noexcept {
   return control_character(static_cast<std::uint8_t>(0xc0u | (crc & 0x3fu)));
 }
 
 /// A run of data characters: plain data (`block` false) or a block to `destination`.
 struct segment {
-  bool block = false;
+  bool block = false;            ///< a block (with its own CRC) rather than plain data
   std::uint8_t destination = 0;  ///< blocks only
-  byte_view data;
+  byte_view data;                ///< the data bytes, at least one
 };
 
 /// A transmission as the application sees it. `destination` is used only when `broadcast` is false.
 struct transmission {
-  std::uint8_t sender = 0;
-  bool broadcast = true;
-  std::uint8_t destination = 0;
-  span<const segment> segments;
+  std::uint8_t sender = 0;       ///< the sender's SBA, 0..31
+  bool broadcast = true;         ///< to every device, or directed to `destination`
+  std::uint8_t destination = 0;  ///< directed: the receiver's SBA, 0..31
+  span<const segment> segments;  ///< plain data and blocks, in order
 };
 
 /// What became of an encode (misuse of the API; on anything but `ok` nothing was written).
 enum class encode_status : std::uint8_t {
-  ok,
+  ok,                        ///< encoded
   buffer_too_small,          ///< the caller's buffer is shorter than the transmission
   sender_out_of_range,       ///< sender SBA > 31
   destination_out_of_range,  ///< directed destination or a block's destination > 31
@@ -134,6 +144,7 @@ enum class encode_status : std::uint8_t {
   empty_block,               ///< a block with no data
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(encode_status value) noexcept {
   switch (value) {
     case encode_status::ok:
@@ -154,8 +165,9 @@ constexpr const char* to_string(encode_status value) noexcept {
 
 /// The outcome of an encode: `length` characters were written (or would be, for `encoded_length`).
 struct [[nodiscard]] encode_result {
-  encode_status status = encode_status::ok;
-  std::size_t length = 0;
+  encode_status status = encode_status::ok;  ///< `ok`, or why nothing was written
+  std::size_t length = 0;                    ///< characters written
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
@@ -267,6 +279,7 @@ constexpr std::size_t parse_status_count = static_cast<std::size_t>(parse_status
          static_cast<std::uint8_t>(parse_status::data_outside_transmission);
 }
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(parse_status value) noexcept {
   switch (value) {
     case parse_status::in_progress:
@@ -356,6 +369,7 @@ class transmission_parser {
     }
     return total;
   }
+  /// Sets every count to 0.
   void clear_counters() noexcept {
     for (auto& n : counts_) n = 0;
   }
@@ -365,8 +379,8 @@ class transmission_parser {
     resync_ = false;
   }
 
-  static constexpr std::size_t data_capacity = DataCapacity;
-  static constexpr std::size_t segment_capacity = SegmentCapacity;
+  static constexpr std::size_t data_capacity = DataCapacity;        ///< data bytes a transmission may hold
+  static constexpr std::size_t segment_capacity = SegmentCapacity;  ///< segments it may hold
 
  private:
   struct stored_segment {
@@ -493,8 +507,9 @@ class transmission_parser {
 /// What one bit did in a `transmission_receiver`: the character layer's status and, when that completed a
 /// character or reported a framing error, what the transmission parser made of it.
 struct [[nodiscard]] bit_result {
-  bit_status status = bit_status::nothing_yet;
+  bit_status status = bit_status::nothing_yet;     ///< what the bit completed
   parse_status parse = parse_status::in_progress;  ///< meaningful only when `status` is not nothing_yet
+  /// True when the bit completed a character (`status` is `ok`).
   constexpr explicit operator bool() const noexcept { return status == bit_status::ok; }
 };
 
@@ -505,6 +520,7 @@ struct [[nodiscard]] bit_result {
 template <std::size_t DataCapacity = 256, std::size_t SegmentCapacity = 16, class Crc = crc6_g704>
 class transmission_receiver {
  public:
+  /// Takes the next bit from the line (1 = idle level); see `bit_result`.
   [[nodiscard]] bit_result push(bool bit) noexcept {
     bit_result result;
     result.status = bits_.push(bit);
@@ -523,7 +539,9 @@ class transmission_receiver {
     return result;
   }
 
+  /// The character layer, with its counters.
   [[nodiscard]] const bit_receiver& bits() const noexcept { return bits_; }
+  /// The transmission layer: counters and the last transmission received.
   [[nodiscard]] const transmission_parser<DataCapacity, SegmentCapacity, Crc>& parser() const noexcept {
     return parser_;
   }

@@ -18,8 +18,13 @@
 namespace trionet::ring {
 
 /// The three classes of byte on the ring, told apart by bit 7 and the type field.
-enum class byte_class : std::uint8_t { data, header, end_of_message };
+enum class byte_class : std::uint8_t {
+  data,            ///< bit 7 clear
+  header,          ///< bit 7 set, type field 1..7
+  end_of_message,  ///< bit 7 set, type field 0
+};
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(byte_class value) noexcept {
   switch (value) {
     case byte_class::data:
@@ -38,14 +43,18 @@ constexpr std::uint8_t max_hops = 15;        ///< the fifteenth node along the r
 constexpr int first_basic_address = 10;      ///< BASIC address of the next node (hops 1)
 constexpr int last_basic_address = 24;       ///< BASIC address of the fifteenth node (hops 15)
 
+/// The class of a byte: data (bit 7 clear), header (bit 7 set, type field 1..7) or end of message (bit 7 set,
+/// type field 0).
 constexpr byte_class classify(std::uint8_t byte) noexcept {
   if ((byte & control_flag) == 0) return byte_class::data;
   return (byte & 0x07) != 0 ? byte_class::header : byte_class::end_of_message;
 }
 
+/// True for a data byte (bit 7 clear).
 constexpr bool is_data(std::uint8_t byte) noexcept {
   return (byte & control_flag) == 0;
 }
+/// True for hops 1..15.
 constexpr bool valid_hops(unsigned hops) noexcept {
   return hops >= min_hops && hops <= max_hops;
 }

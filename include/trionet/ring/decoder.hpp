@@ -30,6 +30,7 @@
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/variable_layout.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::ring {
@@ -108,25 +109,6 @@ struct [[nodiscard]] decode_result {
   constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 
-/// Reads the vr and Q32.32 value of 14 direct-variable-transfer data bytes (no checks).
-inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std::int64_t& value) noexcept {
-  vr = static_cast<std::uint16_t>(data[0] | (data[1] << 7));
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && UINTPTR_MAX > 0xFFFFFFFFu
-  // On 64-bit cores: X0..X7 as one little-endian word, their 7-bit groups squeezed together in three steps.
-  std::uint64_t w = 0;
-  std::memcpy(&w, data + 2, sizeof w);
-  w = (w & 0x007F007F007F007Full) | ((w & 0x7F007F007F007F00ull) >> 1);
-  w = (w & 0x00003FFF00003FFFull) | ((w & 0x3FFF00003FFF0000ull) >> 2);
-  w = (w & 0x000000000FFFFFFFull) | ((w & 0x0FFFFFFF00000000ull) >> 4);
-  value = static_cast<std::int64_t>(w | static_cast<std::uint64_t>(data[10]) << 56 |
-                                    static_cast<std::uint64_t>(data[11]) << 63);
-#else
-  std::uint64_t bits = 0;  // a loop: the smallest code on a 32-bit core
-  for (std::size_t k = 10; k-- > 0;) bits = (bits << 7) | data[2 + k];
-  value = static_cast<std::int64_t>(bits);
-#endif
-}
-
 /// Where a character store lets the decoder write: slots [first, end) of the store's `slots()`.
 struct store_window {
   std::uint16_t first = 0;  ///< the first slot
@@ -183,14 +165,23 @@ using decode_step = std::uint8_t;
 constexpr decode_status status_of(decode_step step) noexcept { return static_cast<decode_status>(step & 7u); }
 
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
-template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class basic_decoder {
+/// `Crc` and `Layout` are the direct variable transfer's CRC (crc.hpp) and field layout
+/// (variable_layout.hpp). A static CRC policy costs no RAM; a CRC chosen at run time (`crc16_runtime`) is
+/// passed to the constructor and held by the decoder.
+template <class Store, std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
+class basic_decoder : private detail::crc_holder<Crc> {
   static_assert(MaxCharacters >= 1 && MaxCharacters < 65535,
                 "a character transfer holds 1..65534 characters");
 
  public:
   /// The longest character transfer it accepts.
   static constexpr std::size_t max_characters = MaxCharacters;
+
+  /// A decoder with a static CRC policy (or a run-time CRC with its default parameters).
+  constexpr basic_decoder() = default;
+  /// A decoder whose direct variable transfers are checked with `crc` (a CRC chosen at run time).
+  constexpr explicit basic_decoder(const Crc& crc) noexcept : detail::crc_holder<Crc>(crc) {}
 
   /// Feeds one byte. The fast path: a data byte of an open message with room in the store's window.
   [[nodiscard]] TRIONET_FAST_PATH decode_result push(std::uint8_t byte) noexcept {
@@ -245,7 +236,7 @@ class basic_decoder {
         if (r.status == decode_status::ok) r.msg.text = store_.text(length());
         break;
       case message_type::variable:
-        read_variable_data(payload, r.msg.vr, r.msg.value);
+        Layout::read(payload, r.msg.vr, r.msg.value);
         break;
       case message_type::keypad_offset:
         r.msg.offset = payload[0];
@@ -281,7 +272,7 @@ class basic_decoder {
         } else {
           r.msg.type = message_type::variable;
           r.msg.hops = hops_of(*p);
-          read_variable_data(p + 1, r.msg.vr, r.msg.value);
+          Layout::read(p + 1, r.msg.vr, r.msg.value);
         }
         p += 16;
         sink(r);
@@ -480,11 +471,12 @@ class basic_decoder {
     return find_control(p + 1, p + 15) == p + 15;
   }
 
-  // The checks of a direct variable transfer whose 14 data bytes are well framed: X9, then the CRC (a CRC
-  // error is a message that is otherwise well formed).
-  static decode_step check_variable(const std::uint8_t* data) noexcept {
-    if ((data[11] & 0x7E) != 0) return error(frame_error::bad_field);
-    const std::uint16_t crc = crc_of<Crc, variable_crc_length>(data);
+  // The checks of a direct variable transfer whose 14 data bytes are well framed: the value's top group (X9 by
+  // default) must have bits 6..1 zero whatever the CRC; a CRC error is an otherwise well-formed message.
+  decode_step check_variable(const std::uint8_t* data) const noexcept {
+    if ((data[Layout::top_group] & 0x7E) != 0) return error(frame_error::bad_field);
+    std::uint8_t scratch[variable_crc_length];
+    const std::uint16_t crc = crc_of<variable_crc_length>(this->crc(), Layout::crc_bytes(data, scratch));
     if (crc_wire_bits(crc) != static_cast<std::uint16_t>(data[12] | (data[13] << 8))) {
       return status(decode_status::crc_error);
     }
@@ -502,7 +494,8 @@ class basic_decoder {
 };
 
 /// The streaming decoder with its own character buffer of MaxCharacters.
-template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-using decoder = basic_decoder<character_buffer<MaxCharacters>, MaxCharacters, Crc>;
+template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
+using decoder = basic_decoder<character_buffer<MaxCharacters>, MaxCharacters, Crc, Layout>;
 
 }  // namespace trionet::ring

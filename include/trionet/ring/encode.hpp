@@ -9,13 +9,14 @@
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
+#include "trionet/ring/variable_layout.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::ring {
 
 /// What became of an encode (misuse of the API; on anything but `ok` nothing was written).
 enum class encode_status : std::uint8_t {
-  ok,
+  ok,                      ///< encoded
   buffer_too_small,        ///< the frame does not fit in the buffer
   hops_out_of_range,       ///< hops not 1..15
   empty_text,              ///< a character transfer needs at least one character
@@ -26,6 +27,7 @@ enum class encode_status : std::uint8_t {
   unknown_type,            ///< message type not 1..4
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(encode_status status) noexcept {
   switch (status) {
     case encode_status::ok:
@@ -52,8 +54,9 @@ constexpr const char* to_string(encode_status status) noexcept {
 
 /// The outcome of an encode: `length` bytes were written (0 unless `ok`).
 struct [[nodiscard]] encode_result {
-  encode_status status = encode_status::ok;
-  std::size_t length = 0;
+  encode_status status = encode_status::ok;  ///< `ok`, or why nothing was written
+  std::size_t length = 0;                    ///< bytes written
+  /// True when `status` is `ok`.
   constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
@@ -79,24 +82,22 @@ constexpr encode_status check(const message& m) noexcept {
   return encode_status::unknown_type;
 }
 
-/// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1). Precondition: vr <= 16383.
-template <class Crc = crc16_ccitt_false>
-constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int64_t value) noexcept {
-  out[0] = static_cast<std::uint8_t>(vr & 0x7F);
-  out[1] = static_cast<std::uint8_t>((vr >> 7) & 0x7F);
-  std::uint64_t bits = static_cast<std::uint64_t>(value);
-  for (std::size_t k = 0; k < 10; ++k) {
-    out[2 + k] = static_cast<std::uint8_t>(bits & 0x7F);
-    bits >>= 7;
-  }
-  const std::uint16_t crc = crc_of<Crc, variable_crc_length>(out);
-  out[12] = static_cast<std::uint8_t>(crc & 0x7F);
-  out[13] = static_cast<std::uint8_t>((crc >> 8) & 0x7F);
+/// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1) in the layout `Layout`, with
+/// the CRC `crc` (a static policy by default; pass a `crc16_runtime` for one chosen at run time).
+/// Precondition: vr <= 16383.
+template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
+constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int64_t value,
+                                   const Crc& crc = Crc{}) noexcept {
+  Layout::write(out, vr, value);
+  std::uint8_t scratch[variable_crc_length] = {};
+  const std::uint16_t sum = crc_of<variable_crc_length>(crc, Layout::crc_bytes(out, scratch));
+  out[12] = static_cast<std::uint8_t>(sum & 0x7F);
+  out[13] = static_cast<std::uint8_t>((sum >> 8) & 0x7F);
 }
 
 /// Encodes any message. On success returns its frame length; on error writes nothing.
-template <class Crc = crc16_ccitt_false>
-constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
+template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
+constexpr encode_result encode(byte_buffer out, const message& m, const Crc& crc = Crc{}) noexcept {
   const encode_status status = check(m);
   if (status != encode_status::ok) return {status, 0};
   const std::size_t length = frame_length(m);
@@ -108,7 +109,7 @@ constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
       for (std::uint8_t c : m.text) *p++ = c;
       break;
     case message_type::variable:
-      write_variable_data<Crc>(p, m.vr, m.value);
+      write_variable_data<Crc, Layout>(p, m.vr, m.value, crc);
       p += variable_data_length;
       break;
     case message_type::keypad_offset:
@@ -126,16 +127,17 @@ constexpr encode_result encode(byte_buffer out, const message& m) noexcept {
 constexpr encode_result encode_characters(byte_buffer out, std::uint8_t hops, byte_view text) noexcept {
   return encode(out, message::characters(hops, text));
 }
+/// PRINT#: the same, for `length` characters at `text`.
 inline encode_result encode_characters(byte_buffer out, std::uint8_t hops, const char* text,
                                        std::size_t length) noexcept {
   return encode_characters(out, hops, byte_view(reinterpret_cast<const std::uint8_t*>(text), length));
 }
 
 /// SEND(n,1,vr,value): a direct variable transfer of a Q32.32 value (see trionet/q32.hpp).
-template <class Crc = crc16_ccitt_false>
+template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
 constexpr encode_result encode_variable(byte_buffer out, std::uint8_t hops, std::uint16_t vr,
-                                        std::int64_t value) noexcept {
-  return encode<Crc>(out, message::variable(hops, vr, value));
+                                        std::int64_t value, const Crc& crc = Crc{}) noexcept {
+  return encode<Crc, Layout>(out, message::variable(hops, vr, value), crc);
 }
 
 /// SEND(n,2,offset): a keypad offset; `offset` is a hop count 1..15 (BASIC offset - 9).

@@ -70,12 +70,14 @@ struct keypad_counters {
 };
 
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
-          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false>
-class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>,
-                                 decoder<MaxCharacters, Crc>,
-                                 detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, true>> {
-  using core = node<keypad, decoder<MaxCharacters, Crc>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, true>>;
+          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
+class keypad final
+    : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>,
+                  decoder<MaxCharacters, Crc, Layout>,
+                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout, true>> {
+  using core = node<keypad, decoder<MaxCharacters, Crc, Layout>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout, true>>;
   friend core;
 
  public:

@@ -22,14 +22,16 @@
 
 namespace trionet::ring {
 
+/// The display's text and cursor, changed by the characters written to it (the rules above).
 class keypad_display {
  public:
-  static constexpr std::size_t columns = 20;
-  static constexpr std::size_t rows = 2;
-  static constexpr std::size_t positions = columns * rows;
+  static constexpr std::size_t columns = 20;                ///< characters per line
+  static constexpr std::size_t rows = 2;                    ///< lines
+  static constexpr std::size_t positions = columns * rows;  ///< cursor positions, 0..39
 
   keypad_display() noexcept { clear(); }
 
+  /// Handles one character received for the display.
   void write(std::uint8_t c) noexcept {
     if (escape_ == escape::position) {
       escape_ = escape::none;
@@ -67,6 +69,7 @@ class keypad_display {
     cursor_ = static_cast<std::uint8_t>(cursor_ + 1u < positions ? cursor_ + 1u : 0u);
   }
 
+  /// Handles each of `characters` in turn.
   void write(byte_view characters) noexcept {
     for (std::uint8_t c : characters) write(c);
   }
@@ -82,8 +85,8 @@ class keypad_display {
 
   /// A line of the display (0 or 1) as a 20-character string.
   const char* line(std::size_t row) const noexcept { return text_[row < rows ? row : rows - 1]; }
-  std::size_t cursor() const noexcept { return cursor_; }
-  bool cursor_visible() const noexcept { return cursor_visible_; }
+  std::size_t cursor() const noexcept { return cursor_; }           ///< the cursor position, 0..39
+  bool cursor_visible() const noexcept { return cursor_visible_; }  ///< false after character 14
 
  private:
   enum class escape : std::uint8_t { none, start, position };

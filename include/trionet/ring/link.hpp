@@ -54,6 +54,7 @@
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/netstat.hpp"
 #include "trionet/single_writer.hpp"
+#include "trionet/ring/variable_layout.hpp"
 
 namespace trionet::ring {
 
@@ -280,11 +281,12 @@ class forwarding_switch<false> {
   static constexpr std::uint16_t drops() noexcept { return 0; }
 };
 
-/// `Crc` is the CRC policy the node's own direct variable transfers are sent with; `MaxCharacters` the
-/// character maximum of docs/protocol.md 1.4 (the forwarding bound of type 1 and the reserved types).
+/// `Crc` and `Layout` are the CRC policy and field layout the node's own direct variable transfers are sent
+/// with (crc.hpp, variable_layout.hpp); `MaxCharacters` the character maximum of docs/protocol.md 1.4 (the
+/// forwarding bound of type 1 and the reserved types).
 /// `Switchable`: whether forwarding can be turned off (a keypad); a Motion Coordinator always forwards.
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
-          class Crc = crc16_ccitt_false, bool Switchable = false>
+          class Crc = crc16_ccitt_false, class Layout = default_variable_layout, bool Switchable = false>
 class link : private forwarding_switch<Switchable> {
   static_assert(ForwardCapacity >= framing_length + variable_data_length && ForwardCapacity < 65535,
                 "the forward buffer must hold a whole direct variable transfer (16 bytes): while a node sends "
@@ -504,7 +506,7 @@ class link : private forwarding_switch<Switchable> {
       queue_.stage(1 + m.text.size(), make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
-      const encode_result encoded = encode<Crc>(frame, m);
+      const encode_result encoded = encode<Crc, Layout>(frame, m);
       queue_.stage(0, frame, encoded.length);
     }
     queue_.publish(length);

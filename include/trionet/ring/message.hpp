@@ -26,6 +26,7 @@ enum class message_type : std::uint8_t {
   keypad_mode = 4,    ///< key ON only (0) or key ON and key OFF (127)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(message_type value) noexcept {
   switch (value) {
     case message_type::character:
@@ -43,10 +44,10 @@ constexpr const char* to_string(message_type value) noexcept {
 constexpr std::size_t variable_data_length = 14;  ///< V0 V1 X0..X9 C0 C1
 constexpr std::size_t variable_crc_length = 12;   ///< the CRC covers V0..X9
 constexpr std::size_t framing_length = 2;         ///< header and end of message
-constexpr std::size_t default_max_characters = 256;
+constexpr std::size_t default_max_characters = 256;  ///< receive buffer of a node
 constexpr std::uint16_t max_vr = 16383;  ///< 14 bits
-constexpr std::uint8_t keypad_mode_key_on = 0;
-constexpr std::uint8_t keypad_mode_key_on_off = 127;
+constexpr std::uint8_t keypad_mode_key_on = 0;        ///< keypad mode: key ON only
+constexpr std::uint8_t keypad_mode_key_on_off = 127;  ///< keypad mode: key ON and key OFF
 
 /// One decoded or to-be-encoded message. Which fields mean something depends on `type`; the others are 0.
 /// `text` is a view: in a decoded message it points into the decoder and is valid until its next push.
@@ -54,11 +55,12 @@ struct message {           // (largest fields first: 24 bytes on a 32-bit core, 
   std::int64_t value = 0;  ///< variable: Q32.32 value (value / 2^32)
   byte_view text;          ///< character: the characters, each 0..127
   std::uint16_t vr = 0;    ///< variable: VR number 0..16383
-  message_type type = message_type::character;
+  message_type type = message_type::character;  ///< T: which message
   std::uint8_t hops = 0;    ///< A: hops from the sender to the receiver, 1..15
   std::uint8_t offset = 0;  ///< keypad offset: hops from the keypad to where it sends its keys, 1..15
   std::uint8_t mode = 0;    ///< keypad mode: 0 or 127
 
+  /// A character transfer (PRINT#) of `text`.
   static constexpr message characters(std::uint8_t hops, byte_view text) noexcept {
     message m;
     m.type = message_type::character;
@@ -66,6 +68,7 @@ struct message {           // (largest fields first: 24 bytes on a 32-bit core, 
     m.text = text;
     return m;
   }
+  /// A direct variable transfer: VR(vr) = value (Q32.32).
   static constexpr message variable(std::uint8_t hops, std::uint16_t vr, std::int64_t value) noexcept {
     message m;
     m.type = message_type::variable;
@@ -74,6 +77,7 @@ struct message {           // (largest fields first: 24 bytes on a 32-bit core, 
     m.value = value;
     return m;
   }
+  /// A keypad offset: where the keypad sends its keys.
   static constexpr message keypad_offset(std::uint8_t hops, std::uint8_t offset) noexcept {
     message m;
     m.type = message_type::keypad_offset;
@@ -81,6 +85,7 @@ struct message {           // (largest fields first: 24 bytes on a 32-bit core, 
     m.offset = offset;
     return m;
   }
+  /// A keypad mode: 0 (key ON) or 127 (key ON and OFF).
   static constexpr message keypad_mode(std::uint8_t hops, std::uint8_t mode) noexcept {
     message m;
     m.type = message_type::keypad_mode;

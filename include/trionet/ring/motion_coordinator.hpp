@@ -175,16 +175,17 @@ class receive_buffer {
 
 /// `MaxCharacters` is the character maximum of docs/protocol.md 1.4: the longest character transfer the node
 /// accepts, and the bound on messages it forwards. The receive buffer (`ReceiveCapacity`) may be smaller: a
-/// message that does not fit is dropped whole (NETSTAT bit 4).
+/// message that does not fit is dropped whole (NETSTAT bit 4). `Crc` and `Layout` are the direct variable
+/// transfer's CRC policy and field layout (crc.hpp, variable_layout.hpp).
 template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 16,
           std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false,
-          std::size_t MaxCharacters = default_max_characters>
+          std::size_t MaxCharacters = default_max_characters, class Layout = default_variable_layout>
 class motion_coordinator final
-    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters>,
-                  basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
-                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>> {
-  using core = node<motion_coordinator, basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc>>;
+    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters, Layout>,
+                  basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
+                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>> {
+  using core = node<motion_coordinator, basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
+                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>>;
   friend core;
 
  public:
@@ -355,7 +356,7 @@ class motion_coordinator final
     std::uint16_t vr = 0;
     std::int64_t value = 0;
     const message_type type = this->decoder_.type();
-    if (type == message_type::variable) read_variable_data(this->decoder_.payload(), vr, value);
+    if (type == message_type::variable) Layout::read(this->decoder_.payload(), vr, value);
     delivered(status_of(step), type, vr, value);
   }
   // Link side: the same as a whole result (the bulk path).

@@ -57,12 +57,13 @@ constexpr double byte_times_to_seconds(std::uint64_t byte_times, double bits_per
 /// The idle time after which a node's line counts as idle, by default (docs/protocol.md 1.10).
 constexpr std::uint32_t default_idle_byte_times = 2;
 
+/// A ring of up to `MaxNodes` nodes that the caller owns (see above).
 template <std::size_t MaxNodes = 15>
 class simulator {
   static_assert(MaxNodes >= 2 && MaxNodes <= 15, "a ring has 2 to 15 nodes");
 
  public:
-  static constexpr std::size_t max_nodes = MaxNodes;
+  static constexpr std::size_t max_nodes = MaxNodes;  ///< the most nodes the ring takes
 
   /// `idle_byte_times`: how long a link carries no byte before its receiver's line counts as idle (at least
   /// 1); 0 never tells a node that its line is idle.
@@ -76,21 +77,25 @@ class simulator {
     return true;
   }
 
-  std::size_t size() const noexcept { return count_; }
+  std::size_t size() const noexcept { return count_; }  ///< nodes added
   /// True when the ring has 2..MaxNodes nodes and can run.
   bool ready() const noexcept { return count_ >= 2; }
-  std::uint64_t now() const noexcept { return now_; }
+  std::uint64_t now() const noexcept { return now_; }  ///< byte-times run so far
   /// Bytes delivered since the start (a measure of simulation work: node-byte steps).
   std::uint64_t bytes_delivered() const noexcept { return delivered_; }
+  /// The idle time of a line, in byte-times (the constructor's argument).
   std::uint32_t idle_byte_times() const noexcept { return idle_byte_times_; }
 
   // ---- faults ----
+  /// The next byte sent on `link` never arrives.
   void drop_next(std::size_t link) noexcept {
     if (link < count_) faults_[link].drop_next = true;
   }
+  /// The next byte sent on `link` arrives with the bits of `mask` flipped.
   void flip_next(std::size_t link, std::uint8_t mask) noexcept {
     if (link < count_) faults_[link].flip_mask = mask;
   }
+  /// Cuts `link` (no byte arrives) or, with `cut` false, mends it.
   void cut(std::size_t link, bool cut = true) noexcept {
     if (link < count_) faults_[link].cut = cut;
   }
@@ -134,6 +139,7 @@ class simulator {
     }
     ++now_;
   }
+  /// One byte-time, without a trace.
   void step() {
     step([](const link_byte&) {});
   }
@@ -143,6 +149,7 @@ class simulator {
   void run(std::uint64_t byte_times, Trace&& trace) {
     for (std::uint64_t t = 0; t < byte_times; ++t) step(trace);
   }
+  /// Runs `byte_times` steps, without a trace.
   void run(std::uint64_t byte_times) {
     for (std::uint64_t t = 0; t < byte_times; ++t) step();
   }

@@ -23,6 +23,7 @@
 #include "trionet/can/frame.hpp"
 #include "trionet/genius/character.hpp"
 #include "trionet/genius/transmission.hpp"
+#include "trionet/host/pcapng.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/span.hpp"
 
@@ -109,6 +110,57 @@ class ring_record_splitter {
   std::size_t max_;
   unit kind_ = unit::stray;
   detail::open_record record_;
+};
+
+/// Records the bytes that cross one ring link into one interface of a capture: byte-times become
+/// nanoseconds at the link's bit rate, records are cut by a ring_record_splitter, and a gap of more than
+/// `idle_byte_times` byte-times between two bytes is an idle line that ends the open record (docs/protocol.md
+/// 1.10). Call `flush` at the end.
+class ring_link_recorder {
+ public:
+  /// `interface` is the writer's id for this link; `bit_rate` in bits per second, `bits_per_byte` on the
+  /// line (start, 8 data, stop: 10); record times start at `epoch_ns`.
+  ring_link_recorder(pcapng_writer& writer, std::uint32_t interface, double bit_rate, unsigned bits_per_byte = 10,
+                     std::uint64_t epoch_ns = 0, std::uint64_t idle_byte_times = 2)
+      : writer_(writer),
+        interface_(interface),
+        ns_per_byte_(1e9 * bits_per_byte / bit_rate),
+        epoch_ns_(epoch_ns),
+        idle_(idle_byte_times) {}
+
+  /// The byte sent at byte-time `byte_time` (non-decreasing).
+  void byte_at(std::uint64_t byte_time, std::uint8_t byte) {
+    if (started_ && byte_time > last_ + idle_) flush();
+    started_ = true;
+    last_ = byte_time;
+    splitter_.push(byte, epoch_ns_ + static_cast<std::uint64_t>(static_cast<double>(byte_time) * ns_per_byte_ + 0.5),
+                   sink{this});
+  }
+
+  /// Writes the open record, if any.
+  void flush() { splitter_.flush(sink{this}); }
+
+  /// The first write status that was not ok, else ok.
+  [[nodiscard]] pcapng_write_status status() const noexcept { return status_; }
+
+ private:
+  struct sink {
+    ring_link_recorder* self;
+    void operator()(byte_view record, std::uint64_t time_ns) const {
+      const pcapng_write_status written = self->writer_.write(self->interface_, time_ns, record);
+      if (self->status_ == pcapng_write_status::ok) self->status_ = written;
+    }
+  };
+
+  pcapng_writer& writer_;
+  std::uint32_t interface_;
+  double ns_per_byte_;
+  std::uint64_t epoch_ns_;
+  std::uint64_t idle_;
+  ring_record_splitter splitter_;
+  std::uint64_t last_ = 0;
+  bool started_ = false;
+  pcapng_write_status status_ = pcapng_write_status::ok;
 };
 
 /// Bytes per Genius character in a record: the 11-bit word, big-endian.

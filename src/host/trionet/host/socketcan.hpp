@@ -59,6 +59,8 @@ class socketcan_port final : public can::port {
   [[nodiscard]] socketcan_open_result open(const std::string& interface_name);
   void close() noexcept;
   [[nodiscard]] bool is_open() const noexcept { return socket_ >= 0; }
+  /// The socket's descriptor (-1 when closed), to wait for it in poll() together with other descriptors.
+  [[nodiscard]] int fd() const noexcept { return socket_; }
 
   [[nodiscard]] can::transmit_status send(const can::frame& outgoing) noexcept override;
 

@@ -1,0 +1,265 @@
+// The tool's shared pieces: see cli.hpp.
+#include "cli.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+
+namespace trionet::cli {
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "trionet: %s\n", message.c_str());
+  return exit_usage;
+}
+
+int fail_io(const std::string& message) {
+  std::fprintf(stderr, "trionet: %s\n", message.c_str());
+  return exit_io;
+}
+
+std::string version_line() {
+  return std::string("trionet ") + TRIONET_VERSION;
+}
+
+std::string part_usage(const part& p) {
+  std::string out = std::string("usage: trionet ") + p.name + " <command> [options]\n\ncommands:\n";
+  for (std::size_t i = 0; i < p.count; ++i) {
+    std::string name = p.commands[i].name;
+    if (name.size() < 10) name.resize(10, ' ');
+    out += "  " + name + "  " + p.commands[i].summary + "\n";
+  }
+  out += std::string("\nRun `trionet ") + p.name + " <command> --help` for a command's options.\n";
+  out += p.notes;
+  return out;
+}
+
+namespace {
+
+bool asks_for_help(const words& args) {
+  for (const std::string& word : args) {
+    if (word == "--") return false;
+    if (word == "--help" || word == "-h") return true;
+  }
+  return false;
+}
+
+std::string command_names(const part& p) {
+  std::string names;
+  for (std::size_t i = 0; i < p.count; ++i) {
+    if (i != 0) names += i + 1 == p.count ? " or " : ", ";
+    names += p.commands[i].name;
+  }
+  return names;
+}
+
+}  // namespace
+
+int dispatch(const part& p, const words& args) {
+  if (args.empty()) {
+    std::fprintf(stderr, "trionet: %s needs a command: %s\n%s", p.name, command_names(p).c_str(),
+                 part_usage(p).c_str());
+    return exit_usage;
+  }
+  const std::string& name = args.front();
+  if (name == "--help" || name == "-h" || name == "help") {
+    std::fputs(part_usage(p).c_str(), stdout);
+    return exit_ok;
+  }
+  if (name == "--version") {
+    std::printf("%s\n", version_line().c_str());
+    return exit_ok;
+  }
+  for (std::size_t i = 0; i < p.count; ++i) {
+    const command& c = p.commands[i];
+    if (name != c.name) continue;
+    const words rest(args.begin() + 1, args.end());
+    if (asks_for_help(rest)) {
+      std::fputs(c.usage, stdout);
+      return exit_ok;
+    }
+    return c.run(rest);
+  }
+  return fail("unknown " + std::string(p.name) + " command '" + name + "' (expected " + command_names(p) + ")");
+}
+
+bool parse_arguments(const words& args, const std::set<std::string>& value_options,
+                     const std::set<std::string>& flag_options, arguments& out, std::string& error,
+                     const std::set<std::string>& repeatable) {
+  bool options_done = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& word = args[i];
+    const bool looks_like_option = word.size() > 2 && word.compare(0, 2, "--") == 0;
+    if (options_done || !looks_like_option) {
+      if (word == "--" && !options_done) {
+        options_done = true;
+        continue;
+      }
+      out.positionals.push_back(word);
+      continue;
+    }
+    if (flag_options.count(word) != 0) {
+      out.flags.insert(word);
+      continue;
+    }
+    if (value_options.count(word) == 0) {
+      error = "unknown option " + host::clipped(word);
+      return false;
+    }
+    if (i + 1 >= args.size()) {
+      error = "option " + word + " needs a value";
+      return false;
+    }
+    const std::string& value = args[++i];
+    auto found = out.options.find(word);
+    if (found != out.options.end()) {
+      if (repeatable.count(word) == 0) {
+        error = "option " + word + " given twice";
+        return false;
+      }
+      found->second += '\n';
+      found->second += value;
+    } else {
+      out.options.emplace(word, value);
+    }
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// output, input
+
+bool output::flush() {
+  if (failed_) return false;
+  const char* p = text_.data();
+  std::size_t left = text_.size();
+  while (left > 0) {
+    const ssize_t wrote = ::write(STDOUT_FILENO, p, left);
+    if (wrote < 0 && errno == EINTR) continue;
+    if (wrote <= 0) {
+      failed_ = true;
+      return false;
+    }
+    p += wrote;
+    left -= static_cast<std::size_t>(wrote);
+  }
+  text_.clear();
+  return true;
+}
+
+input::input() : buffer_(chunk) {}
+
+input::~input() {
+  if (owned_) ::close(fd_);
+}
+
+bool input::open(const std::string& path, std::string& error) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    error = "cannot open " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  if (owned_) ::close(fd_);
+  fd_ = fd;
+  owned_ = true;
+  return true;
+}
+
+bool input::read(std::string_view& data, std::string& error) {
+  while (true) {
+    const ssize_t got = ::read(fd_, buffer_.data(), buffer_.size());
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      error = std::string("cannot read the input: ") + std::strerror(errno);
+      return false;
+    }
+    data = std::string_view(buffer_.data(), static_cast<std::size_t>(got));
+    return true;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// events
+
+// Each field is put together in a small buffer and appended at once: one append per field keeps the
+// decoders' output fast (scripts/decode-figures).
+namespace {
+
+std::size_t put_key(char* to, std::string_view name) {
+  to[0] = ',';
+  to[1] = '"';
+  std::memcpy(to + 2, name.data(), name.size());
+  to[2 + name.size()] = '"';
+  to[3 + name.size()] = ':';
+  return name.size() + 4;
+}
+
+}  // namespace
+
+void event::key(std::string_view name) {
+  char text[80];
+  put(text, put_key(text, name.substr(0, 64)));
+}
+
+event& event::number(std::string_view name, std::uint64_t value) {
+  char text[104];
+  const std::size_t at = put_key(text, name.substr(0, 64));
+  const auto result = std::to_chars(text + at, text + sizeof text, value);
+  put(text, static_cast<std::size_t>(result.ptr - text));
+  return *this;
+}
+
+event& event::signed_number(std::string_view name, std::int64_t value) {
+  char text[104];
+  const std::size_t at = put_key(text, name.substr(0, 64));
+  const auto result = std::to_chars(text + at, text + sizeof text, value);
+  put(text, static_cast<std::size_t>(result.ptr - text));
+  return *this;
+}
+
+event& event::real(std::string_view name, double value) {
+  char text[112];
+  const std::size_t at = put_key(text, name.substr(0, 64));
+  if (!(value == value) || value > 1.7976931348623157e308 || value < -1.7976931348623157e308) {
+    put(text, at);
+    put("null", 4);
+    return *this;
+  }
+  const auto result = std::to_chars(text + at, text + sizeof text, value);
+  put(text, static_cast<std::size_t>(result.ptr - text));
+  return *this;
+}
+
+event& event::boolean(std::string_view name, bool value) {
+  key(name);
+  if (value) {
+    put("true", 4);
+  } else {
+    put("false", 5);
+  }
+  return *this;
+}
+
+event& event::text(std::string_view name, std::string_view value) {
+  key(name);
+  host::append_json_string(*this, value);
+  return *this;
+}
+
+event& event::json(std::string_view name, std::string_view value) {
+  key(name);
+  put(value.data(), value.size());
+  return *this;
+}
+
+std::string epoch_text(std::uint64_t time_ns) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%" PRIu64 ".%09" PRIu64, time_ns / 1000000000U, time_ns % 1000000000U);
+  return text;
+}
+
+}  // namespace trionet::cli

@@ -1,0 +1,227 @@
+// `trionet ring monitor|send|join PORT ...`: the fibre ring on a live port (a serial port, a pty, a FIFO, a
+// Unix socket): watch what arrives, put one message on the ring, or be a node of it (a Motion Coordinator
+// driven from standard input, or a membrane keypad driven from the keyboard).
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "keypad_terminal.hpp"
+#include "live.hpp"
+#include "ring_live.hpp"
+#include "ring_message_arguments.hpp"
+#include "trionet/host/capture.hpp"
+#include "trionet/host/link_device.hpp"
+#include "trionet/host/posix_link.hpp"
+#include "trionet/ring.hpp"
+
+namespace trionet::cli {
+
+const char* const ring_live_usage =
+    "usage:\n"
+    "  trionet ring monitor PORT [port options] [--json] [--pcap FILE]\n"
+    "      decode what arrives on PORT, one event per line as soon as it is complete; counters at the end,\n"
+    "      on Ctrl-C and on SIGUSR1\n"
+    "  trionet ring send PORT print|var|offset|mode ... [port options] [--pcap FILE]\n"
+    "      put one message on the ring (the arguments of `trionet ring encode`), wait until it has left,\n"
+    "      print its bytes\n"
+    "  trionet ring join PORT --as mc [port options] [--json] [--trace] [--pcap FILE]\n"
+    "      be a Motion Coordinator on the ring: forward, deliver, and take commands on standard input:\n"
+    "        print N TEXT | send N VR VALUE | offset N M | mode N 0|127 | key 3|4 | get 3|4 |\n"
+    "        vr V [VALUE] | netstat [clear] | counters | quit        (TEXT escapes: \\r \\n \\t \\\\ \\xNN)\n"
+    "  trionet ring join PORT --as keypad [port options] [--json] [--trace] [--pcap FILE]\n"
+    "      be a membrane keypad: on a terminal, its display drawn in place and the keyboard as its keys;\n"
+    "      otherwise key words from standard input (0..9 . up down clr y n start stop, wait=MS, quit)\n"
+    "PORT: a serial port or pty, a FIFO, a Unix socket, or - (standard input; standard output for send).\n"
+    "port options:\n"
+    "  --baud B        serial ports: bits per second, any rate 50..4000000 (default 125000)\n"
+    "  --flow F        serial ports: none (default), rtscts or xonxoff\n"
+    "  --idle-ms T     no byte for T ms with a message open is the idle line (docs/protocol.md 1.10);\n"
+    "                  default 50\n";
+
+namespace {
+
+struct port_arguments {
+  host::link_options link;
+  int idle_ms = 50;
+  bool json = false;
+  bool trace = false;
+  std::string pcap;
+};
+
+bool port_arguments_of(const arguments& args, port_arguments& out, std::string& error) {
+  long long number = 0;
+  if (args.has("--baud")) {
+    if (!parse_integer(args.options.at("--baud"), host::min_serial_baud, host::max_serial_baud, number)) {
+      error = "--baud must be a rate 50..4000000, got '" + args.options.at("--baud") + "'";
+      return false;
+    }
+    out.link.baud = static_cast<unsigned>(number);
+  }
+  if (args.has("--flow")) {
+    const std::string& flow = args.options.at("--flow");
+    if (flow == "none") {
+      out.link.flow = host::flow_control::none;
+    } else if (flow == "rtscts") {
+      out.link.flow = host::flow_control::hardware;
+    } else if (flow == "xonxoff") {
+      out.link.flow = host::flow_control::software;
+    } else {
+      error = "--flow must be none, rtscts or xonxoff, got '" + flow + "'";
+      return false;
+    }
+  }
+  if (args.has("--idle-ms")) {
+    if (!parse_integer(args.options.at("--idle-ms"), 1, 60000, number)) {
+      error = "--idle-ms must be 1..60000, got '" + args.options.at("--idle-ms") + "'";
+      return false;
+    }
+    out.idle_ms = static_cast<int>(number);
+  }
+  out.json = args.flags.count("--json") != 0;
+  out.trace = args.flags.count("--trace") != 0;
+  if (args.has("--pcap")) out.pcap = args.options.at("--pcap");
+  return true;
+}
+
+const std::set<std::string> port_value_options = {"--baud", "--flow", "--idle-ms", "--pcap"};
+
+std::set<std::string> with(std::set<std::string> a, const std::set<std::string>& b) {
+  a.insert(b.begin(), b.end());
+  return a;
+}
+
+// ---- ring monitor ----
+
+int monitor_main(const std::vector<std::string>& given) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(given, port_value_options, {"--json"}, args, error)) return fail("ring monitor: " + error);
+  if (args.positionals.size() != 1) return fail("ring monitor takes one PORT");
+  port_arguments options;
+  if (!port_arguments_of(args, options, error)) return fail("ring monitor: " + error);
+  host::link_device port;
+  if (!port.open(args.positionals[0], options.link, error)) return fail("ring monitor: " + error);
+  live::capture_file capture;
+  if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail("ring monitor: " + error);
+  ring_tap tap(capture.is_open() ? &capture : nullptr, "received on " + port.name());
+  live::signal_watch signals;
+  const auto print = [&](const live::event& e) { live::emit(e, options.json); };
+
+  std::string ended = port.name() + " closed";
+  while (!live::signal_watch::stop_requested()) {
+    if (live::signal_watch::take_report_request()) print(tap.counters_event(live::now_ns()));
+    pollfd p{port.fd(), POLLIN, 0};
+    const int ready = ::poll(&p, 1, options.idle_ms);
+    if (ready < 0) {
+      if (errno == EINTR) continue;
+      ended = std::string("poll: ") + std::strerror(errno);
+      break;
+    }
+    if (ready == 0) {
+      tap.idle(live::now_ns(), print);
+      continue;
+    }
+    std::uint8_t in[4096];
+    const ssize_t got = ::read(port.fd(), in, sizeof in);
+    if (got < 0 && (errno == EAGAIN || errno == EINTR)) continue;
+    if (got <= 0) {
+      if (got < 0 && errno != EIO) ended = port.name() + ": " + std::strerror(errno);
+      break;
+    }
+    tap.push(byte_view(in, static_cast<std::size_t>(got)), live::now_ns(), print);
+  }
+  tap.idle(live::now_ns(), print);  // a message cut short by the end is reported as such
+  print(tap.counters_event(live::now_ns()));
+  port.close();
+  if (!live::signal_watch::stop_requested()) std::fprintf(stderr, "trionet: ring monitor: %s\n", ended.c_str());
+  if (!capture.good()) return fail("ring monitor: writing the capture " + options.pcap + " failed");
+  return exit_ok;
+}
+
+// ---- ring send ----
+
+int send_main(const std::vector<std::string>& given) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(given, with(port_value_options, ring_message_options()), {}, args, error))
+    return fail("ring send: " + error);
+  if (args.positionals.size() < 2) return fail("ring send needs PORT and a message kind: print, var, offset or mode");
+  port_arguments options;
+  if (!port_arguments_of(args, options, error)) return fail("ring send: " + error);
+  arguments message_args = args;
+  message_args.positionals.assign(args.positionals.begin() + 2, args.positionals.end());
+  std::vector<std::uint8_t> frame;
+  if (!ring_message_frame(args.positionals[1], message_args, frame, error)) return fail("ring send: " + error);
+
+  options.link.standard_stream = 1;
+  host::link_device port;
+  if (!port.open(args.positionals[0], options.link, error)) return fail("ring send: " + error);
+  live::capture_file capture;
+  if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail("ring send: " + error);
+  const std::uint64_t sent_at = live::now_ns();
+  std::size_t done = 0;
+  live::signal_watch signals;
+  while (done < frame.size() && !live::signal_watch::stop_requested()) {
+    pollfd p{port.fd(), POLLOUT, 0};
+    if (::poll(&p, 1, 1000) < 0 && errno != EINTR) break;
+    const ssize_t wrote = ::write(port.fd(), frame.data() + done, frame.size() - done);
+    if (wrote > 0) {
+      done += static_cast<std::size_t>(wrote);
+    } else if (wrote < 0 && errno != EAGAIN && errno != EINTR) {
+      return fail("ring send: cannot write to " + port.name() + ": " + std::strerror(errno));
+    }
+  }
+  if (done < frame.size()) return fail("ring send: interrupted after " + std::to_string(done) + " bytes");
+  if (!port.drain()) return fail("ring send: cannot drain " + port.name() + ": " + std::strerror(errno));
+  if (capture.is_open()) {
+    ring_tap tap(&capture, "sent on " + port.name());
+    tap.push(byte_view(frame.data(), frame.size()), sent_at, [](const live::event&) {});
+    tap.idle(sent_at, [](const live::event&) {});
+  }
+  port.close();
+  if (args.positionals[0] != "-") std::printf("%s\n", hex_text(frame.data(), frame.size()).c_str());
+  if (!capture.good()) return fail("ring send: writing the capture " + options.pcap + " failed");
+  return exit_ok;
+}
+
+}  // namespace
+
+int ring_live_main(const std::string& command, const std::vector<std::string>& given) {
+  if (!given.empty() && (given[0] == "--help" || given[0] == "-h")) {
+    std::fputs(ring_live_usage, stdout);
+    return exit_ok;
+  }
+  if (command == "monitor") return monitor_main(given);
+  if (command == "send") return send_main(given);
+  if (command == "join") {
+    arguments args;
+    std::string error;
+    if (!parse_arguments(given, with(port_value_options, {"--as"}), {"--json", "--trace"}, args, error))
+      return fail("ring join: " + error);
+    if (args.positionals.size() != 1) return fail("ring join takes one PORT");
+    if (!args.has("--as")) return fail("ring join needs --as mc or --as keypad");
+    port_arguments options;
+    if (!port_arguments_of(args, options, error)) return fail("ring join: " + error);
+    const std::string& as = args.options.at("--as");
+    join_settings settings{args.positionals[0], options.link, options.idle_ms, options.json, options.trace,
+                           options.pcap};
+    if (as == "mc") return join_mc(settings);
+    if (as == "keypad") return join_keypad(settings);
+    return fail("ring join: --as must be mc or keypad, got '" + as + "'");
+  }
+  std::fputs(ring_live_usage, stderr);
+  return exit_usage;
+}
+
+int ring_monitor_main(const std::vector<std::string>& args) { return ring_live_main("monitor", args); }
+int ring_send_main(const std::vector<std::string>& args) { return ring_live_main("send", args); }
+int ring_join_main(const std::vector<std::string>& args) { return ring_live_main("join", args); }
+
+}  // namespace trionet::cli

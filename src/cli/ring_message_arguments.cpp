@@ -1,0 +1,139 @@
+// The arguments that describe one ring message: see ring_message_arguments.hpp.
+#include "ring_message_arguments.hpp"
+
+#include "trionet/ring.hpp"
+
+namespace trionet::cli {
+namespace {
+
+bool basic_address(const arguments& args, const std::string& name, std::uint8_t& hops, std::string& error) {
+  auto found = args.options.find(name);
+  if (found == args.options.end()) {
+    error = "missing " + name + " (a BASIC address 10..24)";
+    return false;
+  }
+  long long n = 0;
+  if (!parse_integer(found->second, ring::first_basic_address, ring::last_basic_address, n)) {
+    error = name + " must be a BASIC address 10..24, got '" + found->second + "'";
+    return false;
+  }
+  hops = *ring::hops_from_basic_address(static_cast<int>(n));
+  return true;
+}
+
+bool message_of(const std::string& kind, const arguments& args, ring::message& m, std::string& text,
+                std::string& error) {
+  std::uint8_t hops = 0;
+  if (!basic_address(args, "--to", hops, error)) return false;
+  if (kind == "print") {
+    if (args.positionals.size() != 1) {
+      error = "print takes exactly one TEXT argument";
+      return false;
+    }
+    text = args.positionals[0];
+    if (text.empty()) {
+      error = "TEXT is empty: a character transfer needs at least one character";
+      return false;
+    }
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      if (static_cast<unsigned char>(text[i]) > 127) {
+        error = "TEXT has a character above 127 at byte " + std::to_string(i) + " (the ring carries 7-bit characters)";
+        return false;
+      }
+    }
+    m = ring::message::characters(hops, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    return true;
+  }
+  if (kind == "var") {
+    if (!args.has("--vr")) {
+      error = "missing --vr (a VR number 0..16383)";
+      return false;
+    }
+    if (!args.has("--value")) {
+      error = "missing --value (a real number)";
+      return false;
+    }
+    long long vr = 0;
+    if (!parse_integer(args.options.at("--vr"), 0, ring::max_vr, vr)) {
+      error = "--vr must be a VR number 0..16383, got '" + args.options.at("--vr") + "'";
+      return false;
+    }
+    double value = 0;
+    if (!parse_real(args.options.at("--value"), value)) {
+      error = "--value must be a real number, got '" + args.options.at("--value") + "'";
+      return false;
+    }
+    const trionet::q32_result q = trionet::q32_from_double(value);
+    if (!q) {
+      error = "--value " + args.options.at("--value") + " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]";
+      return false;
+    }
+    m = ring::message::variable(hops, static_cast<std::uint16_t>(vr), q.raw);
+    return true;
+  }
+  if (kind == "offset") {
+    std::uint8_t offset = 0;
+    if (!basic_address(args, "--offset", offset, error)) return false;
+    m = ring::message::keypad_offset(hops, offset);
+    return true;
+  }
+  if (!args.has("--mode")) {
+    error = "missing --mode (0 or 127)";
+    return false;
+  }
+  long long mode = 0;
+  if (!parse_integer(args.options.at("--mode"), 0, 127, mode) || (mode != 0 && mode != 127)) {
+    error = "--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + args.options.at("--mode") + "'";
+    return false;
+  }
+  m = ring::message::keypad_mode(hops, static_cast<std::uint8_t>(mode));
+  return true;
+}
+
+}  // namespace
+
+const std::set<std::string>& ring_message_options() {
+  static const std::set<std::string> options = {"--to", "--vr", "--value", "--offset", "--mode"};
+  return options;
+}
+
+bool ring_message_frame(const std::string& kind, const arguments& args, std::vector<std::uint8_t>& frame,
+                        std::string& error) {
+  const std::vector<std::string> allowed_for = [&]() -> std::vector<std::string> {
+    if (kind == "print") return {"--to"};
+    if (kind == "var") return {"--to", "--vr", "--value"};
+    if (kind == "offset") return {"--to", "--offset"};
+    if (kind == "mode") return {"--to", "--mode"};
+    return {};
+  }();
+  if (allowed_for.empty()) {
+    error = "unknown message kind '" + kind + "' (expected print, var, offset or mode)";
+    return false;
+  }
+  for (const auto& option : args.options) {
+    if (ring_message_options().count(option.first) == 0) continue;  // the command's own options
+    bool allowed = false;
+    for (const auto& name : allowed_for) allowed = allowed || option.first == name;
+    if (!allowed) {
+      error = "option " + option.first + " does not apply to a " + kind + " message";
+      return false;
+    }
+  }
+  if (kind != "print" && !args.positionals.empty()) {
+    error = "unexpected argument '" + args.positionals[0] + "'";
+    return false;
+  }
+  ring::message m;
+  std::string text;
+  if (!message_of(kind, args, m, text, error)) return false;
+  frame.assign(ring::frame_length(m), 0);
+  const ring::encode_result result = ring::encode(byte_buffer(frame.data(), frame.size()), m);
+  if (!result) {
+    error = std::string("cannot encode: ") + ring::to_string(result.status);
+    return false;
+  }
+  frame.resize(result.length);
+  return true;
+}
+
+}  // namespace trionet::cli

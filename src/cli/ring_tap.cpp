@@ -1,0 +1,102 @@
+// One direction of a ring link as this host sees it: see ring_live.hpp.
+#include <cstdio>
+
+#include "ring_live.hpp"
+#include "trionet/ring/bytes.hpp"
+#include "trionet/ring/node.hpp"
+
+namespace trionet::cli {
+
+std::string hex_text(const std::uint8_t* bytes, std::size_t length) {
+  std::string line;
+  char text[4];
+  for (std::size_t i = 0; i < length; ++i) {
+    std::snprintf(text, sizeof text, "%02x", bytes[i]);
+    if (i != 0) line += ' ';
+    line += text;
+  }
+  return line;
+}
+
+ring_tap::ring_tap(live::capture_file* capture, const std::string& link_name) : capture_(capture) {
+  if (capture_ != nullptr) interface_ = capture_->add(link_name, host::capture_network::ring);
+}
+
+void ring_tap::push(byte_view bytes, std::uint64_t time_ns, const sink& out) {
+  for (std::uint8_t byte : bytes) push(byte, time_ns, out);
+}
+
+void ring_tap::push(std::uint8_t byte, std::uint64_t time_ns, const sink& out) {
+  ++bytes_;
+  if (capture_ != nullptr) {
+    records_.push(byte, time_ns, [&](byte_view record, std::uint64_t t) { capture_->write(interface_, t, record); });
+  }
+  const std::uint8_t before = open_hops_;  // the message an error is about (0: none was open)
+  if (!ring::is_data(byte)) open_hops_ = ring::type_of(byte) != 0 ? ring::hops_of(byte) : 0;  // a header opens
+  const ring::decode_result r = decoder_.push(byte);
+  if (r.status == ring::decode_status::incomplete) return;
+  last_hops_ = r.status == ring::decode_status::frame_error ? before : r.msg.hops;
+  report(r, time_ns, out);
+}
+
+void ring_tap::idle(std::uint64_t time_ns, const sink& out) {
+  if (capture_ != nullptr) {
+    records_.flush([&](byte_view record, std::uint64_t t) { capture_->write(interface_, t, record); });
+  }
+  if (!decoder_.open()) return;
+  ++idle_lines_;
+  last_hops_ = open_hops_;
+  const ring::decode_result r = decoder_.line_idle();
+  open_hops_ = 0;
+  if (r.status != ring::decode_status::incomplete) report(r, time_ns, out);
+}
+
+void ring_tap::report(const ring::decode_result& r, std::uint64_t time_ns, const sink& out) {
+  switch (r.status) {
+    case ring::decode_status::ok:
+      ++messages_;
+      ++by_type_[static_cast<std::size_t>(r.msg.type) < 5 ? static_cast<std::size_t>(r.msg.type) : 0];
+      break;
+    case ring::decode_status::crc_error:
+      ++crc_errors_;
+      break;
+    case ring::decode_status::no_room:
+      ++no_room_;
+      break;
+    case ring::decode_status::frame_error:
+    case ring::decode_status::incomplete:
+      ++frame_errors_[ring::to_string(r.error)];
+      break;
+  }
+  out(live::ring_event(time_ns, r));
+}
+
+void ring_tap::add_counters(live::event& e, const std::string& prefix) const {
+  std::uint64_t frame_errors = 0;
+  for (const auto& entry : frame_errors_) frame_errors += entry.second;
+  e.number(prefix + "bytes", static_cast<unsigned long long>(bytes_));
+  e.number(prefix + "messages", static_cast<unsigned long long>(messages_));
+  e.number(prefix + "char", static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::character)]));
+  e.number(prefix + "var", static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::variable)]));
+  e.number(prefix + "offset",
+           static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::keypad_offset)]));
+  e.number(prefix + "mode", static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::keypad_mode)]));
+  e.number(prefix + "crc_errors", static_cast<unsigned long long>(crc_errors_));
+  e.number(prefix + "frame_errors", static_cast<unsigned long long>(frame_errors));
+  for (const auto& entry : frame_errors_) {
+    e.number(prefix + entry.first, static_cast<unsigned long long>(entry.second));
+  }
+  e.number(prefix + "idle_lines", static_cast<unsigned long long>(idle_lines_));
+}
+
+live::event ring_tap::counters_event(std::uint64_t time_ns) const {
+  live::event e(time_ns, "counters");
+  add_counters(e, "");
+  std::uint64_t frame_errors = 0;
+  for (const auto& entry : frame_errors_) frame_errors += entry.second;
+  e.number("netstat", static_cast<long long>((crc_errors_ != 0 ? ring::netstat_rx_crc_error : 0) |
+                                             (frame_errors != 0 ? ring::netstat_rx_frame_error : 0)));
+  return e;
+}
+
+}  // namespace trionet::cli

@@ -1,0 +1,153 @@
+// Text helpers shared by the host formats (candump) and the `trionet` tool: hex digits and hex bytes, whole
+// and real numbers, JSON strings. One parser for each, so that every part reads numbers the same way.
+// Header-only; host code (std::string).
+#pragma once
+
+#include <charconv>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+namespace trionet::host {
+
+/// The value of one hex digit (0-9, a-f, A-F), or -1.
+constexpr int hex_digit(char c) noexcept {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+/// True for the blanks that separate words: space, tab, CR, LF, FF, VT.
+constexpr bool is_blank(char c) noexcept {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+
+/// A whole hex number of 1..`max_digits` digits (at most 8), nothing else. False on anything else.
+constexpr bool parse_hex_number(std::string_view text, std::size_t max_digits, std::uint32_t& out) noexcept {
+  if (text.empty() || text.size() > max_digits || text.size() > 8) return false;
+  std::uint32_t value = 0;
+  for (char c : text) {
+    const int digit = hex_digit(c);
+    if (digit < 0) return false;
+    value = value << 4U | static_cast<std::uint32_t>(digit);
+  }
+  out = value;
+  return true;
+}
+
+/// An even number of hex digits ("", "11", "1122") appended to `out` as bytes. False (and `out` unchanged)
+/// on an odd count or a character that is not a hex digit.
+template <class Bytes>
+bool parse_hex_bytes(std::string_view text, Bytes& out) {
+  if (text.size() % 2 != 0) return false;
+  for (char c : text) {
+    if (hex_digit(c) < 0) return false;
+  }
+  for (std::size_t i = 0; i < text.size(); i += 2) {
+    out.push_back(static_cast<std::uint8_t>(hex_digit(text[i]) << 4 | hex_digit(text[i + 1])));
+  }
+  return true;
+}
+
+/// A whole decimal integer ("42", "+42", "-7") in [min, max]. False on anything else.
+inline bool parse_integer(std::string_view text, long long min, long long max, long long& out) noexcept {
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;
+  long long value = 0;
+  const auto [end, ec] = std::from_chars(first, last, value);
+  if (ec != std::errc() || end != last || first == last || value < min || value > max) return false;
+  out = value;
+  return true;
+}
+
+/// A whole finite decimal real number ("99", "-2.345", "1e3") in [min, max]. False on anything else
+/// (NaN, infinities, hex floats, trailing text).
+inline bool parse_real(std::string_view text, double min, double max, double& out) noexcept {
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;
+  double value = 0;
+  const auto [end, ec] = std::from_chars(first, last, value, std::chars_format::general);
+  if (ec != std::errc() || end != last || first == last) return false;
+  if (!(value >= min && value <= max)) return false;  // also false for NaN
+  out = value;
+  return true;
+}
+
+/// The shortest decimal text that reads back as the same double ("99", "2.345", "-0.5"); "null" for NaN and
+/// the infinities, so that the text is always a JSON value.
+inline std::string format_real(double value) {
+  if (!(value == value) || value > 1.7976931348623157e308 || value < -1.7976931348623157e308) return "null";
+  char text[32];
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
+  return ec == std::errc() ? std::string(text, end) : std::string("null");
+}
+
+/// The length of the well-formed UTF-8 sequence of 2..4 bytes at the start of `text`, or 0.
+constexpr std::size_t utf8_sequence(std::string_view text) noexcept {
+  const auto lead = static_cast<unsigned char>(text[0]);
+  const std::size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
+                             : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
+  if (length == 0 || text.size() < length) return 0;
+  for (std::size_t i = 1; i < length; ++i) {
+    if ((static_cast<unsigned char>(text[i]) & 0xC0U) != 0x80U) return 0;
+  }
+  return length;
+}
+
+/// Appends `text` as a JSON string literal, quotes included: '"' and '\' escaped; control bytes (below 0x20,
+/// and 0x7f) and bytes that are not part of well-formed UTF-8 as \u00XX; well-formed UTF-8 as it is. So any
+/// input gives valid JSON, and UTF-8 text reads back unchanged. `Out` is std::string or anything with
+/// `append(const char*, std::size_t)` and `push_back(char)`.
+template <class Out>
+void append_json_string(Out& out, std::string_view text) {
+  static constexpr char digits[] = "0123456789abcdef";
+  out.push_back('"');
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    std::size_t run = i;  // a run of characters that need no escape goes out in one append
+    while (run < text.size() && static_cast<unsigned char>(text[run]) >= 0x20 &&
+           static_cast<unsigned char>(text[run]) < 0x7f && text[run] != '"' && text[run] != '\\') {
+      ++run;
+    }
+    if (run != i) {
+      out.append(text.data() + i, run - i);
+      i = run;
+      if (i == text.size()) break;
+    }
+    const char c = text[i];
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out.push_back('\\');
+      out.push_back(c);
+    } else if (byte >= 0x20 && byte < 0x7f) {
+      out.push_back(c);
+    } else if (const std::size_t length = byte >= 0x80 ? utf8_sequence(text.substr(i)) : 0; length != 0) {
+      out.append(text.data() + i, length);
+      i += length - 1;
+    } else {
+      const char escape[6] = {'\\', 'u', '0', '0', digits[byte >> 4U], digits[byte & 0x0FU]};
+      out.append(escape, sizeof escape);
+    }
+  }
+  out.push_back('"');
+}
+
+/// `text` as a JSON string literal (see append_json_string).
+inline std::string json_string(std::string_view text) {
+  std::string out;
+  append_json_string(out, text);
+  return out;
+}
+
+/// At most `limit` bytes of `text`, followed by "..." when it was longer: for echoing input in messages
+/// (escape the result as any other input).
+inline std::string clipped(std::string_view text, std::size_t limit = 40) {
+  return text.size() <= limit ? std::string(text) : std::string(text.substr(0, limit)) + "...";
+}
+
+}  // namespace trionet::host
