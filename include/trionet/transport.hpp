@@ -59,7 +59,9 @@ class byte_port {
 
  protected:
   byte_port() = default;
+  /// Copyable by the implementations only.
   byte_port(const byte_port&) = default;
+  /// Copyable by the implementations only.
   byte_port& operator=(const byte_port&) = default;
   ~byte_port() = default;
 };

@@ -33,6 +33,7 @@ enum class vr_write_status : std::uint8_t {
   value_out_of_range,  ///< the table's value type cannot hold the value (a Q32.32 table); nothing changed
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(vr_write_status status) noexcept {
   switch (status) {
     case vr_write_status::ok:
@@ -51,18 +52,24 @@ constexpr const char* to_string(vr_write_status status) noexcept {
 /// integer part and ten-thousandths from CAN (2.2). A store converts it to its own representation, so a node
 /// itself does no floating-point arithmetic.
 struct network_value {
-  enum class encoding : std::uint8_t { q32, decimal };
-  encoding kind = encoding::q32;
+  /// How the value is held.
+  enum class encoding : std::uint8_t {
+    q32,      ///< Q32.32, from the ring
+    decimal,  ///< sign, integer part and ten-thousandths, from CAN
+  };
+  encoding kind = encoding::q32;  ///< which of the fields below hold the value
   bool negative = false;              ///< decimal: the sign
   std::uint16_t ten_thousandths = 0;  ///< decimal: fraction of the magnitude, 0..9999
   std::uint32_t integer = 0;          ///< decimal: integer part of the magnitude
   std::int64_t q32 = 0;               ///< q32: value * 2^32
 
+  /// A Q32.32 value (`raw` = value * 2^32).
   static constexpr network_value from_q32(std::int64_t raw) noexcept {
     network_value v;
     v.q32 = raw;
     return v;
   }
+  /// A decimal value: sign, integer part and ten-thousandths (0..9999) of the magnitude.
   static constexpr network_value from_decimal(bool negative, std::uint32_t integer,
                                               std::uint16_t ten_thousandths) noexcept {
     network_value v;
@@ -93,11 +100,14 @@ struct network_value {
 /// your own variables; `vr_table` is the ready-made implementation.
 class vr_store {
  public:
+  /// The network writes `value` to VR(`vr`): stores it (`ok`) or says why not.
   [[nodiscard]] virtual vr_write_status write(std::uint16_t vr, const network_value& value) noexcept = 0;
 
  protected:
   constexpr vr_store() = default;
+  /// Copyable by the implementations only.
   vr_store(const vr_store&) = default;
+  /// Copyable by the implementations only.
   vr_store& operator=(const vr_store&) = default;
   ~vr_store() = default;
 };
@@ -106,6 +116,7 @@ class vr_store {
 /// (in range of the table). `context` is the pointer given to the table with the policy.
 template <class Value>
 using vr_write_policy_for = bool (*)(void* context, std::uint16_t vr, Value value) noexcept;
+/// The write policy of a table of doubles (the default).
 using vr_write_policy = vr_write_policy_for<double>;
 
 /// A table of `Size` VRs, initially 0. Default policy: accept every vr < Size (docs/protocol.md 1.6).

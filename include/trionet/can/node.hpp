@@ -24,7 +24,9 @@ namespace trionet::can {
 class node_address {
  public:
   constexpr node_address() noexcept = default;
+  /// The number of nodes on the bus (docs/protocol.md 2.1).
   [[nodiscard]] constexpr std::uint8_t node_count() const noexcept { return node_count_; }
+  /// This node's number, 1 .. node_count().
   [[nodiscard]] constexpr std::uint8_t node() const noexcept { return node_; }
 
  private:
@@ -38,8 +40,11 @@ class node_address {
 
 /// A node address, or why the pair is invalid (`bad_node_count`, `bad_node`).
 struct [[nodiscard]] address_result {
+  /// `ok`, or why the pair is invalid.
   scheme_status status = scheme_status::ok;
+  /// The address (meaningful for `ok`).
   node_address address{};
+  /// True for `ok`.
   constexpr explicit operator bool() const noexcept { return status == scheme_status::ok; }
 };
 
@@ -65,6 +70,7 @@ enum class send_status : std::uint8_t {
   port_failed,            ///< the port failed (counted in `send_failed`)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(send_status status) noexcept {
   switch (status) {
     case send_status::ok:
@@ -103,6 +109,7 @@ enum class receive_status : std::uint8_t {
   bad_fraction,        ///< ours, but the fraction exceeds 9999
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(receive_status status) noexcept {
   switch (status) {
     case receive_status::ok:
@@ -129,10 +136,15 @@ constexpr const char* to_string(receive_status status) noexcept {
 /// it said (`message` is meaningful for ok, refused, out_of_range and value_out_of_range;
 /// `to_double(message.value)` gives the value as a double).
 struct receive_result {
+  /// The frame's fate.
   receive_status status = receive_status::foreign;
+  /// The node that sent it (frames on our identifiers).
   std::uint8_t sender = 0;
+  /// The receive channel it came in on.
   std::uint8_t receive_channel = 0;
+  /// What it said (see above for the statuses it is meaningful for).
   vr_message message{};
+  /// True for `ok`.
   constexpr explicit operator bool() const noexcept { return status == receive_status::ok; }
 };
 

@@ -46,6 +46,7 @@ enum class decode_status : std::uint8_t {
                 ///< only with a store smaller than MaxCharacters, e.g. a node's receive buffer)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(decode_status status) noexcept {
   switch (status) {
     case decode_status::incomplete:
@@ -64,7 +65,7 @@ constexpr const char* to_string(decode_status status) noexcept {
 
 /// Why a frame was discarded (`none` unless the status is `frame_error`).
 enum class frame_error : std::uint8_t {
-  none,
+  none,          ///< no frame error
   stray_data,    ///< data bytes outside any message (one report per run)
   stray_eom,     ///< end of message with no open message
   interrupted,   ///< a header arrived before the open message's end of message
@@ -76,6 +77,7 @@ enum class frame_error : std::uint8_t {
   idle_line,     ///< the line went idle before the open message's end of message (docs/protocol.md 1.10)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(frame_error error) noexcept {
   switch (error) {
     case frame_error::none:
@@ -102,10 +104,14 @@ constexpr const char* to_string(frame_error error) noexcept {
   return "unknown";
 }
 
+/// What a pushed byte completed: a message, or why one was discarded.
 struct [[nodiscard]] decode_result {
+  /// What the byte completed (`incomplete`: nothing yet).
   decode_status status = decode_status::incomplete;
+  /// Why the frame was discarded, for `frame_error`.
   frame_error error = frame_error::none;
   message msg;  ///< meaningful for `ok`; `hops` and `vr` also for `crc_error`
+  /// True for `ok`: `msg` is a valid message.
   constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 

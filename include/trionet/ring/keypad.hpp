@@ -38,6 +38,7 @@ enum class key_status : std::uint8_t {
   queue_full,       ///< no room in the transmit queue (counted)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(key_status status) noexcept {
   switch (status) {
     case key_status::ok:
@@ -54,7 +55,9 @@ constexpr const char* to_string(key_status status) noexcept {
 
 /// The keypad's configurable behaviour (docs/protocol.md 1.7-1.8 defaults).
 struct keypad_config {
+  /// The code each key sends (docs/protocol.md 1.8).
   const keypad_codes* codes = &default_keypad_codes;
+  /// The code sent when a key is released, from the code it sent when pressed.
   std::uint8_t (*key_off_code)(std::uint8_t on) noexcept = default_key_off_code;
 };
 
@@ -69,6 +72,9 @@ struct keypad_counters {
   std::uint32_t keys_lost = 0;              ///< key presses not sent: local mode or queue full
 };
 
+/// A membrane keypad on the ring (see the file comment): the ring-node core (node.hpp) with the keypad's
+/// messages, keys and display. `Crc` and `Layout` are the direct variable transfer's CRC policy and field
+/// layout (crc.hpp, variable_layout.hpp).
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
           std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
           class Layout = default_variable_layout>
@@ -81,6 +87,7 @@ class keypad final
   friend core;
 
  public:
+  /// A keypad in local mode (not forwarding) until its keypad offset arrives (docs/protocol.md 1.7).
   explicit keypad(const keypad_config& config = keypad_config{}) noexcept : config_(config) {
     this->link_.set_forwarding(false);
   }

@@ -50,6 +50,7 @@ enum class send_status : std::uint8_t {
   queue_full,              ///< no room in the transmit queue (NETSTAT bit 0 is set)
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(send_status status) noexcept {
   switch (status) {
     case send_status::ok:
@@ -78,8 +79,11 @@ constexpr const char* to_string(send_status status) noexcept {
 /// one message carries is sent as several (docs/protocol.md 1.6); whole messages only, so with `queue_full`
 /// `queued` says where to go on from.
 struct print_result {
+  /// `ok`, or why not all of the text was queued.
   send_status status;
+  /// Characters queued (all of them for `ok`).
   std::size_t queued;
+  /// True for `ok`.
   constexpr explicit operator bool() const noexcept { return status == send_status::ok; }
 };
 
@@ -91,6 +95,7 @@ enum class get_status : std::uint8_t {
   bad_channel,  ///< a channel other than 3 or 4
 };
 
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
 constexpr const char* to_string(get_status status) noexcept {
   switch (status) {
     case get_status::ok:
@@ -105,8 +110,11 @@ constexpr const char* to_string(get_status status) noexcept {
 
 /// GET#: a character, or why there is none.
 struct [[nodiscard]] get_result {
+  /// `ok`, or why there is no character.
   get_status status;
+  /// The character (meaningful for `ok`).
   std::uint8_t value;
+  /// True for `ok`.
   constexpr explicit operator bool() const noexcept { return status == get_status::ok; }
 };
 
@@ -199,7 +207,7 @@ class motion_coordinator final
 
   // ---- PRINT# and SEND (BASIC addresses 10..24) ----
 
-  /// PRINT #n,text, without waiting: `text` (each character 0..127) as consecutive character messages, each
+  /// PRINT \#n,text, without waiting: `text` (each character 0..127) as consecutive character messages, each
   /// as long as fits, as many whole messages as the transmit queue has room for (docs/protocol.md 1.6). If not
   /// all of it fits, the result is `queue_full` with the number of characters queued, and NETSTAT bit 0 is
   /// set; nothing is queued unless every character is valid.
@@ -211,9 +219,10 @@ class motion_coordinator final
     refuse();
     return {send_status::queue_full, queued};
   }
+  /// The same with a NUL-terminated text.
   [[nodiscard]] print_result print(int n, const char* text) noexcept { return print(n, c_text(text)); }
 
-  /// BASIC's PRINT #n,text: waits for room until all of `text` is queued. `wait()` is called whenever the
+  /// BASIC's PRINT \#n,text: waits for room until all of `text` is queued. `wait()` is called whenever the
   /// transmit queue is full; it lets the link run (returns once some bytes may have gone out) and returns
   /// false to give up, which sets NETSTAT bit 0 (docs/protocol.md 1.6). Not for an ISR.
   template <class Wait>
@@ -231,6 +240,7 @@ class motion_coordinator final
       }
     }
   }
+  /// The same with a NUL-terminated text.
   template <class Wait>
   [[nodiscard]] print_result print_all(int n, const char* text, Wait&& wait) noexcept(noexcept(wait())) {
     return print_all(n, c_text(text), wait);

@@ -123,7 +123,9 @@ class node : public byte_port {
 
  protected:
   node() noexcept = default;
+  /// Copies a node (both sides idle).
   node(const node&) = default;
+  /// Copies a node (both sides idle).
   node& operator=(const node&) = default;
   ~node() = default;
 
