@@ -331,6 +331,23 @@ class link : private forwarding_switch<Switchable> {
     return is_data(byte) && forward_.put_fast(byte);
   }
 
+  /// Link side, the step after the fast path: a data byte or the end of message of a forwarded message, taken
+  /// as `receive` would (and a new grant opened) when it fits within the forwarding bound; false, with
+  /// nothing done, for anything else (then call `receive`). Precondition: `forward_fast(byte)` was false, so
+  /// no grant is open.
+  TRIONET_ALWAYS_INLINE bool forward_next(std::uint8_t byte) noexcept {
+    if (!forwarding_message()) return false;
+    if (is_data(byte)) {
+      if (remaining_ == 0 || !forward_.push(byte)) return false;  // cut or lost: `receive` counts it
+      remaining_ = static_cast<std::uint16_t>(remaining_ - 1u);
+      regrant();
+      return true;
+    }
+    if (type_of(byte) != 0 || !forward_.push(decrement_hops(byte))) return false;
+    receiving_ = receiving::local;
+    return true;
+  }
+
   /// Link side: true when `byte` is data for the node's own decoder (`receive` would route it `local`).
   bool local_data(std::uint8_t byte) const noexcept { return is_data(byte) && receiving_ == receiving::local; }
 
@@ -439,7 +456,8 @@ class link : private forwarding_switch<Switchable> {
   [[nodiscard]] std::size_t transmit_after(const straight_out& straight, std::uint8_t* out,
                                            std::size_t capacity) noexcept {
     const std::size_t n = straight.size();
-    if (queue_.empty()) return n;  // the forward buffer is empty too: nothing more
+    // The forward buffer is empty too: nothing more while a forwarded message is open or no own one waits.
+    if (forwarding_message() || queue_.empty()) return n;
     return n + transmit(out + n, capacity - n);
   }
 

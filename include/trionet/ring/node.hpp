@@ -146,6 +146,9 @@ class node : public byte_port {
  private:
   // Everything but a data byte passing through while the link's grant lasts.
   TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
+#if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
+    if (link_.forward_next(byte)) return;  // the next grant, or the end of a forwarded message
+#endif
     const byte_route r = link_.receive(byte);
     if (r == byte_route::local) {
       handle(decoder_.step(byte));
