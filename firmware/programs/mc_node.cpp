@@ -122,12 +122,13 @@ int main() {
       static_cast<void>(node.get(4));
       ++characters;
     }
-    const ring::motion_coordinator_counters c = node.counters();
-    if (c.keypad_messages_ignored == 0) continue;  // the end of the run
-    while (node.key(4)) {  // what arrived after the last look
+    if (node.counters().keypad_messages_ignored == 0) continue;  // the end of the run
+    // Nothing arrives after the end: what is read now is final (counters() reads one counter at a time).
+    while (node.key(4)) {
       static_cast<void>(node.get(4));
       ++characters;
     }
+    const ring::motion_coordinator_counters c = node.counters();
     const ring::link_counters links = node.forwarding_counters();
     report("forwarded ", links.messages_forwarded);
     report("character_messages ", c.character_messages);
