@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -192,10 +193,35 @@ namespace {
 std::size_t put_key(char* to, std::string_view name) {
   to[0] = ',';
   to[1] = '"';
-  std::memcpy(to + 2, name.data(), name.size());
+  for (std::size_t i = 0; i < name.size(); ++i) to[2 + i] = name[i];  // names are short: no memcpy call
   to[2 + name.size()] = '"';
   to[3 + name.size()] = ':';
   return name.size() + 4;
+}
+
+// Decimal digits of `value` at `to` (room for 20); returns the end.
+char* put_decimal(char* to, std::uint64_t value) {
+  static constexpr char pairs[] =
+      "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+      "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+      "8081828384858687888990919293949596979899";
+  char digits[20];
+  std::size_t n = sizeof digits;  // filled from the end, two digits a step
+  while (value >= 100U) {
+    const auto pair = static_cast<std::size_t>(value % 100U) * 2U;
+    value /= 100U;
+    digits[--n] = pairs[pair + 1U];
+    digits[--n] = pairs[pair];
+  }
+  if (value >= 10U) {
+    const auto pair = static_cast<std::size_t>(value) * 2U;
+    digits[--n] = pairs[pair + 1U];
+    digits[--n] = pairs[pair];
+  } else {
+    digits[--n] = static_cast<char>('0' + value);
+  }
+  for (; n != sizeof digits; ++n) *to++ = digits[n];
+  return to;
 }
 
 }  // namespace
@@ -208,16 +234,19 @@ void event::key(std::string_view name) {
 event& event::number(std::string_view name, std::uint64_t value) {
   char text[104];
   const std::size_t at = put_key(text, name.substr(0, 64));
-  const auto result = std::to_chars(text + at, text + sizeof text, value);
-  put(text, static_cast<std::size_t>(result.ptr - text));
+  put(text, static_cast<std::size_t>(put_decimal(text + at, value) - text));
   return *this;
 }
 
 event& event::signed_number(std::string_view name, std::int64_t value) {
   char text[104];
-  const std::size_t at = put_key(text, name.substr(0, 64));
-  const auto result = std::to_chars(text + at, text + sizeof text, value);
-  put(text, static_cast<std::size_t>(result.ptr - text));
+  std::size_t at = put_key(text, name.substr(0, 64));
+  auto magnitude = static_cast<std::uint64_t>(value);
+  if (value < 0) {
+    text[at++] = '-';
+    magnitude = ~magnitude + 1U;  // two's complement: right for INT64_MIN too
+  }
+  put(text, static_cast<std::size_t>(put_decimal(text + at, magnitude) - text));
   return *this;
 }
 
@@ -227,6 +256,18 @@ event& event::real(std::string_view name, double value) {
   if (!(value == value) || value > 1.7976931348623157e308 || value < -1.7976931348623157e308) {
     put(text, at);
     put("null", 4);
+    return *this;
+  }
+  // A whole number below 10^5 in magnitude: its shortest form is its digits (from 10^5 on, to_chars may
+  // choose 1e+05), written without the general conversion. -0 takes the general path, which keeps its sign.
+  if (value > -1e5 && value < 1e5 && !(value == 0.0 && std::signbit(value)) &&
+      static_cast<double>(static_cast<std::int32_t>(value)) == value) {
+    std::size_t end = at;
+    const auto whole = static_cast<std::int32_t>(value);
+    if (whole < 0) text[end++] = '-';
+    end = static_cast<std::size_t>(
+        put_decimal(text + end, static_cast<std::uint64_t>(whole < 0 ? -static_cast<std::int64_t>(whole) : whole)) - text);
+    put(text, end);
     return *this;
   }
   const auto result = std::to_chars(text + at, text + sizeof text, value);

@@ -167,16 +167,22 @@ class event {
   event& json(std::string_view name, std::string_view value);
 
   /// Raw text (for host::append_json_string, which escapes into the event).
-  void push_back(char c) { put(&c, 1); }
+  void push_back(char c) {
+    if (size_ == sizeof line_) flush_line();
+    line_[size_++] = c;
+  }
   /// Raw text (for host::append_json_string).
   void append(const char* text, std::size_t size) { put(text, size); }
 
  private:
   void key(std::string_view name);
+  void flush_line() {
+    out_.append(line_, size_);
+    size_ = 0;
+  }
   void put(const char* text, std::size_t size) {
     if (size > sizeof line_ - size_) {  // a long field: what is gathered goes first
-      out_.append(line_, size_);
-      size_ = 0;
+      flush_line();
       if (size > sizeof line_) {
         out_.append(text, size);
         return;

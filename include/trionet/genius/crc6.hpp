@@ -109,21 +109,17 @@ struct crc6 {
 /// notation. The default is the Genius CRC, CRC-6/G-704.
 struct crc6_parameters {
   std::uint8_t polynomial = 0x03;  ///< without the x^6 term
-  /// The register before the first bit (non-reflected notation).
-  std::uint8_t initial = 0x00;
-  /// Bytes enter least significant bit first.
-  bool reflect_in = true;
-  /// The register is reflected before the final xor.
-  bool reflect_out = true;
-  /// Xored into the result.
-  std::uint8_t xor_out = 0x00;
+  std::uint8_t initial = 0x00;    ///< the register's value before the first byte
+  bool reflect_in = true;         ///< each byte fed least significant bit first
+  bool reflect_out = true;        ///< the register reflected before the final XOR
+  std::uint8_t xor_out = 0x00;    ///< XORed into the result
 
-  /// True when every parameter is equal.
+  /// Equal when every parameter is.
   friend constexpr bool operator==(const crc6_parameters& a, const crc6_parameters& b) noexcept {
     return a.polynomial == b.polynomial && a.initial == b.initial && a.reflect_in == b.reflect_in &&
            a.reflect_out == b.reflect_out && a.xor_out == b.xor_out;
   }
-  /// True when a parameter differs.
+  /// Not equal when any parameter differs.
   friend constexpr bool operator!=(const crc6_parameters& a, const crc6_parameters& b) noexcept {
     return !(a == b);
   }
@@ -134,13 +130,13 @@ struct crc6_parameters {
 class crc6_runtime {
  public:
   constexpr crc6_runtime() noexcept = default;
-  /// A CRC with these parameters.
+  /// A CRC with these parameters; values above 6 bits are masked.
   constexpr explicit crc6_runtime(const crc6_parameters& parameters) noexcept
       : parameters_{static_cast<std::uint8_t>(parameters.polynomial & 0x3f),
                     static_cast<std::uint8_t>(parameters.initial & 0x3f), parameters.reflect_in,
                     parameters.reflect_out, static_cast<std::uint8_t>(parameters.xor_out & 0x3f)} {}
 
-  /// The parameters it was made with.
+  /// The parameters, as masked to 6 bits.
   [[nodiscard]] constexpr const crc6_parameters& parameters() const noexcept { return parameters_; }
 
   /// The CRC (0..63) of `bytes`: the register in non-reflected order, each byte fed most significant bit

@@ -169,19 +169,16 @@ struct crc16 {
 struct crc16_parameters {
   std::uint16_t polynomial = 0x1021;  ///< without the x^16 term, non-reflected notation
   std::uint16_t initial = 0xFFFF;     ///< non-reflected notation
-  /// Bytes enter least significant bit first.
-  bool reflect_in = false;
-  /// The register is reflected before the final xor.
-  bool reflect_out = false;
-  /// Xored into the result.
-  std::uint16_t xor_out = 0;
+  bool reflect_in = false;            ///< each byte fed least significant bit first
+  bool reflect_out = false;           ///< the register reflected before the final XOR
+  std::uint16_t xor_out = 0;          ///< XORed into the result
 
-  /// True when every parameter is equal.
+  /// Equal when every parameter is.
   friend constexpr bool operator==(const crc16_parameters& a, const crc16_parameters& b) noexcept {
     return a.polynomial == b.polynomial && a.initial == b.initial && a.reflect_in == b.reflect_in &&
            a.reflect_out == b.reflect_out && a.xor_out == b.xor_out;
   }
-  /// True when a parameter differs.
+  /// Not equal when any parameter differs.
   friend constexpr bool operator!=(const crc16_parameters& a, const crc16_parameters& b) noexcept {
     return !(a == b);
   }
@@ -193,7 +190,7 @@ struct crc16_parameters {
 class crc16_runtime {
  public:
   constexpr crc16_runtime() noexcept : crc16_runtime(crc16_parameters{}) {}
-  /// A CRC with these parameters (builds its table).
+  /// A CRC with these parameters; builds the table.
   constexpr explicit crc16_runtime(const crc16_parameters& parameters) noexcept
       : parameters_(parameters),
         initial_(parameters.reflect_in ? reflect16(parameters.initial) : parameters.initial) {
@@ -213,7 +210,7 @@ class crc16_runtime {
     }
   }
 
-  /// The parameters it was made with.
+  /// The parameters it was built with.
   constexpr const crc16_parameters& parameters() const noexcept { return parameters_; }
 
   /// The CRC of a whole buffer.

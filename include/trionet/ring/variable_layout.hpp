@@ -26,10 +26,10 @@ namespace trionet::ring {
 /// The order of a field's 7-bit groups on the wire.
 enum class group_order : std::uint8_t {
   least_significant_first = 0,  ///< the default (docs/protocol.md 1.3)
-  most_significant_first = 1,  ///< the most significant group first
+  most_significant_first = 1,   ///< the most significant group first
 };
 
-/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
+/// The order's name, the enumerator's spelling.
 constexpr const char* to_string(group_order order) noexcept {
   switch (order) {
     case group_order::least_significant_first:
@@ -46,7 +46,7 @@ enum class crc_input : std::uint8_t {
   least_significant_first = 1,  ///< the groups in the default order, whatever order they travel in
 };
 
-/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
+/// The input's name, the enumerator's spelling.
 constexpr const char* to_string(crc_input input) noexcept {
   switch (input) {
     case crc_input::as_sent:
@@ -59,19 +59,16 @@ constexpr const char* to_string(crc_input input) noexcept {
 
 /// The layout choices as values (a profile read at run time). Defaults: docs/protocol.md 1.3.
 struct variable_layout_parameters {
-  /// The order of V0 V1.
-  group_order vr = group_order::least_significant_first;
-  /// The order of X0..X9.
-  group_order value = group_order::least_significant_first;
-  /// Which order of the field bytes the CRC covers.
-  crc_input crc = crc_input::as_sent;
+  group_order vr = group_order::least_significant_first;     ///< order of the VR number's groups (V0 V1)
+  group_order value = group_order::least_significant_first;  ///< order of the value's groups (X0..X9)
+  crc_input crc = crc_input::as_sent;                        ///< which order of the field bytes the CRC covers
 
-  /// True when every choice is equal.
+  /// Equal when every choice is.
   friend constexpr bool operator==(const variable_layout_parameters& a,
                                    const variable_layout_parameters& b) noexcept {
     return a.vr == b.vr && a.value == b.value && a.crc == b.crc;
   }
-  /// True when a choice differs.
+  /// Not equal when any choice differs.
   friend constexpr bool operator!=(const variable_layout_parameters& a,
                                    const variable_layout_parameters& b) noexcept {
     return !(a == b);
@@ -152,7 +149,7 @@ template <group_order VrOrder = group_order::least_significant_first,
 struct variable_layout {
   /// The same choices as values.
   static constexpr variable_layout_parameters parameters{VrOrder, ValueOrder, CrcInput};
-  /// True when both fields travel in the default order (the fastest code).
+  /// True when both fields travel in the default order (no groups to swap).
   static constexpr bool default_order =
       VrOrder == group_order::least_significant_first && ValueOrder == group_order::least_significant_first;
   /// Index of the group whose bits 6..1 must be zero (X9 by default).
