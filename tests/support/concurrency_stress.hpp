@@ -399,6 +399,14 @@ inline report run_motion_coordinator(const config& cfg) {
   c.expect(links.messages_forwarded == (forwarded_expected.size() & 0xFFFFu), "forwarded messages miscounted");
   c.expect(links.messages_sent == (own_expected.size() & 0xFFFFu), "own messages sent miscounted");
   c.expect(links.forwards_failed() == 0, "a forwarded message was lost");
+  // Every message fed is counted once: forwarded, taken as characters, dropped whole, written to VR(), or an
+  // error (the 2^16 traffic counters taken modulo 2^16).
+  const std::uint64_t accounted = std::uint64_t{links.messages_forwarded} + counters.character_messages +
+                                  counters.receive_overflows + counters.variables_written + counters.crc_errors +
+                                  counters.frame_errors;
+  c.expect((accounted & 0xFFFFu) == (rep.messages_in & 0xFFFFu),
+           "messages fed " + std::to_string(rep.messages_in) + " are not forwarded + characters + overflows + "
+           "variables + errors (modulo 2^16: " + std::to_string(accounted & 0xFFFFu) + ")");
   for (std::size_t k = 0; k < 4; ++k) c.expect(vr[k] == last_network[k], "VR(0..3) is not the last network write");
   for (std::size_t k = 4; k < 8; ++k) c.expect(vr[k] == 0 || is_whole(vr[k]), "VR(4..7) is half-written");
   for (std::size_t k = 8; k < 12; ++k) c.expect(vr[k] == program_value[k], "VR(8..11) lost the program's write");
@@ -497,6 +505,8 @@ inline report run_keypad(const config& cfg) {
   std::uint64_t sent = 0, lost = 0, program_calls = 0;
   std::thread program([&] {
     std::mt19937_64 rng(cfg.seed * 104729 + 3);
+    ring::keypad_counters counters_before{};
+    ring::link_counters links_before{};
     h.start();
     while (!h.fed.load(std::memory_order_acquire)) {
       ++program_calls;
@@ -508,6 +518,17 @@ inline report run_keypad(const config& cfg) {
       const std::uint8_t mode = keypad.mode();
       program_checks.expect(mode == ring::keypad_mode_key_on || mode == ring::keypad_mode_key_on_off,
                             "keypad mode read as neither 0 nor 127");
+      if (rng() % 8 == 0) {  // counters and NETSTAT while the link side runs
+        const ring::keypad_counters now = keypad.counters();
+        const ring::link_counters links = keypad.forwarding_counters();
+        program_checks.expect(grew_or_same(now, counters_before), "a keypad counter went back");
+        program_checks.expect(grew_or_same(links, links_before), "a forwarding counter went back");
+        counters_before = now;
+        links_before = links;
+        program_checks.expect((keypad.netstat() & ~ring::netstat_tx_timeout) == 0,
+                              "NETSTAT shows a bit the traffic cannot raise");
+        if ((rng() & 1) != 0) keypad.clear_netstat();
+      }
       const ring::key_status s = press ? keypad.press(k) : keypad.release(k);
       switch (s) {
         case ring::key_status::ok: {
@@ -544,7 +565,12 @@ inline report run_keypad(const config& cfg) {
   c.expect(counters.keys_lost == lost, "keys lost miscounted");
   c.expect(counters.display_messages == display_fed, "display messages miscounted");
   c.expect(counters.frame_errors == 0 && counters.crc_errors == 0, "a frame or CRC error out of nothing");
-  c.expect(keypad.forwarding_counters().forwards_failed() == 0, "a forwarded message was lost");
+  c.expect(counters.variables_ignored == 0 && counters.dropped_in_local_mode == 0,
+           "a message for another node counted as the keypad's");
+  const ring::link_counters links = keypad.forwarding_counters();
+  c.expect(links.forwards_failed() == 0, "a forwarded message was lost");
+  c.expect(links.messages_forwarded == (forwarded_expected.size() & 0xFFFFu), "forwarded messages miscounted");
+  c.expect(links.messages_sent == (sent & 0xFFFFu), "key messages sent miscounted");
   rep.link_calls = link_calls;
   rep.program_calls = program_calls;
   rep.frames_out = frames.size();
