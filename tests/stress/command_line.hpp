@@ -1,9 +1,11 @@
 // The command line of the two-thread stress programs (tests/support/concurrency_stress.hpp):
 //
-//   <program> [--steps N] [--seed S] [--node mc|keypad|can|all]
+//   <program> [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]
 //
-// N is the link side's steps per node (one received byte and one transmitted byte at most each; default
-// 2000000). Prints what each run did; returns 1 if any check failed, 2 on a bad command line.
+// N is the link side's steps per node (default 2000000): with `--link uart` (the default) one received byte
+// and one transmitted byte at most each, as a UART interrupt; with `--link dma` the ring nodes' link side
+// takes runs of 1..8 bytes in bulk (receive and transmit, or relay), as a DMA-fed UART. Prints what each run
+// did; returns 1 if any check failed, 2 on a bad command line.
 #pragma once
 
 #include <cstdio>
@@ -26,13 +28,17 @@ inline int command_line(const char* program, int argc, char** argv) {
       cfg.seed = std::strtoull(argv[i + 1], nullptr, 10);
     } else if (std::strcmp(argv[i], "--node") == 0) {
       which = argv[i + 1];
+    } else if (std::strcmp(argv[i], "--link") == 0 &&
+               (std::strcmp(argv[i + 1], "uart") == 0 || std::strcmp(argv[i + 1], "dma") == 0)) {
+      cfg.dma = std::strcmp(argv[i + 1], "dma") == 0;
     } else {
       argc = 0;
       break;
     }
   }
   if (argc % 2 == 0 || (which != "all" && which != "mc" && which != "keypad" && which != "can")) {
-    std::fprintf(stderr, "usage: %s [--steps N] [--seed S] [--node mc|keypad|can|all]\n", program);
+    std::fprintf(stderr, "usage: %s [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]\n",
+                 program);
     return 2;
   }
   bool ok = true;
