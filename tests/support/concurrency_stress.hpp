@@ -195,6 +195,17 @@ void link_step(Node& node, const config& cfg, std::mt19937_64& rng, const std::v
   out.insert(out.end(), buffer, buffer + sent);
 }
 
+/// Program side: a ring node's counters and forwarding counters now; none went back since `before`.
+template <class Node, class Counters>
+void check_counters_grow(const Node& node, Counters& before, ring::link_counters& links_before, checks& c) {
+  const Counters now = node.counters();
+  const ring::link_counters links = node.forwarding_counters();
+  c.expect(grew_or_same(now, before), "a counter went back");
+  c.expect(grew_or_same(links, links_before), "a forwarding counter went back");
+  before = now;
+  links_before = links;
+}
+
 /// How the two threads start together and end (the test's own synchronisation, not the node's).
 struct handshake {
   std::atomic<int> started{0};             // both threads wait for each other before their first call
@@ -377,12 +388,7 @@ report run_motion_coordinator(const config& cfg) {
                               "NETSTAT shows a bit the traffic cannot raise (no forwarded message is lost)");
         if ((rng() & 1) != 0) mc.clear_netstat();
       } else {
-        const ring::motion_coordinator_counters now = mc.counters();
-        const ring::link_counters links = mc.forwarding_counters();
-        program_checks.expect(grew_or_same(now, counters_before), "a counter went back");
-        program_checks.expect(grew_or_same(links, links_before), "a forwarding counter went back");
-        counters_before = now;
-        links_before = links;
+        check_counters_grow(mc, counters_before, links_before, program_checks);
       }
     }
     // Everything is fed: read the rest, and wait until the own frames have gone to the link side.
@@ -557,12 +563,7 @@ inline report run_keypad(const config& cfg) {
       program_checks.expect(mode == ring::keypad_mode_key_on || mode == ring::keypad_mode_key_on_off,
                             "keypad mode read as neither 0 nor 127");
       if (rng() % 8 == 0) {  // counters and NETSTAT while the link side runs
-        const ring::keypad_counters now = keypad.counters();
-        const ring::link_counters links = keypad.forwarding_counters();
-        program_checks.expect(grew_or_same(now, counters_before), "a keypad counter went back");
-        program_checks.expect(grew_or_same(links, links_before), "a forwarding counter went back");
-        counters_before = now;
-        links_before = links;
+        check_counters_grow(keypad, counters_before, links_before, program_checks);
         program_checks.expect((keypad.netstat() & ~ring::netstat_tx_timeout) == 0,
                               "NETSTAT shows a bit the traffic cannot raise");
         if ((rng() & 1) != 0) keypad.clear_netstat();
