@@ -31,3 +31,19 @@ TEST(RingConcurrency, KeypadLinkInterruptAndKeyScan) {
   const trionet::stress::report r = trionet::stress::run_keypad(cfg);
   expect_passed(r);
 }
+
+// The link side in bulk, as a DMA-fed UART: runs of bytes received and transmitted at once, or relayed.
+TEST(RingConcurrency, MotionCoordinatorDmaLinkAndProgramThread) {
+  trionet::stress::config cfg;
+  cfg.link_steps = 100000;
+  cfg.dma = true;
+  expect_passed(trionet::stress::run_motion_coordinator(cfg));
+}
+
+TEST(RingConcurrency, KeypadDmaLinkAndKeyScan) {
+  trionet::stress::config cfg;
+  cfg.link_steps = 100000;
+  cfg.seed = 2;
+  cfg.dma = true;
+  expect_passed(trionet::stress::run_keypad(cfg));
+}

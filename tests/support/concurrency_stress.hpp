@@ -38,6 +38,7 @@ namespace trionet::stress {
 struct config {
   std::uint64_t link_steps = 200000;
   std::uint64_t seed = 1;
+  bool dma = false;  ///< the ring nodes' link side in bulk (a DMA-fed UART) instead of a byte at a time
 };
 
 /// What a run did, and every failed check (empty: it passed).
@@ -159,6 +160,52 @@ bool grew_or_same(const Counters& now, const Counters& before) {
   return true;
 }
 
+/// One step of a ring node's link side: a byte in (unless the line is quiet) and a byte out, as a UART
+/// interrupt does; or, with `config::dma`, a run of 1..8 bytes in and room for as many out, as a DMA-fed UART
+/// does (receive then transmit in bulk, or relay).
+template <class Node>
+void link_step(Node& node, const config& cfg, std::mt19937_64& rng, const std::vector<std::uint8_t>& current,
+               std::size_t& at, bool quiet, std::vector<std::uint8_t>& out, std::uint64_t& calls) {
+  if (!cfg.dma) {
+    if (!quiet && at < current.size()) {
+      node.receive(current[at++]);
+      ++calls;
+    }
+    std::uint8_t b = 0;
+    ++calls;
+    if (node.transmit(b)) out.push_back(b);
+    return;
+  }
+  const std::size_t room = 1 + rng() % 8;
+  std::uint8_t buffer[8];
+  const std::size_t in = quiet ? 0 : std::min(room, current.size() - at);
+  std::size_t sent = 0;
+  if (in != 0 && (rng() & 1) != 0) {
+    sent = node.relay(byte_view(current.data() + at, in), byte_buffer(buffer, room));
+    ++calls;
+  } else {
+    if (in != 0) {
+      node.receive(byte_view(current.data() + at, in));
+      ++calls;
+    }
+    sent = node.transmit(byte_buffer(buffer, room));
+    ++calls;
+  }
+  at += in;
+  out.insert(out.end(), buffer, buffer + sent);
+}
+
+/// Program side: a ring node's counters and forwarding counters now; none went back since `before`.
+template <class Node, class Counters>
+void check_counters_grow(const Node& node, Counters& before, ring::link_counters& links_before, checks& c) {
+  const Counters now = node.counters();
+  const ring::link_counters links = node.forwarding_counters();
+  c.expect(grew_or_same(now, before), "a counter went back");
+  c.expect(grew_or_same(links, links_before), "a forwarding counter went back");
+  before = now;
+  links_before = links;
+}
+
 /// How the two threads start together and end (the test's own synchronisation, not the node's).
 struct handshake {
   std::atomic<int> started{0};             // both threads wait for each other before their first call
@@ -183,12 +230,12 @@ struct handshake {
 
 // ---- the Motion Coordinator ----
 
-/// One Motion Coordinator (default capacities) with a Q32.32 VR table: forwarded messages (A = 3 and 4),
-/// messages for it (characters, variables, a CRC error, a frame error) and idle gaps come in; the program
-/// PRINTs, SENDs (address 10: A = 1 on the wire), reads characters, VRs, NETSTAT and counters.
-inline report run_motion_coordinator(const config& cfg) {
-  using namespace detail;
-  using mc_type = ring::motion_coordinator<>;
+namespace detail {
+/// A Motion Coordinator with a Q32.32 VR table: forwarded messages (A = 3 and 4), messages for it
+/// (characters, variables, a CRC error, a frame error) and idle gaps come in; the program PRINTs, SENDs
+/// (address 10: A = 1 on the wire), reads characters, VRs, NETSTAT and counters.
+template <class mc_type>
+report run_motion_coordinator(const config& cfg) {
   constexpr std::size_t vr_count = 16;
   vr_table<vr_count, std::int64_t> vr;
   mc_type mc(vr);
@@ -253,13 +300,9 @@ inline report run_motion_coordinator(const config& cfg) {
           ++link_calls;
         }
       }
-      if (gap != 0) {
-        --gap;
-      } else if (at < current.size()) {
-        mc.receive(current[at++]);
-        ++link_calls;
-      }
-      transmit();
+      const bool quiet = gap != 0;
+      if (quiet) --gap;
+      link_step(mc, cfg, rng, current, at, quiet, out, link_calls);
       ++rep.link_steps;
       if ((step & 255) == 255) std::this_thread::yield();  // lets the program thread run on a busy machine
     }
@@ -345,12 +388,7 @@ inline report run_motion_coordinator(const config& cfg) {
                               "NETSTAT shows a bit the traffic cannot raise (no forwarded message is lost)");
         if ((rng() & 1) != 0) mc.clear_netstat();
       } else {
-        const ring::motion_coordinator_counters now = mc.counters();
-        const ring::link_counters links = mc.forwarding_counters();
-        program_checks.expect(grew_or_same(now, counters_before), "a counter went back");
-        program_checks.expect(grew_or_same(links, links_before), "a forwarding counter went back");
-        counters_before = now;
-        links_before = links;
+        check_counters_grow(mc, counters_before, links_before, program_checks);
       }
     }
     // Everything is fed: read the rest, and wait until the own frames have gone to the link side.
@@ -399,6 +437,14 @@ inline report run_motion_coordinator(const config& cfg) {
   c.expect(links.messages_forwarded == (forwarded_expected.size() & 0xFFFFu), "forwarded messages miscounted");
   c.expect(links.messages_sent == (own_expected.size() & 0xFFFFu), "own messages sent miscounted");
   c.expect(links.forwards_failed() == 0, "a forwarded message was lost");
+  // Every message fed is counted once: forwarded, taken as characters, dropped whole, written to VR(), or an
+  // error (the 2^16 traffic counters taken modulo 2^16).
+  const std::uint64_t accounted = std::uint64_t{links.messages_forwarded} + counters.character_messages +
+                                  counters.receive_overflows + counters.variables_written + counters.crc_errors +
+                                  counters.frame_errors;
+  c.expect((accounted & 0xFFFFu) == (rep.messages_in & 0xFFFFu),
+           "messages fed " + std::to_string(rep.messages_in) + " are not forwarded + characters + overflows + "
+           "variables + errors (modulo 2^16: " + std::to_string(accounted & 0xFFFFu) + ")");
   for (std::size_t k = 0; k < 4; ++k) c.expect(vr[k] == last_network[k], "VR(0..3) is not the last network write");
   for (std::size_t k = 4; k < 8; ++k) c.expect(vr[k] == 0 || is_whole(vr[k]), "VR(4..7) is half-written");
   for (std::size_t k = 8; k < 12; ++k) c.expect(vr[k] == program_value[k], "VR(8..11) lost the program's write");
@@ -419,6 +465,16 @@ inline report run_motion_coordinator(const config& cfg) {
     for (auto& f : each->failures) rep.failures.push_back("motion coordinator: " + f);
   }
   return rep;
+}
+
+}  // namespace detail
+
+/// The Motion Coordinator's run (see detail::run_motion_coordinator): default capacities with a UART link
+/// side. A DMA-fed link side receives a run of bytes before it transmits, so by the capacity rule of
+/// ring/link.hpp its forward buffer holds a longest own frame plus a run: 16 + 8 bytes, own frames of 16.
+inline report run_motion_coordinator(const config& cfg) {
+  if (cfg.dma) return detail::run_motion_coordinator<ring::motion_coordinator<256, 24, 16>>(cfg);
+  return detail::run_motion_coordinator<ring::motion_coordinator<>>(cfg);
 }
 
 // ---- the keypad ----
@@ -472,13 +528,9 @@ inline report run_keypad(const config& cfg) {
           ++link_calls;
         }
       }
-      if (gap != 0) {
-        --gap;
-      } else if (at < current.size()) {
-        keypad.receive(current[at++]);
-        ++link_calls;
-      }
-      transmit();
+      const bool quiet = gap != 0;
+      if (quiet) --gap;
+      link_step(keypad, cfg, rng, current, at, quiet, out, link_calls);
       ++rep.link_steps;
       if ((step & 255) == 255) std::this_thread::yield();
     }
@@ -497,6 +549,8 @@ inline report run_keypad(const config& cfg) {
   std::uint64_t sent = 0, lost = 0, program_calls = 0;
   std::thread program([&] {
     std::mt19937_64 rng(cfg.seed * 104729 + 3);
+    ring::keypad_counters counters_before{};
+    ring::link_counters links_before{};
     h.start();
     while (!h.fed.load(std::memory_order_acquire)) {
       ++program_calls;
@@ -508,6 +562,12 @@ inline report run_keypad(const config& cfg) {
       const std::uint8_t mode = keypad.mode();
       program_checks.expect(mode == ring::keypad_mode_key_on || mode == ring::keypad_mode_key_on_off,
                             "keypad mode read as neither 0 nor 127");
+      if (rng() % 8 == 0) {  // counters and NETSTAT while the link side runs
+        check_counters_grow(keypad, counters_before, links_before, program_checks);
+        program_checks.expect((keypad.netstat() & ~ring::netstat_tx_timeout) == 0,
+                              "NETSTAT shows a bit the traffic cannot raise");
+        if ((rng() & 1) != 0) keypad.clear_netstat();
+      }
       const ring::key_status s = press ? keypad.press(k) : keypad.release(k);
       switch (s) {
         case ring::key_status::ok: {
@@ -544,7 +604,12 @@ inline report run_keypad(const config& cfg) {
   c.expect(counters.keys_lost == lost, "keys lost miscounted");
   c.expect(counters.display_messages == display_fed, "display messages miscounted");
   c.expect(counters.frame_errors == 0 && counters.crc_errors == 0, "a frame or CRC error out of nothing");
-  c.expect(keypad.forwarding_counters().forwards_failed() == 0, "a forwarded message was lost");
+  c.expect(counters.variables_ignored == 0 && counters.dropped_in_local_mode == 0,
+           "a message for another node counted as the keypad's");
+  const ring::link_counters links = keypad.forwarding_counters();
+  c.expect(links.forwards_failed() == 0, "a forwarded message was lost");
+  c.expect(links.messages_forwarded == (forwarded_expected.size() & 0xFFFFu), "forwarded messages miscounted");
+  c.expect(links.messages_sent == (sent & 0xFFFFu), "key messages sent miscounted");
   rep.link_calls = link_calls;
   rep.program_calls = program_calls;
   rep.frames_out = frames.size();
@@ -557,70 +622,114 @@ inline report run_keypad(const config& cfg) {
 
 // ---- the CAN VR exchange node ----
 
-/// Node 1 of 5 with a Q32.32 VR table: the receive thread (the CAN receive ISR) takes frames from nodes 2..5
-/// (VR writes), foreign and malformed frames; the program sends VRs to node 2, reads VRs and counters and
-/// clears them now and then (then stops clearing, so that the last counts can be checked exactly).
+/// Node 1 of 5 with a Q32.32 VR table of 16: the receive thread (the CAN receive ISR) takes frames from nodes
+/// 2..5 (VR writes in each VR's order, writes past the table, values the table cannot hold), foreign frames and
+/// every kind of malformed frame; the program sends VRs to node 2, reads VRs, writes its own VRs, reads
+/// counters and clears them now and then (then stops clearing, so that the last counts can be bounded).
 inline report run_can(const config& cfg) {
   using namespace detail;
-  vr_table<16, std::int64_t> vr;
-  struct recording_port final : can::port {
+  constexpr std::size_t vr_count = 16;
+  vr_table<vr_count, std::int64_t> vr;
+  // The port checks each frame as the program's send hands it over (node 1 to node 2: identifier 20,
+  // docs/protocol.md 2.1): one frame per send, the message asked for.
+  struct checking_port final : can::port {
     can::transmit_status send(const can::frame& f) noexcept override {
-      sent.push_back(f);
+      can::frame want;
+      want.id = 20;
+      want.dlc = 8;
+      if (expected != nullptr) (void)can::encode_vr_message(*expected, want.data);
+      if (expected == nullptr || f.id != want.id || f.dlc != 8 || std::memcmp(f.data, want.data, 8) != 0) {
+        ++wrong;
+      }
+      expected = nullptr;
+      ++sent;
       return can::transmit_status::ok;
     }
-    std::vector<can::frame> sent;
+    const can::vr_message* expected = nullptr;
+    std::uint64_t sent = 0;
+    std::uint64_t wrong = 0;
   } port;
   can::vr_exchange_node node(can::make_node_address(5, 1).address, port, vr);
   handshake h;
   report rep;
-  // Frames the receive side fed in all, and after it saw that the program's last clear was over (those are
-  // certainly in the last counts; one fed while the clear ran may be too).
-  std::uint64_t written = 0, foreign = 0, bad_dlc = 0;
-  std::uint64_t written_after = 0, foreign_after = 0, bad_dlc_after = 0;
+  // What the receive side fed, by the count it must land in: in all, and after it saw that the program's last
+  // clear was over (those are certainly in the last counts; one fed while the clear ran may be too). The
+  // program clears the counts at random until the receive side is half way.
+  enum kind { written, out_of_range, value_out_of_range, foreign, bad_dlc, bad_sign, bad_fraction, kinds };
+  std::uint64_t fed[kinds] = {}, fed_after[kinds] = {};
+  std::atomic<bool> half_way{false};
   std::atomic<bool> clearing_over{false};
 
-  // A CAN value: integer part n, fraction n mod 10000 (Q32.32 after the table's conversion).
-  const auto can_value = [](std::uint32_t s) {
+  // A CAN value whose parts belong together: integer part n, fraction n mod 10000 (Q32.32 in the table).
+  const auto can_value = [](std::uint8_t k, std::uint32_t n) {
     can::vr_message m;
-    m.value.integer_part = s & 0x3FFFFu;
-    m.value.fraction = static_cast<std::uint16_t>((s & 0x3FFFFu) % 10000u);
+    m.vr = k;
+    m.value.integer_part = n;
+    m.value.fraction = static_cast<std::uint16_t>(n % 10000u);
     return m;
   };
   const auto consistent = [](std::int64_t v) {
     const decimal d = q32_to_decimal(v);
     return d.fraction == d.integer_part % 10000u;
   };
+  // A frame of each kind from node 2..5 to node 1 (receive identifiers 10..13, docs/protocol.md 2.1).
+  const auto make = [&](kind what, std::mt19937_64& rng, std::uint32_t serial) {
+    can::frame f;
+    f.id = 10u + static_cast<std::uint32_t>(rng() % 4);
+    f.dlc = 8;
+    const auto k = static_cast<std::uint8_t>(serial % 8);
+    switch (what) {
+      case written:
+        (void)can::encode_vr_message(can_value(k, serial / 8 + 1), f.data);
+        break;
+      case out_of_range:
+        (void)can::encode_vr_message(can_value(static_cast<std::uint8_t>(vr_count + rng() % 200), 1), f.data);
+        break;
+      case value_out_of_range:  // 2^31 and more: not Q32.32
+        (void)can::encode_vr_message(can_value(k, 0x80000000u + static_cast<std::uint32_t>(rng() % 1000)), f.data);
+        break;
+      case foreign:
+        f.id = (rng() & 1) != 0 ? 14u + static_cast<std::uint32_t>(rng() % 2000)
+                                : (10u | can::frame::extended_flag);
+        break;
+      case bad_dlc:
+        f.dlc = static_cast<std::uint8_t>(rng() % 8);
+        break;
+      case bad_sign:
+        (void)can::encode_vr_message(can_value(k, 1), f.data);
+        f.data[1] = static_cast<std::uint8_t>(2 + rng() % 254);
+        break;
+      case bad_fraction:
+        (void)can::encode_vr_message(can_value(k, 1), f.data);
+        f.data[6] = static_cast<std::uint8_t>(0x27 + rng() % (0x100 - 0x27));  // 0x2710 = 10000 and above
+        f.data[7] = 0x10;
+        break;
+      case kinds:
+        break;
+    }
+    return f;
+  };
 
+  std::uint64_t network_serial = 0;
   std::thread receiver([&] {
     std::mt19937_64 rng(cfg.seed);
-    std::uint32_t serial[8] = {};
     h.start();
     for (std::uint64_t step = 0; step < cfg.link_steps; ++step) {
-      can::frame f;
-      const unsigned pick = static_cast<unsigned>(rng() % 10);
+      const unsigned pick = static_cast<unsigned>(rng() % 100);
+      const kind what = pick < 60   ? written
+                        : pick < 65 ? out_of_range
+                        : pick < 68 ? value_out_of_range
+                        : pick < 80 ? foreign
+                        : pick < 88 ? bad_dlc
+                        : pick < 94 ? bad_sign
+                                    : bad_fraction;
       const bool after = clearing_over.load(std::memory_order_acquire);
-      if (pick < 7) {
-        const auto k = static_cast<std::uint8_t>(rng() % 8);
-        can::vr_message m = can_value(++serial[k] * 7u);
-        m.vr = k;
-        f.id = 10u + static_cast<std::uint32_t>(rng() % 4);  // from nodes 2..5 to node 1
-        f.dlc = 8;
-        (void)can::encode_vr_message(m, f.data);
-        ++written;
-        if (after) ++written_after;
-      } else if (pick < 9) {
-        f.id = 999;
-        f.dlc = 8;
-        ++foreign;
-        if (after) ++foreign_after;
-      } else {
-        f.id = 11;
-        f.dlc = 7;
-        ++bad_dlc;
-        if (after) ++bad_dlc_after;
-      }
+      const can::frame f = make(what, rng, what == written ? static_cast<std::uint32_t>(network_serial++) : 0u);
+      ++fed[what];
+      if (after) ++fed_after[what];
       (void)node.receive(f);
       ++rep.link_steps;
+      if (step == cfg.link_steps / 2) half_way.store(true, std::memory_order_relaxed);
       if ((step & 255) == 255) std::this_thread::yield();
       if (step + 1 == cfg.link_steps && !clearing_over.load(std::memory_order_acquire)) --step;  // until then
     }
@@ -629,23 +738,36 @@ inline report run_can(const config& cfg) {
 
   checks program_checks;
   std::uint64_t program_calls = 0, sends = 0, sends_counted = 0;
+  std::int64_t program_value[vr_count] = {};
   std::thread program([&] {
     std::mt19937_64 rng(cfg.seed * 31 + 7);
     can::node_counters before{};
-    std::uint64_t calls = 0;
+    std::uint32_t last_seen[8] = {};
+    std::uint32_t serial = 0;
     h.start();
     while (!h.fed.load(std::memory_order_acquire)) {
       ++program_calls;
       const unsigned pick = static_cast<unsigned>(rng() % 10);
       if (pick < 3) {
-        can::vr_message m = can_value(static_cast<std::uint32_t>(rng()));
-        m.vr = static_cast<std::uint8_t>(rng() % 16);
+        const can::vr_message m =
+            can_value(static_cast<std::uint8_t>(rng() % vr_count), static_cast<std::uint32_t>(rng() % 100000));
+        port.expected = &m;
         program_checks.expect(node.send_to_node(2, m) == can::send_status::ok, "send_to_node failed");
+        program_checks.expect(port.expected == nullptr, "send_to_node sent no frame");
         ++sends;
         if (clearing_over.load(std::memory_order_relaxed)) ++sends_counted;
-      } else if (pick < 7) {
+      } else if (pick < 5) {  // VR(0..7): only the network writes them, each in increasing order
         const std::size_t k = rng() % 8;
-        program_checks.expect(consistent(vr[k]), "a VR written from CAN read half-written");
+        const std::int64_t v = vr[k];
+        program_checks.expect(consistent(v), "a VR written from CAN read half-written");
+        const std::uint32_t n = q32_to_decimal(v).integer_part;
+        program_checks.expect(n >= last_seen[k], "a VR written from CAN went back");
+        last_seen[k] = n;
+      } else if (pick < 7) {  // VR(8..15): only the program writes them, while the network writes the others
+        const std::size_t k = 8 + rng() % 8;
+        program_checks.expect(vr[k] == program_value[k], "a VR written by the program reads back wrong");
+        program_value[k] = whole_value(++serial);
+        vr[k] = program_value[k];
       } else {
         const can::node_counters now = node.counters();
         program_checks.expect(grew_or_same(now, before), "a CAN counter went back between clears");
@@ -655,7 +777,8 @@ inline report run_can(const config& cfg) {
           before = can::node_counters{};
         }
       }
-      if (++calls == 2000) {  // the last clear: from here on the counts only grow
+      if (!clearing_over.load(std::memory_order_relaxed) && half_way.load(std::memory_order_relaxed)) {
+        // The last clear: from here on the counts only grow.
         node.clear_counters();
         before = can::node_counters{};
         clearing_over.store(true, std::memory_order_release);
@@ -667,19 +790,53 @@ inline report run_can(const config& cfg) {
   program.join();
 
   checks c;
+  c.expect(port.sent == sends && port.wrong == 0, "frames sent " + std::to_string(port.sent) + " for " +
+                                                       std::to_string(sends) + " sends, " +
+                                                       std::to_string(port.wrong) + " not the message asked for");
+  // The counts since the last clear: at least what was fed after it, at most what was fed in all.
   const can::node_counters counters = node.counters();
-  c.expect(port.sent.size() == sends, "the port did not get every frame sent");
-  c.expect(counters.sent == sends_counted, "frames sent since the last clear miscounted");
   c.expect(clearing_over.load(), "the run ended before the last clear");
-  c.expect(counters.written >= written_after && counters.written <= written, "VR writes since the last clear miscounted");
-  c.expect(counters.foreign >= foreign_after && counters.foreign <= foreign, "foreign frames miscounted");
-  c.expect(counters.bad_dlc >= bad_dlc_after && counters.bad_dlc <= bad_dlc, "malformed frames miscounted");
-  for (std::size_t k = 0; k < 8; ++k) c.expect(consistent(vr[k]), "a VR is half-written at the end");
+  c.expect(counters.sent == sends_counted, "frames sent since the last clear miscounted");
+  const std::uint32_t counted[kinds] = {counters.written,  counters.out_of_range, counters.value_out_of_range,
+                                        counters.foreign,  counters.bad_dlc,      counters.bad_sign,
+                                        counters.bad_fraction};
+  static const char* const names[kinds] = {"written", "out_of_range", "value_out_of_range", "foreign",
+                                           "bad_dlc", "bad_sign",     "bad_fraction"};
+  for (int i = 0; i < kinds; ++i) {
+    c.expect(counted[i] >= fed_after[i] && counted[i] <= fed[i],
+             std::string("counter ") + names[i] + " " + std::to_string(counted[i]) + " outside " +
+                 std::to_string(fed_after[i]) + ".." + std::to_string(fed[i]));
+  }
+  c.expect(counters.refused == 0 && counters.send_busy == 0 && counters.send_failed == 0, "a count out of nothing");
+  // The VRs: each network one holds its last write, each program one the program's last.
+  std::uint32_t last_written[8] = {};
+  for (std::uint64_t s = 0; s < network_serial; ++s) last_written[s % 8] = static_cast<std::uint32_t>(s / 8 + 1);
+  for (std::size_t k = 0; k < 8; ++k) {
+    c.expect(q32_to_decimal(vr[k]).integer_part == last_written[k] && consistent(vr[k]), "a VR lost its last write");
+  }
+  for (std::size_t k = 8; k < vr_count; ++k) c.expect(vr[k] == program_value[k], "a VR lost the program's write");
+  // Both sides quiet: cleared, then a known number of each kind gives exactly those counts.
   node.clear_counters();
   const can::node_counters zero = node.counters();
-  c.expect(zero.written == 0 && zero.sent == 0 && zero.foreign == 0, "clear_counters left a count");
+  c.expect(zero.written == 0 && zero.sent == 0 && zero.foreign == 0 && zero.malformed() == 0,
+           "clear_counters left a count");
+  std::mt19937_64 rng(cfg.seed + 1);
+  for (int i = 0; i < kinds; ++i) {
+    for (int n = 0; n <= i; ++n) (void)node.receive(make(static_cast<kind>(i), rng, static_cast<std::uint32_t>(n)));
+  }
+  const can::node_counters known = node.counters();
+  const std::uint32_t got[kinds] = {known.written, known.out_of_range, known.value_out_of_range, known.foreign,
+                                    known.bad_dlc, known.bad_sign,     known.bad_fraction};
+  for (int i = 0; i < kinds; ++i) {
+    c.expect(got[i] == static_cast<std::uint32_t>(i + 1), std::string("counter ") + names[i] + " after a clear");
+  }
   rep.link_calls = rep.link_steps;
   rep.program_calls = program_calls;
+  std::uint64_t in = 0;
+  for (std::uint64_t n : fed) in += n;
+  rep.messages_in = in;
+  rep.frames_out = port.sent;
+  rep.own_frames = port.sent;
   for (checks* each : {&program_checks, &c}) {
     for (auto& f : each->failures) rep.failures.push_back("CAN node: " + f);
   }

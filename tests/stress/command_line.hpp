@@ -1,0 +1,63 @@
+// The command line of the two-thread stress programs (tests/support/concurrency_stress.hpp):
+//
+//   <program> [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]
+//
+// N is the link side's steps per node (default 2000000): with `--link uart` (the default) one received byte
+// and one transmitted byte at most each, as a UART interrupt; with `--link dma` the ring nodes' link side
+// takes runs of 1..8 bytes in bulk (receive and transmit, or relay), as a DMA-fed UART. Prints what each run
+// did; returns 1 if any check failed, 2 on a bad command line.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "support/concurrency_stress.hpp"
+
+namespace trionet::stress {
+
+inline int command_line(const char* program, int argc, char** argv) {
+  config cfg;
+  cfg.link_steps = 2000000;
+  std::string which = "all";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--steps") == 0) {
+      cfg.link_steps = std::strtoull(argv[i + 1], nullptr, 10);
+    } else if (std::strcmp(argv[i], "--seed") == 0) {
+      cfg.seed = std::strtoull(argv[i + 1], nullptr, 10);
+    } else if (std::strcmp(argv[i], "--node") == 0) {
+      which = argv[i + 1];
+    } else if (std::strcmp(argv[i], "--link") == 0 &&
+               (std::strcmp(argv[i + 1], "uart") == 0 || std::strcmp(argv[i + 1], "dma") == 0)) {
+      cfg.dma = std::strcmp(argv[i + 1], "dma") == 0;
+    } else {
+      argc = 0;
+      break;
+    }
+  }
+  if (argc % 2 == 0 || (which != "all" && which != "mc" && which != "keypad" && which != "can")) {
+    std::fprintf(stderr, "usage: %s [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]\n",
+                 program);
+    return 2;
+  }
+  bool ok = true;
+  const auto show = [&](const char* name, const report& r) {
+    std::printf("%-18s link side: %llu steps, %llu calls; program side: %llu calls; %llu messages in, %llu frames "
+                "out (%llu own), %llu dropped whole (counted): %s\n",
+                name, static_cast<unsigned long long>(r.link_steps), static_cast<unsigned long long>(r.link_calls),
+                static_cast<unsigned long long>(r.program_calls), static_cast<unsigned long long>(r.messages_in),
+                static_cast<unsigned long long>(r.frames_out), static_cast<unsigned long long>(r.own_frames),
+                static_cast<unsigned long long>(r.dropped_whole), r.ok() ? "ok" : "FAILED");
+    for (const std::string& f : r.failures) std::printf("  FAIL %s\n", f.c_str());
+    ok = ok && r.ok();
+    std::fflush(stdout);
+  };
+  if (which == "all" || which == "mc") show("motion coordinator", run_motion_coordinator(cfg));
+  if (which == "all" || which == "keypad") show("keypad", run_keypad(cfg));
+  if (which == "all" || which == "can") show("CAN node", run_can(cfg));
+  std::printf("%s: %s\n", program, ok ? "PASS" : "FAIL");
+  return ok ? 0 : 1;
+}
+
+}  // namespace trionet::stress
