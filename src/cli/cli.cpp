@@ -256,6 +256,10 @@ event& event::json(std::string_view name, std::string_view value) {
   return *this;
 }
 
+event& event::time(std::uint64_t time_ns) {
+  return json("time", "\"" + epoch_text(time_ns) + "\"");
+}
+
 std::string epoch_text(std::uint64_t time_ns) {
   char text[40];
   std::snprintf(text, sizeof text, "%" PRIu64 ".%09" PRIu64, time_ns / 1000000000U, time_ns % 1000000000U);

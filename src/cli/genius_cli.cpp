@@ -423,33 +423,26 @@ int decode_main(const std::vector<std::string>& all) {
       tokens.push(" ");
     }
   } else {
-    input in;
-    std::string_view chunk;
-    while (true) {
-      if (!in.read(chunk, error)) {
-        out.flush();
-        return fail_io(error);
-      }
-      if (chunk.empty()) break;
+    const int status = stream_stdin(out, [&](std::string_view chunk) {
       if (!raw) {
         tokens.push(chunk);
-      } else {
-        for (const char c : chunk) {
-          const auto byte = static_cast<std::uint8_t>(c);
-          if (odd < 0) {
-            odd = byte;
-          } else {
-            const auto w = static_cast<std::uint16_t>(odd << 8 | byte);
-            char token[8];
-            std::snprintf(token, sizeof token, "w:%03x", static_cast<unsigned>(w));
-            stream.word(w, "offset " + std::to_string(offset), token);
-            offset += 2;
-            odd = -1;
-          }
+        return;
+      }
+      for (const char c : chunk) {
+        const auto byte = static_cast<std::uint8_t>(c);
+        if (odd < 0) {
+          odd = byte;
+        } else {
+          const auto w = static_cast<std::uint16_t>(odd << 8 | byte);
+          char token[8];
+          std::snprintf(token, sizeof token, "w:%03x", static_cast<unsigned>(w));
+          stream.word(w, "offset " + std::to_string(offset), token);
+          offset += 2;
+          odd = -1;
         }
       }
-      if (!out.flush()) return fail_io("cannot write standard output");
-    }
+    });
+    if (status != exit_ok) return status;
   }
   if (raw) {
     if (odd >= 0) stream.input_error("offset " + std::to_string(offset) + ": an odd byte at the end of the input");

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +16,7 @@
 #include "cli.hpp"
 #include "keypad_terminal.hpp"
 #include "live.hpp"
+#include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "trionet/host/posix_link.hpp"
 #include "trionet/ring.hpp"
@@ -71,21 +71,22 @@ class watched_node final : public byte_port {
 template <class Node>
 class station {
  public:
-  // `print` gets the link's events: what arrives for this node (hops 1) and stray bytes; with --trace also
-  // what passes through and what the node sends. Each carries "link": "in" or "out".
-  station(Node& node, const join_settings& settings, live::capture_file* capture, ring_tap::sink print)
+  // `log` gets the link's events: what arrives for this node (hops 1) and stray bytes; with --trace also
+  // what passes through and what the node sends. Each carries "link": "in" or "out" after its time. The log
+  // is flushed before every wait.
+  station(Node& node, const join_settings& settings, live::capture_file* capture, live::event_log& log)
       : node_(&node),
         settings_(settings),
         in_(capture, "received on " + settings.port),
         out_(capture, "sent on " + settings.port),
-        print_(std::move(print)),
+        log_(&log),
         watched_(
             node, in_, out_,
-            [this](const live::event& e) {
-              if (settings_.trace || in_.last_hops() <= 1) show(e, "in");
+            [this](const ring::decode_result& r, std::uint64_t time_ns) {
+              if (settings_.trace || in_.last_hops() <= 1) show(r, time_ns, "in");
             },
-            [this](const live::event& e) {
-              if (settings_.trace) show(e, "out");
+            [this](const ring::decode_result& r, std::uint64_t time_ns) {
+              if (settings_.trace) show(r, time_ns, "out");
             }),
         link_(-1, watched_) {}
   station(const station&) = delete;
@@ -118,6 +119,7 @@ class station {
       const long long left = idle_at > now ? static_cast<long long>((idle_at - now + 999999u) / 1000000u) : 0;
       if (left < timeout) timeout = static_cast<int>(left);
     }
+    log_->flush();
     const int ready = ::poll(fds, input >= 0 ? 2 : 1, timeout);
     if (ready < 0 && errno != EINTR) {
       ended = std::string("poll: ") + std::strerror(errno);
@@ -157,7 +159,7 @@ class station {
 
   void finish() {
     watched_.set_time(live::now_ns());
-    out_.idle(live::now_ns(), [](const live::event&) {});
+    out_.idle(live::now_ns(), [](const ring::decode_result&, std::uint64_t) {});
     port_.close();
   }
 
@@ -166,10 +168,8 @@ class station {
   const std::string& port_name() const { return settings_.port; }
 
  private:
-  void show(const live::event& e, const char* link) {
-    live::event shown = e;
-    shown.text("link", link);
-    print_(shown);
+  void show(const ring::decode_result& r, std::uint64_t time_ns, const char* link) {
+    append_ring_event(log_->text(), r, [&](event& e) { e.time(time_ns).text("link", link); });
   }
 
   Node* node_;
@@ -177,7 +177,7 @@ class station {
   host::link_device port_;
   ring_tap in_;
   ring_tap out_;
-  ring_tap::sink print_;
+  live::event_log* log_;
   watched_node watched_;
   host::fd_link link_;
   std::uint64_t last_byte_ = 0;
@@ -205,37 +205,36 @@ class reported_vrs final : public vr_store {
   std::vector<write_record> writes_;
 };
 
-void add_link_counters(live::event& e, const ring::link_counters& c) {
-  e.number("bytes_local", static_cast<unsigned long long>(c.bytes[static_cast<int>(ring::byte_route::local)]));
-  e.number("bytes_forwarded", static_cast<unsigned long long>(c.bytes[static_cast<int>(ring::byte_route::forwarded)]));
-  e.number("bytes_dropped", static_cast<unsigned long long>(c.bytes[static_cast<int>(ring::byte_route::dropped)]));
-  e.number("bytes_lost", static_cast<unsigned long long>(c.bytes[static_cast<int>(ring::byte_route::lost)]));
-  e.number("messages_forwarded", static_cast<unsigned long long>(c.messages_forwarded));
-  e.number("forwards_lost", static_cast<unsigned long long>(c.forwards_lost));
-  e.number("forwards_cut", static_cast<unsigned long long>(c.forwards_cut));
-  e.number("forwards_ended_idle", static_cast<unsigned long long>(c.forwards_ended_idle));
-  e.number("messages_dropped", static_cast<unsigned long long>(c.messages_dropped));
-  e.number("messages_sent", static_cast<unsigned long long>(c.messages_sent));
+void add_link_counters(event& e, const ring::link_counters& c) {
+  e.number("bytes_local", c.bytes[static_cast<int>(ring::byte_route::local)]);
+  e.number("bytes_forwarded", c.bytes[static_cast<int>(ring::byte_route::forwarded)]);
+  e.number("bytes_dropped", c.bytes[static_cast<int>(ring::byte_route::dropped)]);
+  e.number("bytes_lost", c.bytes[static_cast<int>(ring::byte_route::lost)]);
+  e.number("messages_forwarded", c.messages_forwarded);
+  e.number("forwards_lost", c.forwards_lost);
+  e.number("forwards_cut", c.forwards_cut);
+  e.number("forwards_ended_idle", c.forwards_ended_idle);
+  e.number("messages_dropped", c.messages_dropped);
+  e.number("messages_sent", c.messages_sent);
 }
 
-live::event mc_counters(const host_mc& mc, station<host_mc>& st) {
-  live::event e(live::now_ns(), "counters");
-  e.number("netstat", static_cast<long long>(mc.netstat()));
+void mc_counters(std::string& out, const host_mc& mc, station<host_mc>& st) {
+  event e(out, "counters");
+  e.time(live::now_ns()).number("netstat", mc.netstat());
   const ring::motion_coordinator_counters& c = mc.counters();
-  e.number("frame_errors", static_cast<unsigned long long>(c.frame_errors));
-  e.number("crc_errors", static_cast<unsigned long long>(c.crc_errors));
-  e.number("character_messages", static_cast<unsigned long long>(c.character_messages));
-  e.number("receive_overflows", static_cast<unsigned long long>(c.receive_overflows));
-  e.number("variables_written", static_cast<unsigned long long>(c.variables_written));
-  e.number("variables_refused", static_cast<unsigned long long>(c.variables_refused));
-  e.number("variables_out_of_range", static_cast<unsigned long long>(c.variables_out_of_range));
-  e.number("keypad_messages_ignored", static_cast<unsigned long long>(c.keypad_messages_ignored));
-  e.number("sends_refused", static_cast<unsigned long long>(c.sends_refused));
+  e.number("frame_errors", c.frame_errors);
+  e.number("crc_errors", c.crc_errors);
+  e.number("character_messages", c.character_messages);
+  e.number("receive_overflows", c.receive_overflows);
+  e.number("variables_written", c.variables_written);
+  e.number("variables_refused", c.variables_refused);
+  e.number("variables_out_of_range", c.variables_out_of_range);
+  e.number("keypad_messages_ignored", c.keypad_messages_ignored);
+  e.number("sends_refused", c.sends_refused);
   add_link_counters(e, mc.forwarding_counters());
-  e.number("characters_waiting", static_cast<unsigned long long>(mc.characters_waiting()));
+  e.number("characters_waiting", mc.characters_waiting());
   st.in().add_counters(e, "in_");
   st.out().add_counters(e, "out_");
-  return e;
 }
 
 bool basic_address_word(const std::string& word, int& out) {
@@ -267,9 +266,8 @@ int join_mc(const join_settings& settings) {
   if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
   auto vrs = std::make_unique<reported_vrs>();
   auto mc = std::make_unique<host_mc>(*vrs);
-  const bool json = settings.json;
-  const auto print = [json](const live::event& e) { live::emit(e, json); };
-  auto st = std::make_unique<station<host_mc>>(*mc, settings, capture.is_open() ? &capture : nullptr, print);
+  live::event_log log(settings.json);
+  auto st = std::make_unique<station<host_mc>>(*mc, settings, capture.is_open() ? &capture : nullptr, log);
   if (!st->open(error)) return fail("ring join: " + error);
 
   live::signal_watch signals;
@@ -280,7 +278,7 @@ int join_mc(const join_settings& settings) {
   std::uint8_t netstat_shown = 0;
 
   const auto reply_error = [&](const std::string& command, const std::string& reason) {
-    print(live::event(live::now_ns(), "error").text("command", command).text("reason", reason));
+    event(log.text(), "error").time(live::now_ns()).text("command", command).text("reason", reason);
   };
   // Waits for room in the transmit queue: the link runs meanwhile. Gives up after 2 s without room.
   std::uint64_t wait_started = 0;
@@ -293,7 +291,7 @@ int join_mc(const join_settings& settings) {
   };
   const auto sent = [&](const std::string& command, ring::send_status status) {
     if (status == ring::send_status::ok) {
-      print(live::event(live::now_ns(), "queued").text("command", command));
+      event(log.text(), "queued").time(live::now_ns()).text("command", command);
     } else {
       reply_error(command, ring::to_string(status));
     }
@@ -343,20 +341,19 @@ int join_mc(const join_settings& settings) {
       if (w.size() != 2 || !parse_integer(w[1], 3, 4, number)) return reply_error(command, "usage: " + command + " 3|4");
       const int channel = static_cast<int>(number);
       if (command == "key") {
-        print(live::event(live::now_ns(), "key").number("channel", static_cast<long long>(channel))
-                  .flag("waiting", mc->key(channel))
-                  .number("characters", static_cast<unsigned long long>(mc->characters_waiting())));
+        event(log.text(), "key").time(live::now_ns()).signed_number("channel", channel)
+            .boolean("waiting", mc->key(channel))
+            .number("characters", mc->characters_waiting());
         return;
       }
       const ring::get_result got = mc->get(channel);
-      live::event e(live::now_ns(), "get");
-      e.number("channel", static_cast<long long>(channel));
+      event e(log.text(), "get");
+      e.time(live::now_ns()).signed_number("channel", channel);
       if (got) {
-        e.number("value", static_cast<long long>(got.value));
+        e.signed_number("value", got.value);
       } else {
         e.text("status", ring::to_string(got.status));
       }
-      print(e);
       return;
     }
     if (command == "vr") {
@@ -366,7 +363,8 @@ int join_mc(const join_settings& settings) {
         if (!parse_real(w[2], value)) return reply_error(command, "VALUE must be a real number");
         (*vrs)[static_cast<std::size_t>(number)] = value;
       }
-      print(live::event(live::now_ns(), "vr").number("vr", number).real("value", (*vrs)[static_cast<std::size_t>(number)]));
+      event(log.text(), "vr").time(live::now_ns()).signed_number("vr", number)
+          .real("value", (*vrs)[static_cast<std::size_t>(number)]);
       return;
     }
     if (command == "netstat") {
@@ -376,10 +374,10 @@ int join_mc(const join_settings& settings) {
         return reply_error(command, "usage: netstat [clear]");
       }
       netstat_shown = mc->netstat();
-      print(live::event(live::now_ns(), "netstat").number("netstat", static_cast<long long>(mc->netstat())));
+      event(log.text(), "netstat").time(live::now_ns()).number("netstat", mc->netstat());
       return;
     }
-    if (command == "counters") return print(mc_counters(*mc, *st));
+    if (command == "counters") return mc_counters(log.text(), *mc, *st);
     if (command == "quit") {
       quit = true;
       return;
@@ -388,16 +386,16 @@ int join_mc(const join_settings& settings) {
   };
 
   while (port_open && !quit && !live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) print(mc_counters(*mc, *st));
+    if (live::signal_watch::take_report_request()) mc_counters(log.text(), *mc, *st);
     short input_events = 0;
     port_open = st->step(1000, input.ended() ? -1 : input.fd(), input_events, ended);
     for (const reported_vrs::write_record& w : vrs->take()) {
-      print(live::event(live::now_ns(), "vr_write").number("vr", static_cast<long long>(w.vr)).real("value", w.value)
-                .text("status", to_string(w.status)));
+      event(log.text(), "vr_write").time(live::now_ns()).number("vr", w.vr).real("value", w.value)
+          .text("status", to_string(w.status));
     }
     if (mc->netstat() != netstat_shown) {
       netstat_shown = mc->netstat();
-      print(live::event(live::now_ns(), "netstat").number("netstat", static_cast<long long>(netstat_shown)));
+      event(log.text(), "netstat").time(live::now_ns()).number("netstat", netstat_shown);
     }
     if (port_open && (input_events & (POLLIN | POLLHUP | POLLERR)) != 0) {
       input.read_some();
@@ -406,7 +404,8 @@ int join_mc(const join_settings& settings) {
     }
   }
   if (quit && port_open) st->flush_out(2000);
-  print(mc_counters(*mc, *st));
+  mc_counters(log.text(), *mc, *st);
+  log.flush();
   st->finish();
   if (!port_open) std::fprintf(stderr, "trionet: ring join: %s\n", ended.c_str());
   if (!capture.good()) return fail("ring join: writing the capture " + settings.pcap + " failed");
@@ -432,17 +431,9 @@ int join_keypad(const join_settings& settings) {
   auto keypad = std::make_unique<host_keypad>();
   raw_terminal terminal;
   const bool interactive = terminal.enter(STDIN_FILENO);
-  const bool json = settings.json;
-  std::deque<std::string> recent;  // the last events, under the drawing
-  const auto print = [&](const live::event& e) {
-    if (!interactive) {
-      live::emit(e, json);
-      return;
-    }
-    recent.push_back(live::format(e, false));
-    if (recent.size() > 4) recent.pop_front();
-  };
-  auto st = std::make_unique<station<host_keypad>>(*keypad, settings, capture.is_open() ? &capture : nullptr, print);
+  live::event_log log(settings.json);
+  if (interactive) log.keep_last(4);  // the last events, under the drawing
+  auto st = std::make_unique<station<host_keypad>>(*keypad, settings, capture.is_open() ? &capture : nullptr, log);
   if (!st->open(error)) {
     terminal.restore();
     return fail("ring join: " + error);
@@ -463,28 +454,26 @@ int join_keypad(const join_settings& settings) {
   const auto press = [&](const std::string& word) {
     ring::key k = ring::key::digit_0;
     if (!keypad_key(word, k)) {
-      print(live::event(live::now_ns(), "error").text("word", word).text("reason", "not a key (0..9 . up down clr y n start stop)"));
+      event(log.text(), "error").time(live::now_ns()).text("word", word).text(
+          "reason", "not a key (0..9 . up down clr y n start stop)");
       return;
     }
     const ring::key_status on = keypad->press(k);
     const ring::key_status off = keypad->release(k);
-    live::event e(live::now_ns(), "key");
-    e.text("key", to_string(k)).text("press", ring::to_string(on)).text("release", ring::to_string(off));
-    print(e);
+    event(log.text(), "key").time(live::now_ns()).text("key", to_string(k)).text("press", ring::to_string(on)).text(
+        "release", ring::to_string(off));
   };
   const auto show = [&]() {
     const std::string lines[2] = {keypad->display().line(0), keypad->display().line(1)};
     const std::string status = keypad_status(*keypad);
     const bool changed = first || lines[0] != shown_lines[0] || lines[1] != shown_lines[1] || status != shown_status;
     if (!changed && !interactive) return;
-    if (status != shown_status || first) {
-      live::event e(live::now_ns(), "mode");
-      e.flag("network", keypad->network_mode()).number("offset", static_cast<long long>(keypad->offset()));
-      e.number("keypad_mode", static_cast<long long>(keypad->mode()));
-      if (!first || keypad->network_mode()) print(e);
+    if ((status != shown_status || first) && (!first || keypad->network_mode())) {
+      event(log.text(), "mode").time(live::now_ns()).boolean("network", keypad->network_mode()).signed_number(
+          "offset", keypad->offset()).signed_number("keypad_mode", keypad->mode());
     }
     if (lines[0] != shown_lines[0] || lines[1] != shown_lines[1]) {
-      print(live::event(live::now_ns(), "display").text("line1", lines[0]).text("line2", lines[1]));
+      event(log.text(), "display").time(live::now_ns()).text("line1", lines[0]).text("line2", lines[1]);
     }
     shown_lines[0] = lines[0];
     shown_lines[1] = lines[1];
@@ -497,8 +486,9 @@ int join_keypad(const join_settings& settings) {
       panel.lines[1] = lines[1];
       panel.status = status + "; keys sent " + std::to_string(keypad->counters().keys_sent) + ", lost " +
                      std::to_string(keypad->counters().keys_lost);
+      log.flush();
       std::vector<std::string> footer = {keyboard_map};
-      footer.insert(footer.end(), recent.begin(), recent.end());
+      footer.insert(footer.end(), log.kept().begin(), log.kept().end());
       screen.draw({panel}, footer);
     }
   };
@@ -506,10 +496,10 @@ int join_keypad(const join_settings& settings) {
   show();
   while (port_open && !quit && !live::signal_watch::stop_requested()) {
     if (live::signal_watch::take_report_request()) {
-      live::event e(live::now_ns(), "counters");
+      event e(log.text(), "counters");
+      e.time(live::now_ns());
       st->in().add_counters(e, "in_");
       st->out().add_counters(e, "out_");
-      print(e);
     }
     const int due = script.due_in_ms(live::now_ns());
     const int wait = due >= 0 ? due : interactive ? 200 : 1000;
@@ -537,27 +527,28 @@ int join_keypad(const join_settings& settings) {
       }
     }
     if (!bad_wait.empty()) {
-      print(live::event(live::now_ns(), "error").text("word", bad_wait).text("reason", "wait=MS takes 0..3600000"));
+      event(log.text(), "error").time(live::now_ns()).text("word", bad_wait).text("reason", "wait=MS takes 0..3600000");
     }
     show();
   }
   if (quit && port_open) st->flush_out(2000);
+  log.flush();
   screen.leave();
   terminal.restore();
-  live::event e(live::now_ns(), "counters");
-  e.flag("network", keypad->network_mode()).number("offset", static_cast<long long>(keypad->offset()));
-  const ring::keypad_counters& c = keypad->counters();
-  e.number("keys_sent", static_cast<unsigned long long>(c.keys_sent));
-  e.number("keys_lost", static_cast<unsigned long long>(c.keys_lost));
-  e.number("display_messages", static_cast<unsigned long long>(c.display_messages));
-  e.number("dropped_in_local_mode", static_cast<unsigned long long>(c.dropped_in_local_mode));
-  e.number("frame_errors", static_cast<unsigned long long>(c.frame_errors));
-  e.number("crc_errors", static_cast<unsigned long long>(c.crc_errors));
-  e.number("netstat", static_cast<long long>(keypad->netstat()));
-  add_link_counters(e, keypad->forwarding_counters());
-  st->in().add_counters(e, "in_");
-  st->out().add_counters(e, "out_");
-  live::emit(e, json);
+  log.keep_last(0);  // the counters go to standard output, screen or not
+  {
+    event e(log.text(), "counters");
+    e.time(live::now_ns()).boolean("network", keypad->network_mode()).signed_number("offset", keypad->offset());
+    const ring::keypad_counters& c = keypad->counters();
+    e.number("keys_sent", c.keys_sent).number("keys_lost", c.keys_lost).number("display_messages", c.display_messages);
+    e.number("dropped_in_local_mode", c.dropped_in_local_mode).number("frame_errors", c.frame_errors);
+    e.number("crc_errors", c.crc_errors);
+    e.number("netstat", keypad->netstat());
+    add_link_counters(e, keypad->forwarding_counters());
+    st->in().add_counters(e, "in_");
+    st->out().add_counters(e, "out_");
+  }
+  log.flush();
   st->finish();
   if (!port_open) std::fprintf(stderr, "trionet: ring join: %s\n", ended.c_str());
   if (!capture.good()) return fail("ring join: writing the capture " + settings.pcap + " failed");
