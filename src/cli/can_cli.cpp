@@ -11,6 +11,7 @@
 #include "capture_cli.hpp"
 #include "cli.hpp"
 #include "can_cli.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/candump.hpp"
 #include "trionet/host/capture.hpp"
 
@@ -244,7 +245,7 @@ const command can_commands[] = {
 }  // namespace
 
 bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& error) {
-  out = can::default_node_count;
+  out = active_profile().can.node_count;
   if (!parsed.has("--nodes")) return true;
   long long value = 0;
   if (!parse_integer(parsed.options.at("--nodes"), can::min_node_count, can::max_node_count, value)) {

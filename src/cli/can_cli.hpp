@@ -11,7 +11,7 @@
 
 namespace trionet::cli {
 
-/// `--nodes K` (2..11), else the default 5. False with `error` set for anything else.
+/// `--nodes K` (2..11), else the profile's node count (by default 5). False with `error` set for anything else.
 bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& error);
 
 /// The options that describe one VR frame (`can encode`, `can send`): --nodes --from --to --vr --value.

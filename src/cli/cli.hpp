@@ -74,6 +74,7 @@ std::string version_line();
 extern const part ring_part;    ///< ring_cli.cpp
 extern const part can_part;     ///< can_cli.cpp
 extern const part genius_part;  ///< genius_cli.cpp
+extern const part profile_part;  ///< profile_cli.cpp
 
 // ---------------------------------------------------------------------------------------------------------
 // arguments

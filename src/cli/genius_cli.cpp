@@ -11,6 +11,7 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
+#include "learn_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/capture_view.hpp"
 
@@ -714,11 +715,17 @@ const command genius_commands[] = {
     {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main},
     {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
      scan_time_main},
+    {"learn", "crc: find the CRC-6 from captured transmissions, write it into a profile", genius_learn_usage,
+     genius_learn_main},
 };
 
 }  // namespace
 
-const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time)", genius_commands,
+bool parse_genius_token(std::string_view text, std::uint16_t& word) {
+  return parse_token(text, word);
+}
+
+const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time, learn)", genius_commands,
                           sizeof genius_commands / sizeof genius_commands[0], ""};
 
 }  // namespace trionet::cli

@@ -6,6 +6,8 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
+#include "learn_cli.hpp"
+#include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "ring_message_arguments.hpp"
@@ -101,7 +103,7 @@ class ring_stream {
 
   std::string& out_;
   where_kind kind_;
-  ring::decoder<> decoder_;
+  profile_decoder decoder_;
   std::uint64_t start_ = 0;
 };
 
@@ -157,7 +159,7 @@ int decode_capture(const arguments& args) {
   return read_capture(args.options.at("--pcap"), host::capture_network::ring, args.flag("--json"), 5,
                       [](const host::pcapng_record& record, const capture_position& where, std::string& out) {
                         // Each record on its own, through a fresh decoder, as the dissector sees it.
-                        ring::decoder<> decoder;
+                        profile_decoder decoder;
                         const auto here = [&where](event& e) { add_position(e, where); };
                         bool any = false;
                         for (std::uint8_t byte : record.bytes) {
@@ -222,6 +224,8 @@ const command ring_commands[] = {
     {"send", "put one message on a live ring port", ring_live_usage, ring_send_main},
     {"join", "be a node on a live ring: a Motion Coordinator (--as mc) or a keypad (--as keypad)", ring_live_usage,
      ring_join_main},
+    {"learn", "crc or layout: find the wire parameters from captured frames, write them into a profile",
+     ring_learn_usage, ring_learn_main},
 };
 
 }  // namespace
@@ -277,7 +281,7 @@ const char* ring_event_kind(const ring::decode_result& result) {
   return result.status == ring::decode_status::ok ? "message" : ring::to_string(result.status);
 }
 
-const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join)",
+const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join, learn)",
                         ring_commands, sizeof ring_commands / sizeof ring_commands[0], ""};
 
 }  // namespace trionet::cli

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "live.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/link_device.hpp"
 #include "trionet/ring/decoder.hpp"
@@ -53,7 +54,7 @@ class ring_tap {
  private:
   void report(const ring::decode_result& r, std::uint64_t time_ns, const sink& out);
 
-  ring::decoder<> decoder_;
+  profile_decoder decoder_;
   host::ring_record_splitter records_;
   live::capture_file* capture_;
   std::uint32_t interface_ = 0;

@@ -1,6 +1,8 @@
 // The arguments that describe one ring message: see ring_message_arguments.hpp.
 #include "ring_message_arguments.hpp"
 
+#include "profile_cli.hpp"
+
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
@@ -135,14 +137,14 @@ bool ring_message_frame(const std::string& kind, const arguments& args, std::vec
   std::string text;
   if (!message_of(kind, args, m, text, error)) return false;
   frame.assign(ring::frame_length(m), 0);
-  const ring::encode_result result = ring::encode(byte_buffer(frame.data(), frame.size()), m);
+  const ring::encode_result result = encode_with_profile(byte_buffer(frame.data(), frame.size()), m);
   if (!result) {
     error = std::string("cannot encode: ") + ring::to_string(result.status);
     return false;
   }
   frame.resize(result.length);
   // What is written must be what `ring decode` accepts: decode it with the same decoder.
-  ring::decoder<> check;
+  profile_decoder check;
   ring::decode_status decoded = ring::decode_status::incomplete;
   check.push(byte_view(frame.data(), frame.size()), [&decoded](const ring::decode_result& r) { decoded = r.status; });
   if (decoded != ring::decode_status::ok) {
