@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -12,8 +13,10 @@
 #include "learn/crc_catalogue.hpp"
 #include "learn/profile.hpp"
 #include "learn/ring_capture.hpp"
+#include "support/live_process.hpp"
 #include "support/run_cli.hpp"
 #include "trionet/host/pcapng.hpp"
+#include "trionet/ring/keypad.hpp"
 
 namespace {
 
@@ -422,6 +425,103 @@ TEST(LearnCli, ProfileShowAndHeader) {
   EXPECT_EQ(unwritable.exit_code, 1);
   std::remove(path.c_str());
   std::remove(header.c_str());
+}
+
+// A keypad with codes of its own and key OFF = key ON, on the other end of a pty: the MC puts it in network
+// mode and keypad mode 127, the keys are pressed in the order asked, and the profile gets the codes.
+// `pressed(i)` is the key pressed when the tool asks for the i-th key.
+void play_keypad(trionet::test::pty_pair& pty, ring::keypad<>& keypad, trionet::test::tool_process& mc,
+                 const std::function<ring::key(std::size_t)>& pressed) {
+  const auto pump = [&](int ms) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+    do {
+      for (std::uint8_t b : pty.read_bytes(1, 10)) keypad.receive(b);
+      std::vector<std::uint8_t> out;
+      std::uint8_t b = 0;
+      while (keypad.transmit(b)) out.push_back(b);
+      if (!out.empty()) pty.write_all(out);
+    } while (std::chrono::steady_clock::now() < until);
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (keypad.mode() != 127 && std::chrono::steady_clock::now() < deadline) pump(20);
+  ASSERT_TRUE(keypad.network_mode());
+  ASSERT_EQ(keypad.mode(), 127);
+  EXPECT_EQ(keypad.offset(), 1);
+  for (std::size_t i = 0; i < ring::key_count; ++i) {
+    // The tool asks for each key: wait for its "press" event (a person would read the prompt).
+    mc.read_lines_with("\"event\":\"press\"", i + 1, 20000);
+    const ring::key k = pressed(i);
+    EXPECT_EQ(keypad.press(k), ring::key_status::ok);
+    pump(5);
+    EXPECT_EQ(keypad.release(k), ring::key_status::ok);
+    pump(5);
+  }
+  pump(50);
+}
+
+ring::key in_order(std::size_t i) {
+  return static_cast<ring::key>(i);
+}
+
+TEST(LearnCli, KeypadCodesLearnedFromAKeypadOnAPty) {
+  trionet::test::pty_pair pty;
+  ASSERT_TRUE(pty.ok());
+  static constexpr ring::keypad_codes codes = {
+      {'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'i', 'j', 0x7E, 0x01, 'C', '\r', 0x1B, ',', 'S', 0x7F}};
+  ring::keypad<> keypad(ring::keypad_config{&codes, ring::same_key_off_code});
+  const std::string base = temp_path("keypad-base.json"), out = temp_path("keypad.json");
+  learn::profile p;
+  p.name = "plant";
+  p.can.node_count = 7;
+  write_file(base, learn::write_profile(p));
+  trionet::test::tool_process mc({"ring", "join", pty.slave_path, "--as", "mc", "--json", "--learn-keypad",
+                                  "10", "--profile", base, "-o", out});
+  play_keypad(pty, keypad, mc, in_order);
+  EXPECT_EQ(mc.wait(20000), 0) << mc.output();
+  EXPECT_NE(mc.output().find("\"key\":\"stop\",\"on\":127,\"off\":127}"), std::string::npos) << mc.output();
+  const learn::profile_result written = learn::read_profile(slurp(out));
+  ASSERT_TRUE(written) << slurp(out);
+  p.keypad.codes = codes;
+  p.keypad.key_off = learn::key_off_rule::same;
+  p.keypad.defkey = ring::make_default_defkey(codes);
+  EXPECT_TRUE(written.value == p) << slurp(out);
+  std::remove(base.c_str());
+  std::remove(out.c_str());
+}
+
+TEST(LearnCli, KeypadLearningRefusesKeysAlikeAndBadArguments) {
+  trionet::test::pty_pair pty;
+  ASSERT_TRUE(pty.ok());
+  static constexpr ring::keypad_codes codes = {
+      {'0', '1', '2', '3', '4', '5', '6', '7', '8', '9', 'U', 'D', 'C', 'Y', 'N', '.', 'S', 'T'}};
+  ring::keypad<> keypad(ring::keypad_config{&codes, ring::default_key_off_code});
+  const std::string out = temp_path("keypad-alike.json");
+  trionet::test::tool_process mc(
+      {"ring", "join", pty.slave_path, "--as", "mc", "--json", "--learn-keypad", "10", "-o", out});
+  play_keypad(pty, keypad, mc, in_order);
+  EXPECT_EQ(mc.wait(20000), 0);
+  const learn::profile_result written = learn::read_profile(slurp(out));
+  ASSERT_TRUE(written);
+  EXPECT_TRUE(written.value == learn::profile{}) << "the default keypad gives the default profile";
+  std::remove(out.c_str());
+
+  // Key 1 pressed when 0 is asked for too: two keys alike, no profile.
+  ring::keypad<> again(ring::keypad_config{&codes, ring::default_key_off_code});
+  trionet::test::tool_process alike(
+      {"ring", "join", pty.slave_path, "--as", "mc", "--json", "--learn-keypad", "10", "-o", out});
+  play_keypad(pty, again, alike, [](std::size_t i) { return static_cast<ring::key>(i == 0 ? 1 : i); });
+  EXPECT_EQ(alike.wait(20000), 3);
+  EXPECT_FALSE(std::ifstream(out).good());
+
+  expect_usage_error("ring join " + pty.slave_path + " --as keypad --learn-keypad 10 -o x.json",
+                     "--learn-keypad goes with --as mc");
+  expect_usage_error("ring join " + pty.slave_path + " --as mc --learn-keypad 10", "needs -o PROFILE");
+  expect_usage_error("ring join " + pty.slave_path + " --as mc --learn-keypad 9 -o x.json",
+                     "--learn-keypad takes the keypad's BASIC address 10..24, got '9'");
+  expect_usage_error(
+      "ring join " + pty.slave_path + " --as mc --learn-keypad 10 --keypad-offset 25 -o x.json",
+      "--keypad-offset takes a BASIC address 10..24, got '25'");
+  expect_usage_error("ring join " + pty.slave_path + " --as mc -o x.json", "go with --learn-keypad");
 }
 
 }  // namespace

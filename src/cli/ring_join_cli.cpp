@@ -4,7 +4,9 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,7 +17,9 @@
 #include "basic/number_format.hpp"
 #include "cli.hpp"
 #include "keypad_terminal.hpp"
+#include "learn/profile.hpp"
 #include "live.hpp"
+#include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "trionet/host/posix_link.hpp"
@@ -258,6 +262,82 @@ bool print_parts(const std::string& line, std::string& address, std::string& tex
   return true;
 }
 
+// `--learn-keypad N`: puts the keypad at BASIC address N in network mode (keypad offset M back to this MC)
+// and keypad mode 127, asks for each key in turn, and takes its key ON and key OFF characters from the
+// receive buffer. Writes the profile in effect with the codes found (docs/profile.md). Returns the exit
+// status: 3 when the characters fit no profile (two keys alike, a key OFF rule the profile cannot say).
+int learn_keypad_codes(const join_settings& settings, host_mc& mc, station<host_mc>& st, live::event_log& log,
+                       std::string& ended) {
+  bool port_open = true;
+  short ignored = 0;
+  // Waits for the link until `done` or the end (a closed port, Ctrl-C).
+  const auto run_until = [&](const auto& done) {
+    while (!done()) {
+      if (!port_open || live::signal_watch::stop_requested()) return false;
+      port_open = st.step(100, -1, ignored, ended);
+    }
+    return true;
+  };
+  const auto queued = [&](ring::send_status status, const char* what) {
+    if (status == ring::send_status::ok) return true;
+    ended = std::string("cannot send the keypad ") + what + ": " + ring::to_string(status);
+    return false;
+  };
+  if (!queued(mc.send_keypad_offset(settings.learn_keypad, settings.keypad_offset), "offset") ||
+      !queued(mc.send_keypad_mode(settings.learn_keypad, 127), "mode")) {
+    return fail_io("ring join: " + ended);
+  }
+  event(log.text(), "learning").time(live::now_ns()).signed_number("keypad", settings.learn_keypad)
+      .signed_number("offset", settings.keypad_offset);
+  ring::keypad_codes codes{};
+  std::uint8_t off[ring::key_count] = {};
+  for (std::size_t k = 0; k < ring::key_count; ++k) {
+    const char* name = learn::keypad_key_names[k];
+    event(log.text(), "press").time(live::now_ns()).text("key", name);
+    log.flush();
+    std::fprintf(stderr, "press key %s and release it\n", name);
+    std::uint8_t got[2] = {};
+    for (std::uint8_t& c : got) {
+      ring::get_result r{ring::get_status::nothing_yet, 0};
+      if (!run_until([&] { return (r = mc.get(4)).status == ring::get_status::ok; })) {
+        if (!port_open) return fail_io("ring join: " + ended);
+        return fail_io("ring join: stopped before every key was learned");
+      }
+      c = r.value;
+    }
+    codes.raw[k] = got[0];
+    off[k] = got[1];
+    event(log.text(), "learned").time(live::now_ns()).text("key", name).number("on", got[0]).number("off", got[1]);
+  }
+  log.flush();
+  bool plus_64 = true;
+  bool same = true;
+  for (std::size_t k = 0; k < ring::key_count; ++k) {
+    plus_64 = plus_64 && off[k] == ring::default_key_off_code(codes.raw[k]);
+    same = same && off[k] == codes.raw[k];
+    for (std::size_t other = 0; other < k; ++other) {
+      if (codes.raw[other] != codes.raw[k]) continue;
+      std::fprintf(stderr, "trionet: ring join: keys %s and %s both sent character %u: no profile written\n",
+                   learn::keypad_key_names[other], learn::keypad_key_names[k], codes.raw[k]);
+      return exit_check;
+    }
+  }
+  if (!plus_64 && !same) {
+    std::fprintf(stderr,
+                 "trionet: ring join: the key OFF characters follow neither rule a profile can hold (key ON + 64, "
+                 "or the same): no profile written\n");
+    return exit_check;
+  }
+  learn::profile p = active_profile();
+  const ring::defkey_table from_old_codes = ring::make_default_defkey(p.keypad.codes);
+  const bool defkey_from_codes =
+      std::equal(std::begin(from_old_codes.value), std::end(from_old_codes.value), std::begin(p.keypad.defkey.value));
+  p.keypad.codes = codes;
+  p.keypad.key_off = plus_64 ? learn::key_off_rule::plus_64 : learn::key_off_rule::same;
+  if (defkey_from_codes) p.keypad.defkey = ring::make_default_defkey(codes);
+  return write_profile_file(p, settings.learn_output);
+}
+
 }  // namespace
 
 int join_mc(const join_settings& settings) {
@@ -271,8 +351,15 @@ int join_mc(const join_settings& settings) {
   if (!st->open(error)) return fail("ring join: " + error);
 
   live::signal_watch signals;
-  live::line_reader input(STDIN_FILENO);
   std::string ended;
+  if (settings.learn_keypad != 0) {
+    const int status = learn_keypad_codes(settings, *mc, *st, log, ended);
+    st->flush_out(500);
+    log.flush();
+    st->finish();
+    return status;
+  }
+  live::line_reader input(STDIN_FILENO);
   bool port_open = true;
   bool quit = false;
   std::uint8_t netstat_shown = 0;

@@ -77,6 +77,9 @@ struct join_settings {
   bool json = false;
   bool trace = false;
   std::string pcap;
+  int learn_keypad = 0;      ///< --learn-keypad N: the keypad's BASIC address (0: no learning)
+  int keypad_offset = 0;     ///< --keypad-offset M: the keypad's way back to this MC (BASIC address)
+  std::string learn_output;  ///< -o PROFILE
 };
 
 int join_mc(const join_settings& settings);

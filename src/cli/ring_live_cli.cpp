@@ -36,6 +36,11 @@ const char* const ring_live_usage =
     "      be a Motion Coordinator on the ring: forward, deliver, and take commands on standard input:\n"
     "        print N TEXT | send N VR VALUE | offset N M | mode N 0|127 | key 3|4 | get 3|4 |\n"
     "        vr V [VALUE] | netstat [clear] | counters | quit        (TEXT escapes: \\r \\n \\t \\\\ \\xNN)\n"
+    "  trionet ring join PORT --as mc --learn-keypad N [--keypad-offset M] -o PROFILE [port options] [--json]\n"
+    "      learn a real keypad's codes: put the keypad at BASIC address N in network mode (keys sent to\n"
+    "      BASIC address M from the keypad, default N: right for a ring of two) and keypad mode 127, ask for\n"
+    "      each key in turn (press and release it), and write the profile in effect with the key ON\n"
+    "      characters and the key OFF rule found to PROFILE (exit 3 if no profile can hold them)\n"
     "  trionet ring join PORT --as keypad [port options] [--json] [--trace] [--pcap FILE]\n"
     "      be a membrane keypad: on a terminal, its display drawn in place and the keyboard as its keys;\n"
     "      otherwise key words from standard input (0..9 . up down clr y n start stop, wait=MS, quit)\n"
@@ -211,7 +216,8 @@ int ring_send_main(const words& args) {
 int ring_join_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, with(port_value_options, {"--as"}), {"--json", "--trace"}, args, error))
+  if (!parse_arguments(given, with(port_value_options, {"--as", "--learn-keypad", "--keypad-offset", "-o"}),
+                       {"--json", "--trace"}, args, error))
     return fail("ring join: " + error);
   if (args.positionals.size() != 1) return fail("ring join takes one PORT");
   if (!args.has("--as")) return fail("ring join needs --as mc or --as keypad");
@@ -219,7 +225,28 @@ int ring_join_main(const words& given) {
   if (!port_arguments_of(args, options, error)) return fail("ring join: " + error);
   const std::string& as = args.options.at("--as");
   join_settings settings{args.positionals[0], options.link, options.idle_ms, options.json, options.trace,
-                         options.pcap};
+                         options.pcap, 0, 0, ""};
+  const bool learning = args.has("--learn-keypad");
+  if (!learning && (args.has("--keypad-offset") || args.has("-o"))) {
+    return fail("ring join: --keypad-offset and -o go with --learn-keypad");
+  }
+  if (learning) {
+    if (as != "mc") return fail("ring join: --learn-keypad goes with --as mc (the MC learns the keypad's codes)");
+    if (!args.has("-o")) return fail("ring join: --learn-keypad needs -o PROFILE (where the codes go)");
+    long long n = 0;
+    const std::string& address = args.options.at("--learn-keypad");
+    if (!parse_integer(address, ring::first_basic_address, ring::last_basic_address, n)) {
+      return fail("ring join: --learn-keypad takes the keypad's BASIC address 10..24, got '" + host::clipped(address) +
+                  "'");
+    }
+    settings.learn_keypad = static_cast<int>(n);
+    const std::string& back = args.has("--keypad-offset") ? args.options.at("--keypad-offset") : address;
+    if (!parse_integer(back, ring::first_basic_address, ring::last_basic_address, n)) {
+      return fail("ring join: --keypad-offset takes a BASIC address 10..24, got '" + host::clipped(back) + "'");
+    }
+    settings.keypad_offset = static_cast<int>(n);
+    settings.learn_output = args.options.at("-o");
+  }
   if (as == "mc") return join_mc(settings);
   if (as == "keypad") return join_keypad(settings);
   return fail("ring join: --as must be mc or keypad, got '" + host::clipped(as) + "'");
