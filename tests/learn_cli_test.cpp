@@ -525,3 +525,40 @@ TEST(LearnCli, KeypadLearningRefusesKeysAlikeAndBadArguments) {
 }
 
 }  // namespace
+
+namespace {
+
+// `ring join` takes the profile's keypad codes (as a keypad) and DEFKEY (as an MC).
+TEST(LearnCli, JoinUsesTheProfilesKeypadCodesAndDefkey) {
+  learn::profile p;
+  p.keypad.codes.raw[static_cast<std::size_t>(ring::key::digit_1)] = 'b';
+  p.keypad.defkey = ring::make_default_defkey(p.keypad.codes);
+  const std::string path = temp_path("join.json");
+  write_file(path, learn::write_profile(p));
+  {
+    trionet::test::pty_pair pty;
+    ASSERT_TRUE(pty.ok());
+    trionet::test::tool_process keypad(
+        {"ring", "join", pty.slave_path, "--as", "keypad", "--json", "--profile", path});
+    pty.write_all({0x8b, 0x01, 0x88});  // keypad offset 1: network mode
+    keypad.read_lines_with("\"network\":true", 1, 20000);
+    keypad.write("1\nquit\n");
+    EXPECT_EQ(pty.read_bytes(3, 20000), (std::vector<std::uint8_t>{0x89, 'b', 0x88}));
+    EXPECT_EQ(keypad.wait(20000), 0);
+  }
+  {
+    trionet::test::pty_pair pty;
+    ASSERT_TRUE(pty.ok());
+    trionet::test::tool_process mc(
+        {"ring", "join", pty.slave_path, "--as", "mc", "--json", "--profile", path});
+    pty.write_all({0x89, 'b', 0x88, 0x89, '1', 0x88});      // 'b' is key 1 now; '1' is no key
+    mc.read_lines_with("\"event\":\"message\"", 2, 20000);  // both in the receive buffer
+    mc.write("get 3\nget 3\nquit\n");
+    EXPECT_EQ(mc.wait(20000), 0);
+    EXPECT_NE(mc.output().find("\"channel\":3,\"value\":1}"), std::string::npos) << mc.output();
+    EXPECT_NE(mc.output().find("\"channel\":3,\"value\":49}"), std::string::npos) << mc.output();
+  }
+  std::remove(path.c_str());
+}
+
+}  // namespace

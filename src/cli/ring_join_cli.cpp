@@ -345,7 +345,7 @@ int join_mc(const join_settings& settings) {
   std::string error;
   if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
   auto vrs = std::make_unique<reported_vrs>();
-  auto mc = std::make_unique<host_mc>(*vrs);
+  auto mc = std::make_unique<host_mc>(*vrs, active_profile().keypad.defkey);  // GET#3 through the profile's
   live::event_log log(settings.json);
   auto st = std::make_unique<station<host_mc>>(*mc, settings, capture.is_open() ? &capture : nullptr, log);
   if (!st->open(error)) return fail("ring join: " + error);
@@ -515,7 +515,9 @@ int join_keypad(const join_settings& settings) {
   live::capture_file capture;
   std::string error;
   if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
-  auto keypad = std::make_unique<host_keypad>();
+  const learn::keypad_profile& codes = active_profile().keypad;
+  auto keypad =
+      std::make_unique<host_keypad>(ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off)});
   raw_terminal terminal;
   const bool interactive = terminal.enter(STDIN_FILENO);
   live::event_log log(settings.json);
