@@ -158,6 +158,8 @@ int take_profile_option(words& args) {
 
 profile_decoder::profile_decoder() {
   const learn::ring_profile& p = active_profile().ring;
+  if (p.crc == ring::crc16_parameters{} && p.layout == ring::variable_layout_parameters{})
+    return;  // decoder<>
   const ring::crc16_runtime crc(p.crc);
   ring::with_variable_layout(p.layout, [&](auto layout) {
     using layout_type = decltype(layout);
@@ -167,6 +169,8 @@ profile_decoder::profile_decoder() {
 
 ring::encode_result encode_with_profile(byte_buffer out, const ring::message& m) {
   const learn::ring_profile& p = active_profile().ring;
+  if (p.crc == ring::crc16_parameters{} && p.layout == ring::variable_layout_parameters{})
+    return ring::encode(out, m);
   const ring::crc16_runtime crc(p.crc);
   return ring::with_variable_layout(p.layout, [&](auto layout) {
     return ring::encode<ring::crc16_runtime, decltype(layout)>(out, m, crc);
