@@ -3,6 +3,7 @@
 // profile written, and a separate capture decoded with it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -16,6 +17,7 @@
 #include "support/live_process.hpp"
 #include "support/run_cli.hpp"
 #include "trionet/host/pcapng.hpp"
+#include "trionet/host/text.hpp"
 #include "trionet/ring/keypad.hpp"
 
 namespace {
@@ -558,6 +560,53 @@ TEST(LearnCli, JoinUsesTheProfilesKeypadCodesAndDefkey) {
     EXPECT_NE(mc.output().find("\"channel\":3,\"value\":1}"), std::string::npos) << mc.output();
     EXPECT_NE(mc.output().find("\"channel\":3,\"value\":49}"), std::string::npos) << mc.output();
   }
+  std::remove(path.c_str());
+}
+
+}  // namespace
+
+namespace {
+
+// `ring monitor` decodes with the profile's CRC and layout; `ring send` encodes with them.
+TEST(LearnCli, MonitorAndSendUseTheProfile) {
+  learn::profile p;
+  p.ring.crc = {0x8005, 0xFFFF, true, true, 0};
+  p.ring.layout.value = ring::group_order::most_significant_first;
+  const std::string path = temp_path("monitor.json");
+  write_file(path, learn::write_profile(p));
+  trionet::test::pty_pair pty;
+  ASSERT_TRUE(pty.ok());
+  trionet::test::tool_process monitor({"ring", "monitor", pty.slave_path, "--json", "--profile", path});
+  std::mt19937_64 rng(6);
+  const std::vector<learn::sent_variable> sent = random_sent(rng, 3);
+  for (const learn::variable_frame& f : learn::encode_capture(sent, p.ring.crc, p.ring.layout)) {
+    std::vector<std::uint8_t> frame = {0x8a};
+    frame.insert(frame.end(), f.begin(), f.end());
+    frame.push_back(0x88);
+    pty.write_all(frame);
+  }
+  const std::string& out = monitor.read_lines_with("\"event\":\"message\"", 3, 20000);
+  EXPECT_EQ(count_of(out, "crc_error"), 0u) << out;
+  for (const learn::sent_variable& s : sent) {
+    EXPECT_NE(out.find("\"vr\":" + std::to_string(s.vr) + ","), std::string::npos) << out;
+  }
+  monitor.signal(SIGINT);
+  EXPECT_EQ(monitor.wait(20000), 0);
+
+  const auto r = run_cli("ring send - var --to 10 --vr 200 --value 99 --profile " + path);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  // With "-" the bytes go to standard output as they are: the frame `ring encode` prints with the profile.
+  std::vector<std::uint8_t> expected;
+  ASSERT_TRUE(trionet::host::parse_hex_bytes(
+      [&] {
+        std::string hex = run_cli("ring encode var --to 10 --vr 200 --value 99 --profile " + path).out;
+        hex.erase(std::remove_if(hex.begin(), hex.end(), [](char c) { return c == ' ' || c == '\n'; }),
+                  hex.end());
+        return hex;
+      }(),
+      expected));
+  EXPECT_EQ(std::vector<std::uint8_t>(r.out.begin(), r.out.end()), expected);
+
   std::remove(path.c_str());
 }
 
