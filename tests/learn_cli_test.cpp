@@ -317,6 +317,13 @@ TEST(LearnCli, GeniusCrcLearnedFromEncodedTransmissions) {
   EXPECT_EQ(from_raw.exit_code, 0) << from_raw.err;
   EXPECT_NE(from_raw.out.find("\"name\":\"CRC-6/G-704\""), std::string::npos) << from_raw.out;
   expect_usage_error("genius learn crc --raw", "odd number of bytes", raw.substr(1));
+  // And from a capture `genius decode --write-pcap` wrote.
+  const std::string pcap = temp_path("genius.pcapng");
+  ASSERT_EQ(run_cli("genius decode --write-pcap " + pcap, tokens).exit_code, 0);
+  const auto from_pcap = run_cli("genius learn crc --pcap " + pcap);
+  EXPECT_EQ(from_pcap.exit_code, 0) << from_pcap.err;
+  EXPECT_NE(from_pcap.out.find("\"status\":\"ok\",\"samples\":5,"), std::string::npos) << from_pcap.out;
+  std::remove(pcap.c_str());
   const auto one = run_cli("genius learn crc c:01 02 11 c:5d");
   EXPECT_EQ(one.exit_code, 2) << "tokens come from FILE or standard input, not the arguments";
   const auto few = run_cli("genius learn crc", "c:01 02 11 c:5d\n");

@@ -23,7 +23,7 @@ std::string usage() {
   out += "\nRun `trionet <part> --help` for a part's commands, `trionet <part> <command> --help` for a command's\n"
          "options. Every command takes --profile FILE: the wire parameters to use (docs/profile.md).\n"
          "Exit status: 0 the input was read (wire errors are reported as events), 1 reading or\n"
-         "writing failed, 2 bad arguments, 3 a --check failed.\n";
+         "writing failed, 2 bad arguments, 3 a --check failed or a learn command found no single answer.\n";
   return out;
 }
 
