@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -354,6 +355,14 @@ TEST(LearnCli, BadInputAndArgumentsNameTheProblem) {
   EXPECT_NE(missing.err.find("/nonexistent/capture.hex"), std::string::npos) << missing.err;
   const auto no_list = run_cli("ring learn layout --sent /nonexistent/sent.txt");
   EXPECT_EQ(no_list.exit_code, 1);
+  // Input is bounded: 64 MiB and one byte is refused, not held.
+  const std::string big = temp_path("big.raw");
+  { std::ofstream(big, std::ios::binary).put('\0'); }
+  std::filesystem::resize_file(big, (std::uintmax_t{64} << 20U) + 1U);
+  expect_usage_error("ring learn crc --raw " + big, "the input is larger than 64 MiB");
+  std::filesystem::resize_file(big, std::uintmax_t{64} << 20U);
+  EXPECT_EQ(run_cli("ring learn crc --raw " + big).exit_code, 3) << "64 MiB is read: no frames in it";
+  std::remove(big.c_str());
 }
 
 TEST(LearnCli, EveryCommandTakesProfileAndABadOneIsNamed) {

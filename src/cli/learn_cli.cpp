@@ -54,11 +54,17 @@ const char* const genius_learn_usage =
     "the data since its Start of block, is one sample; four samples of different lengths usually suffice.\n"
     "One event per class of CRCs that agree on every message of 1..257 bytes, then a result event.\n"
     "With -o, the profile in effect (--profile, else the default) with the CRC found is written to PROFILE.\n"
-    "Exit status 0 when exactly one class fits, 3 when none or several fit, 1 when reading or writing "
-    "failed,\n"
-    "2 for bad arguments or input that is not tokens.\n";
+    "Exit status 0 when exactly one class fits, 3 when none or several fit, 1 when reading or writing\n"
+    "failed, 2 for bad arguments or input that is not tokens.\n";
 
 namespace {
+
+// Learning needs a few frames: more input than this is refused rather than held in memory.
+constexpr std::size_t max_input = std::size_t{64} << 20U;
+
+int too_much_input() {
+  return fail("the input is larger than 64 MiB: a few frames suffice for learning (docs/profile.md)");
+}
 
 // The whole of FILE, or of standard input when there is none (or it is "-").
 int read_input(const std::vector<std::string>& positionals, std::string& text) {
@@ -71,6 +77,7 @@ int read_input(const std::vector<std::string>& positionals, std::string& text) {
   while (true) {
     if (!in.read(chunk, error)) return fail_io(error);
     if (chunk.empty()) return exit_ok;
+    if (text.size() + chunk.size() > max_input) return too_much_input();
     text.append(chunk.data(), chunk.size());
   }
 }
@@ -78,15 +85,22 @@ int read_input(const std::vector<std::string>& positionals, std::string& text) {
 // The bytes of every record of `network` in a capture (events for records of other networks are printed).
 int read_capture_bytes(const std::string& path, host::capture_network network, std::vector<std::uint8_t>& out,
                        std::vector<std::uint16_t>* genius_words = nullptr) {
-  return read_capture(path, network, false, active_profile().can.node_count,
-                      [&](const host::pcapng_record& record, const capture_position&, std::string&) {
-                        if (genius_words == nullptr) {
-                          out.insert(out.end(), record.bytes.begin(), record.bytes.end());
-                          return;
-                        }
-                        for (std::uint16_t w : host::genius_record_words(record.bytes))
-                          genius_words->push_back(w);
-                      });
+  bool too_much = false;
+  const int status = read_capture(
+      path, network, false, active_profile().can.node_count,
+      [&](const host::pcapng_record& record, const capture_position&, std::string&) {
+        too_much =
+            too_much || out.size() + record.bytes.size() > max_input ||
+            (genius_words != nullptr && genius_words->size() + record.bytes.size() / 2 > max_input / 2);
+        if (too_much) return;
+        if (genius_words == nullptr) {
+          out.insert(out.end(), record.bytes.begin(), record.bytes.end());
+          return;
+        }
+        for (std::uint16_t w : host::genius_record_words(record.bytes)) genius_words->push_back(w);
+      });
+  if (status != exit_ok) return status;
+  return too_much ? too_much_input() : exit_ok;
 }
 
 // Each word of `text` (separated by blanks) through `take(word)`; the first it refuses is a usage error
@@ -188,10 +202,6 @@ int ring_learn_crc(const arguments& args) {
   return finish(static_cast<bool>(r), args, learned, out);
 }
 
-const char* order_name(ring::group_order order) {
-  return ring::to_string(order);
-}
-
 int ring_learn_layout(const arguments& args) {
   if (!args.has("--sent"))
     return fail("ring learn layout needs --sent LIST (the VR numbers and values sent)");
@@ -214,7 +224,7 @@ int ring_learn_layout(const arguments& args) {
   output out;
   for (const learn::order_fit& fit : r.orders) {
     event e(out.text(), "order");
-    e.text("vr_group_order", order_name(fit.vr)).text("value_group_order", order_name(fit.value));
+    e.text("vr_group_order", ring::to_string(fit.vr)).text("value_group_order", ring::to_string(fit.value));
     e.boolean("fits", fit.fits);
     const std::size_t i = fit.first_contradiction;
     if (fit.fits || i >= found.frames.size() || i >= sent.sent.size()) continue;
@@ -231,7 +241,8 @@ int ring_learn_layout(const arguments& args) {
     e.text("status", learn::to_string(r.status)).number("frames", found.frames.size());
     e.number("sent", sent.sent.size()).number("skipped_bytes", found.skipped_bytes);
     if (r) {
-      e.text("vr_group_order", order_name(r.layout.vr)).text("value_group_order", order_name(r.layout.value));
+      e.text("vr_group_order", ring::to_string(r.layout.vr))
+          .text("value_group_order", ring::to_string(r.layout.value));
       e.text("crc_input", ring::to_string(r.layout.crc));
     }
     e.text("crc_finding", learn::to_string(r.crc));
