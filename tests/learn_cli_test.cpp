@@ -627,3 +627,35 @@ TEST(LearnCli, MonitorAndSendUseTheProfile) {
 }
 
 }  // namespace
+
+namespace {
+
+// `ring join --as mc` checks and sends direct variable transfers with the profile's CRC and layout.
+TEST(LearnCli, JoinAsMcUsesTheProfilesCrcAndLayout) {
+  learn::profile p;
+  p.ring.crc = {0x8005, 0xFFFF, true, true, 0};
+  p.ring.layout = {ring::group_order::most_significant_first, ring::group_order::most_significant_first,
+                   ring::crc_input::least_significant_first};
+  const std::string path = temp_path("join-crc.json");
+  write_file(path, learn::write_profile(p));
+  trionet::test::pty_pair pty;
+  ASSERT_TRUE(pty.ok());
+  trionet::test::tool_process mc({"ring", "join", pty.slave_path, "--as", "mc", "--json", "--profile", path});
+  const auto frame_of = [&](std::uint16_t vr, std::int64_t value) {
+    const learn::variable_frame f = learn::encode_capture({{vr, value}}, p.ring.crc, p.ring.layout)[0];
+    std::vector<std::uint8_t> frame = {0x8a};
+    frame.insert(frame.end(), f.begin(), f.end());
+    frame.push_back(0x88);
+    return frame;
+  };
+  pty.write_all(frame_of(7, std::int64_t{5} << 31));
+  mc.read_lines_with("\"event\":\"vr_write\"", 1, 20000);
+  mc.write("send 10 300 -1.5\nquit\n");
+  EXPECT_EQ(pty.read_bytes(16, 20000), frame_of(300, -(std::int64_t{3} << 31)));
+  EXPECT_EQ(mc.wait(20000), 0);
+  EXPECT_NE(mc.output().find("\"vr\":7,\"value\":2.5,\"status\":\"ok\""), std::string::npos) << mc.output();
+  EXPECT_NE(mc.output().find("\"crc_errors\":0,"), std::string::npos) << mc.output();
+  std::remove(path.c_str());
+}
+
+}  // namespace

@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,8 +34,14 @@ namespace {
 // forward buffer has less room than one read, and the kernel holds the bytes meanwhile.
 constexpr std::size_t host_forward_capacity = 4096;
 constexpr std::size_t host_read_chunk = 256;  // what fd_link reads at once
-using host_mc = ring::motion_coordinator<256, host_forward_capacity, 256>;
-using host_keypad = ring::keypad<host_forward_capacity, 64>;
+// The nodes check and send direct variable transfers with the profile's CRC (an object chosen at run time)
+// and variable layout (a policy: one instantiation for each, picked by ring::with_variable_layout).
+template <class Layout>
+using host_mc = ring::motion_coordinator<256, host_forward_capacity, 256, ring::crc16_runtime,
+                                         ring::default_max_characters, Layout>;
+template <class Layout>
+using host_keypad =
+    ring::keypad<host_forward_capacity, 64, ring::default_max_characters, ring::crc16_runtime, Layout>;
 
 // The node with the host watching both directions of its link: every byte in and out also goes through a
 // tap (events, capture, counters).
@@ -144,7 +150,8 @@ class station {
       }
     }
     if (ready > 0 && input >= 0) input_events = fds[1].revents;
-    if (after - last_byte_ >= static_cast<std::uint64_t>(settings_.idle_ms) * 1000000u && watched_.in_message()) {
+    if (after - last_byte_ >= static_cast<std::uint64_t>(settings_.idle_ms) * 1000000u &&
+        watched_.in_message()) {
       (void)link_.idle();
       last_byte_ = after;
     }
@@ -222,7 +229,8 @@ void add_link_counters(event& e, const ring::link_counters& c) {
   e.number("messages_sent", c.messages_sent);
 }
 
-void mc_counters(std::string& out, const host_mc& mc, station<host_mc>& st) {
+template <class Mc>
+void mc_counters(std::string& out, const Mc& mc, station<Mc>& st) {
   event e(out, "counters");
   e.time(live::now_ns()).number("netstat", mc.netstat());
   const ring::motion_coordinator_counters& c = mc.counters();
@@ -266,7 +274,8 @@ bool print_parts(const std::string& line, std::string& address, std::string& tex
 // and keypad mode 127, asks for each key in turn, and takes its key ON and key OFF characters from the
 // receive buffer. Writes the profile in effect with the codes found (docs/profile.md). Returns the exit
 // status: 3 when the characters fit no profile (two keys alike, a key OFF rule the profile cannot say).
-int learn_keypad_codes(const join_settings& settings, host_mc& mc, station<host_mc>& st, live::event_log& log,
+template <class Mc>
+int learn_keypad_codes(const join_settings& settings, Mc& mc, station<Mc>& st, live::event_log& log,
                        std::string& ended) {
   bool port_open = true;
   short ignored = 0;
@@ -287,7 +296,9 @@ int learn_keypad_codes(const join_settings& settings, host_mc& mc, station<host_
       !queued(mc.send_keypad_mode(settings.learn_keypad, 127), "mode")) {
     return fail_io("ring join: " + ended);
   }
-  event(log.text(), "learning").time(live::now_ns()).signed_number("keypad", settings.learn_keypad)
+  event(log.text(), "learning")
+      .time(live::now_ns())
+      .signed_number("keypad", settings.learn_keypad)
       .signed_number("offset", settings.keypad_offset);
   ring::keypad_codes codes{};
   std::uint8_t off[ring::key_count] = {};
@@ -307,7 +318,11 @@ int learn_keypad_codes(const join_settings& settings, host_mc& mc, station<host_
     }
     codes.raw[k] = got[0];
     off[k] = got[1];
-    event(log.text(), "learned").time(live::now_ns()).text("key", name).number("on", got[0]).number("off", got[1]);
+    event(log.text(), "learned")
+        .time(live::now_ns())
+        .text("key", name)
+        .number("on", got[0])
+        .number("off", got[1]);
   }
   log.flush();
   bool plus_64 = true;
@@ -323,31 +338,34 @@ int learn_keypad_codes(const join_settings& settings, host_mc& mc, station<host_
     }
   }
   if (!plus_64 && !same) {
-    std::fprintf(stderr,
-                 "trionet: ring join: the key OFF characters follow neither rule a profile can hold (key ON + 64, "
-                 "or the same): no profile written\n");
+    std::fprintf(
+        stderr,
+        "trionet: ring join: the key OFF characters follow neither rule a profile can hold (key ON + 64, "
+        "or the same): no profile written\n");
     return exit_check;
   }
   learn::profile p = active_profile();
   const ring::defkey_table from_old_codes = ring::make_default_defkey(p.keypad.codes);
-  const bool defkey_from_codes =
-      std::equal(std::begin(from_old_codes.value), std::end(from_old_codes.value), std::begin(p.keypad.defkey.value));
+  const bool defkey_from_codes = std::equal(std::begin(from_old_codes.value), std::end(from_old_codes.value),
+                                            std::begin(p.keypad.defkey.value));
   p.keypad.codes = codes;
   p.keypad.key_off = plus_64 ? learn::key_off_rule::plus_64 : learn::key_off_rule::same;
   if (defkey_from_codes) p.keypad.defkey = ring::make_default_defkey(codes);
   return write_profile_file(p, settings.learn_output);
 }
 
-}  // namespace
-
-int join_mc(const join_settings& settings) {
+template <class Layout>
+int join_mc_with(const join_settings& settings) {
   live::capture_file capture;
   std::string error;
   if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
   auto vrs = std::make_unique<reported_vrs>();
-  auto mc = std::make_unique<host_mc>(*vrs, active_profile().keypad.defkey);  // GET#3 through the profile's
+  // GET#3 through the profile's DEFKEY; its CRC for direct variable transfers.
+  auto mc = std::make_unique<host_mc<Layout>>(*vrs, active_profile().keypad.defkey,
+                                              ring::crc16_runtime(active_profile().ring.crc));
   live::event_log log(settings.json);
-  auto st = std::make_unique<station<host_mc>>(*mc, settings, capture.is_open() ? &capture : nullptr, log);
+  auto st =
+      std::make_unique<station<host_mc<Layout>>>(*mc, settings, capture.is_open() ? &capture : nullptr, log);
   if (!st->open(error)) return fail("ring join: " + error);
 
   live::signal_watch signals;
@@ -407,14 +425,16 @@ int join_mc(const join_settings& settings) {
           !parse_real(w[3], value))
         return reply_error(command, "usage: send N VR VALUE (N 10..24, VR 0..16383)");
       ring::send_status s = ring::send_status::queue_full;
-      while ((s = mc->send_variable(n, static_cast<std::uint16_t>(number), value)) == ring::send_status::queue_full &&
+      while ((s = mc->send_variable(n, static_cast<std::uint16_t>(number), value)) ==
+                 ring::send_status::queue_full &&
              wait_for_room()) {
       }
       return sent(command, s);
     }
     if (command == "offset" || command == "mode") {
       if (w.size() != 3 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, 127, number))
-        return reply_error(command, command == "offset" ? "usage: offset N M (N, M 10..24)" : "usage: mode N 0|127");
+        return reply_error(command,
+                           command == "offset" ? "usage: offset N M (N, M 10..24)" : "usage: mode N 0|127");
       ring::send_status s = ring::send_status::queue_full;
       const auto once = [&]() {
         return command == "offset" ? mc->send_keypad_offset(n, static_cast<int>(number))
@@ -425,10 +445,13 @@ int join_mc(const join_settings& settings) {
       return sent(command, s);
     }
     if (command == "key" || command == "get") {
-      if (w.size() != 2 || !parse_integer(w[1], 3, 4, number)) return reply_error(command, "usage: " + command + " 3|4");
+      if (w.size() != 2 || !parse_integer(w[1], 3, 4, number))
+        return reply_error(command, "usage: " + command + " 3|4");
       const int channel = static_cast<int>(number);
       if (command == "key") {
-        event(log.text(), "key").time(live::now_ns()).signed_number("channel", channel)
+        event(log.text(), "key")
+            .time(live::now_ns())
+            .signed_number("channel", channel)
             .boolean("waiting", mc->key(channel))
             .number("characters", mc->characters_waiting());
         return;
@@ -450,7 +473,9 @@ int join_mc(const join_settings& settings) {
         if (!parse_real(w[2], value)) return reply_error(command, "VALUE must be a real number");
         (*vrs)[static_cast<std::size_t>(number)] = value;
       }
-      event(log.text(), "vr").time(live::now_ns()).signed_number("vr", number)
+      event(log.text(), "vr")
+          .time(live::now_ns())
+          .signed_number("vr", number)
           .real("value", (*vrs)[static_cast<std::size_t>(number)]);
       return;
     }
@@ -469,7 +494,8 @@ int join_mc(const join_settings& settings) {
       quit = true;
       return;
     }
-    reply_error(command, "unknown command (print, send, offset, mode, key, get, vr, netstat, counters, quit)");
+    reply_error(command,
+                "unknown command (print, send, offset, mode, key, get, vr, netstat, counters, quit)");
   };
 
   while (port_open && !quit && !live::signal_watch::stop_requested()) {
@@ -477,7 +503,10 @@ int join_mc(const join_settings& settings) {
     short input_events = 0;
     port_open = st->step(1000, input.ended() ? -1 : input.fd(), input_events, ended);
     for (const reported_vrs::write_record& w : vrs->take()) {
-      event(log.text(), "vr_write").time(live::now_ns()).number("vr", w.vr).real("value", w.value)
+      event(log.text(), "vr_write")
+          .time(live::now_ns())
+          .number("vr", w.vr)
+          .real("value", w.value)
           .text("status", to_string(w.status));
     }
     if (mc->netstat() != netstat_shown) {
@@ -499,30 +528,39 @@ int join_mc(const join_settings& settings) {
   return exit_ok;
 }
 
+}  // namespace
+
+int join_mc(const join_settings& settings) {
+  return ring::with_variable_layout(active_profile().ring.layout,
+                                    [&](auto layout) { return join_mc_with<decltype(layout)>(settings); });
+}
+
 // ---- the keypad ----
 
 namespace {
 
-std::string keypad_status(const host_keypad& k) {
+template <class Keypad>
+std::string keypad_status(const Keypad& k) {
   if (!k.network_mode()) return "local mode (no keypad offset yet)";
   return "network mode: keys to BASIC " + std::to_string(k.offset() + 9) + " (" + std::to_string(k.offset()) +
          (k.offset() == 1 ? " hop)" : " hops)") + ", keypad mode " + std::to_string(k.mode());
 }
 
-}  // namespace
-
-int join_keypad(const join_settings& settings) {
+template <class Layout>
+int join_keypad_with(const join_settings& settings) {
   live::capture_file capture;
   std::string error;
   if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
   const learn::keypad_profile& codes = active_profile().keypad;
-  auto keypad =
-      std::make_unique<host_keypad>(ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off)});
+  auto keypad = std::make_unique<host_keypad<Layout>>(
+      ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off)},
+      ring::crc16_runtime(active_profile().ring.crc));
   raw_terminal terminal;
   const bool interactive = terminal.enter(STDIN_FILENO);
   live::event_log log(settings.json);
   if (interactive) log.keep_last(4);  // the last events, under the drawing
-  auto st = std::make_unique<station<host_keypad>>(*keypad, settings, capture.is_open() ? &capture : nullptr, log);
+  auto st = std::make_unique<station<host_keypad<Layout>>>(*keypad, settings,
+                                                           capture.is_open() ? &capture : nullptr, log);
   if (!st->open(error)) {
     terminal.restore();
     return fail("ring join: " + error);
@@ -543,23 +581,32 @@ int join_keypad(const join_settings& settings) {
   const auto press = [&](const std::string& word) {
     ring::key k = ring::key::digit_0;
     if (!keypad_key(word, k)) {
-      event(log.text(), "error").time(live::now_ns()).text("word", word).text(
-          "reason", "not a key (0..9 . up down clr y n start stop)");
+      event(log.text(), "error")
+          .time(live::now_ns())
+          .text("word", word)
+          .text("reason", "not a key (0..9 . up down clr y n start stop)");
       return;
     }
     const ring::key_status on = keypad->press(k);
     const ring::key_status off = keypad->release(k);
-    event(log.text(), "key").time(live::now_ns()).text("key", to_string(k)).text("press", ring::to_string(on)).text(
-        "release", ring::to_string(off));
+    event(log.text(), "key")
+        .time(live::now_ns())
+        .text("key", to_string(k))
+        .text("press", ring::to_string(on))
+        .text("release", ring::to_string(off));
   };
   const auto show = [&]() {
     const std::string lines[2] = {keypad->display().line(0), keypad->display().line(1)};
     const std::string status = keypad_status(*keypad);
-    const bool changed = first || lines[0] != shown_lines[0] || lines[1] != shown_lines[1] || status != shown_status;
+    const bool changed =
+        first || lines[0] != shown_lines[0] || lines[1] != shown_lines[1] || status != shown_status;
     if (!changed && !interactive) return;
     if ((status != shown_status || first) && (!first || keypad->network_mode())) {
-      event(log.text(), "mode").time(live::now_ns()).boolean("network", keypad->network_mode()).signed_number(
-          "offset", keypad->offset()).signed_number("keypad_mode", keypad->mode());
+      event(log.text(), "mode")
+          .time(live::now_ns())
+          .boolean("network", keypad->network_mode())
+          .signed_number("offset", keypad->offset())
+          .signed_number("keypad_mode", keypad->mode());
     }
     if (lines[0] != shown_lines[0] || lines[1] != shown_lines[1]) {
       event(log.text(), "display").time(live::now_ns()).text("line1", lines[0]).text("line2", lines[1]);
@@ -616,7 +663,10 @@ int join_keypad(const join_settings& settings) {
       }
     }
     if (!bad_wait.empty()) {
-      event(log.text(), "error").time(live::now_ns()).text("word", bad_wait).text("reason", "wait=MS takes 0..3600000");
+      event(log.text(), "error")
+          .time(live::now_ns())
+          .text("word", bad_wait)
+          .text("reason", "wait=MS takes 0..3600000");
     }
     show();
   }
@@ -627,9 +677,13 @@ int join_keypad(const join_settings& settings) {
   log.keep_last(0);  // the counters go to standard output, screen or not
   {
     event e(log.text(), "counters");
-    e.time(live::now_ns()).boolean("network", keypad->network_mode()).signed_number("offset", keypad->offset());
+    e.time(live::now_ns())
+        .boolean("network", keypad->network_mode())
+        .signed_number("offset", keypad->offset());
     const ring::keypad_counters& c = keypad->counters();
-    e.number("keys_sent", c.keys_sent).number("keys_lost", c.keys_lost).number("display_messages", c.display_messages);
+    e.number("keys_sent", c.keys_sent)
+        .number("keys_lost", c.keys_lost)
+        .number("display_messages", c.display_messages);
     e.number("dropped_in_local_mode", c.dropped_in_local_mode).number("frame_errors", c.frame_errors);
     e.number("crc_errors", c.crc_errors);
     e.number("netstat", keypad->netstat());
@@ -642,6 +696,14 @@ int join_keypad(const join_settings& settings) {
   if (!port_open) std::fprintf(stderr, "trionet: ring join: %s\n", ended.c_str());
   if (!capture.good()) return fail("ring join: writing the capture " + settings.pcap + " failed");
   return exit_ok;
+}
+
+}  // namespace
+
+int join_keypad(const join_settings& settings) {
+  return ring::with_variable_layout(active_profile().ring.layout, [&](auto layout) {
+    return join_keypad_with<decltype(layout)>(settings);
+  });
 }
 
 }  // namespace trionet::cli
