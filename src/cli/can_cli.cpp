@@ -156,7 +156,13 @@ bool record_of(const host::pcapng_record& record, host::candump_record& out, hos
       out.length = read.frame.data_length();
       return true;
     case host::socketcan_record_status::not_classic:
-      out.type = (record.bytes[5] & 0x80U) != 0 ? host::candump_frame_type::xl : host::candump_frame_type::fd;
+      if ((record.bytes[5] & 0x80U) != 0) {
+        out.type = host::candump_frame_type::xl;
+      } else {
+        // The error flag makes an error frame of a CAN FD frame too, as candump text reads it (`20000080##0`).
+        out.type = (out.can_id & host::can_error_flag) != 0 ? host::candump_frame_type::error
+                                                            : host::candump_frame_type::fd;
+      }
       return true;
     case host::socketcan_record_status::error_frame:
       out.type = host::candump_frame_type::error;
