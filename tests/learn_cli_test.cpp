@@ -334,6 +334,58 @@ TEST(LearnCli, GeniusCrcLearnedFromEncodedTransmissions) {
   std::remove(out.c_str());
 }
 
+// genius encode and decode use the profile's CRC-6: what is encoded with a profile decodes with it (hex
+// tokens and a capture) and fails the CRC check without it; and a CRC learned from such transmissions is a
+// profile that decodes them.
+TEST(LearnCli, GeniusEncodeAndDecodeUseTheProfileCrc) {
+  learn::profile darc;
+  darc.genius.crc = {0x19, 0x00, true, true, 0x00};  // CRC-6/DARC
+  const std::string profile = temp_path("genius-darc.json"), learned = temp_path("genius-learned.json");
+  write_file(profile, learn::write_profile(darc));
+  const auto example = run_cli("genius encode --profile " + profile + " --from 4 --to 7 1122 block:9:aabb 33");
+  ASSERT_EQ(example.exit_code, 0) << example.err;
+  EXPECT_NE(example.out, run_cli("genius encode --from 4 --to 7 1122 block:9:aabb 33").out);
+  const auto decoded = run_cli("genius decode --profile " + profile, example.out);
+  EXPECT_EQ(decoded.exit_code, 0);
+  EXPECT_EQ(decoded.out,
+            "transmission from SBA 4, directed to SBA 7 (line 1, character 1)\n"
+            "  data 11 22\n"
+            "  block to SBA 9: aa bb\n"
+            "  data 33\n"
+            "1 transmission, 0 errors, 0 characters skipped\n");
+  const auto by_default = run_cli("genius decode", example.out);
+  EXPECT_EQ(by_default.exit_code, 0);
+  EXPECT_NE(by_default.out.find("block_crc_mismatch"), std::string::npos) << by_default.out;
+  EXPECT_NE(by_default.out.find("0 transmissions, 1 error,"), std::string::npos) << by_default.out;
+
+  std::string tokens;
+  for (const char* t : {"--from 1 --to 2 11", "--from 3 --to 4 a1b2c3d4 block:5:0102",
+                        "--from 7 --broadcast 010203040506070809", "--from 9 --to 1 ff", "--from 2 --to 30 5a5a"}) {
+    const auto encoded = run_cli("genius encode --profile " + profile + " " + t);
+    ASSERT_EQ(encoded.exit_code, 0) << encoded.err;
+    tokens += encoded.out;
+  }
+  const auto r = run_cli("genius learn crc -o " + learned, tokens);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const learn::profile_result written = learn::read_profile(slurp(learned));
+  ASSERT_TRUE(written);
+  EXPECT_EQ(written.value.genius.crc, darc.genius.crc);
+  const auto with_learned = run_cli("genius decode --profile " + learned, tokens);
+  EXPECT_NE(with_learned.out.find("5 transmissions, 0 errors, 0 characters skipped"), std::string::npos)
+      << with_learned.out;
+  const auto without = run_cli("genius decode", tokens);
+  EXPECT_NE(without.out.find("0 transmissions, 5 errors,"), std::string::npos) << without.out;
+  // A capture of them: decoded with the profile, CRC errors without.
+  const std::string pcap = temp_path("genius-darc.pcapng");
+  ASSERT_EQ(run_cli("genius decode --profile " + learned + " --write-pcap " + pcap, tokens).exit_code, 0);
+  EXPECT_NE(run_cli("genius decode --profile " + learned + " --pcap " + pcap).out.find("5 transmissions, 0 errors"),
+            std::string::npos);
+  EXPECT_NE(run_cli("genius decode --pcap " + pcap).out.find("0 transmissions, 5 errors"), std::string::npos);
+  std::remove(pcap.c_str());
+  std::remove(profile.c_str());
+  std::remove(learned.c_str());
+}
+
 TEST(LearnCli, BadInputAndArgumentsNameTheProblem) {
   expect_usage_error("ring learn", "ring learn needs what to learn: crc or layout");
   expect_usage_error("ring learn crcs", "unknown ring learn kind 'crcs' (expected crc or layout)");

@@ -12,6 +12,7 @@
 #include "capture_cli.hpp"
 #include "cli.hpp"
 #include "learn_cli.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/capture_view.hpp"
 
@@ -88,9 +89,13 @@ std::vector<std::string> split_lines(const std::string& joined) {
   return parts;
 }
 
-// The parser `genius decode` uses (the library's defaults, as the Wireshark dissector): what `encode` checks
-// its output against.
-using decode_parser = genius::transmission_parser<>;
+// The parser `genius decode` uses (the library's capacities, the profile's CRC-6): what `encode` checks its
+// output against.
+using decode_parser = genius::transmission_parser<256, 16, genius::crc6_runtime>;
+
+genius::crc6_runtime profile_crc() {
+  return genius::crc6_runtime(active_profile().genius.crc);
+}
 
 // ---------------------------------------------------------------------------------------------------
 // encode
@@ -137,10 +142,10 @@ int encode_main(const std::vector<std::string>& words) {
   if (!length) return fail("cannot encode this transmission");
   std::vector<genius::character> out(length.length);
   const genius::encode_result written =
-      genius::encode_transmission(span<genius::character>(out.data(), out.size()), t);
+      genius::encode_transmission(span<genius::character>(out.data(), out.size()), t, profile_crc());
   if (!written) return fail("cannot encode this transmission");
   // What is printed must be what `genius decode` accepts: parse it with the same parser.
-  decode_parser check;
+  decode_parser check(profile_crc());
   genius::parse_status parsed = genius::parse_status::in_progress;
   for (const genius::character& c : out) {
     parsed = check.push(c);
@@ -196,7 +201,7 @@ std::string shown(std::string_view token) {
 // character also goes to a capture.
 class genius_stream {
  public:
-  explicit genius_stream(std::string& out) : out_(out) {}
+  explicit genius_stream(std::string& out) : out_(out), parser_(profile_crc()) {}
 
   void capture_to(host::pcapng_writer* writer, std::uint32_t interface, double character_ns) {
     writer_ = writer;
