@@ -212,6 +212,33 @@ TEST(CanCli, DecodeACaptureRecordByRecord) {
   std::remove(capture.c_str());
 }
 
+// A CAN FD record whose identifier has the error flag is an error frame, as candump text `20000080##0` is;
+// without the flag it is a CAN FD frame.
+TEST(CanCli, DecodeACaptureCanFdRecordWithTheErrorFlagAsAnErrorFrame) {
+  using namespace trionet::host;
+  const std::string capture = "/tmp/trionet-can-fd-" + std::to_string(::getpid()) + ".pcapng";
+  {
+    std::ofstream file(capture, std::ios::binary);
+    pcapng_writer writer(file);
+    const std::uint32_t bus = writer.add_interface("can0", capture_network::can).id;
+    for (const std::uint32_t id : {0x20000080U, 0x00000080U}) {
+      std::uint8_t record[72] = {};  // struct canfd_frame: id, len 0, flags CANFD_FDF
+      for (std::size_t i = 0; i < 4; ++i) record[i] = static_cast<std::uint8_t>(id >> (24 - 8 * i));
+      record[5] = 0x04;
+      ASSERT_EQ(writer.write(bus, 1700000000000000000ull, trionet::byte_view(record, sizeof record)),
+                pcapng_write_status::ok);
+    }
+  }
+  const auto r = run_cli("can decode --pcap " + capture);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "{\"event\":\"frame\",\"record\":1,\"interface_id\":0,\"interface\":\"can0\",\"time\":\"1700000000.000000000\","
+            "\"kind\":\"error_frame\",\"id\":128,\"length\":0}\n"
+            "{\"event\":\"frame\",\"record\":2,\"interface_id\":0,\"interface\":\"can0\",\"time\":\"1700000000.000000000\","
+            "\"kind\":\"fd\",\"id\":128,\"length\":0}\n");
+  std::remove(capture.c_str());
+}
+
 TEST(CanCli, HelpOnEveryCommand) {
   for (const char* command : {"can encode --help", "can decode -h", "can table --help", "can --help"}) {
     const auto r = run_cli(command);

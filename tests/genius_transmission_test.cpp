@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include <trionet/genius/transmission.hpp>
@@ -406,6 +407,51 @@ TEST(GeniusTransmission, CrcPolicyIsConfigurable) {
   EXPECT_EQ(with_default.errors(), 1u);
 }
 
+// A CRC chosen at run time (a profile's) encodes and checks exactly as the same static policy, for many
+// parameter sets; a static policy costs the parser no byte.
+TEST(GeniusTransmission, RunTimeCrcObjectIsTheStaticPolicy) {
+  using darc = crc6<0x19, 0x00, true, true, 0x00>;
+  const crc6_runtime runtime_darc(crc6_parameters{0x19, 0x00, true, true, 0x00});
+  std::vector<character> by_object(600);
+  const encode_result r =
+      encode_transmission(span<character>(by_object.data(), by_object.size()), example, runtime_darc);
+  ASSERT_TRUE(r);
+  by_object.resize(r.length);
+  EXPECT_EQ(by_object, encode<darc>(example));
+  std::vector<std::uint16_t> words(600);
+  const encode_result w = encode_transmission(span<std::uint16_t>(words.data(), words.size()), example, runtime_darc);
+  ASSERT_TRUE(w);
+  for (std::size_t i = 0; i < w.length; ++i) EXPECT_EQ(words[i], encode_character(by_object[i]));
+
+  transmission_parser<256, 16, crc6_runtime> with_object(runtime_darc);
+  EXPECT_EQ(push_all(with_object, by_object).back(), parse_status::ok);
+  transmission_parser<256, 16, crc6_runtime> with_default_object;  // CRC-6/G-704
+  EXPECT_NE(push_all(with_default_object, by_object).back(), parse_status::ok);
+  EXPECT_EQ(with_default_object.count(parse_status::block_crc_mismatch), 1u);
+  EXPECT_EQ(push_all(with_default_object, encode(example)).back(), parse_status::ok);
+
+  // Every parameter set: begin/update/finish of the object give the static policy's CRC.
+  rng random(7);
+  for (int i = 0; i < 200; ++i) {
+    const crc6_parameters p{static_cast<std::uint8_t>(random() & 0x3f), static_cast<std::uint8_t>(random() & 0x3f),
+                            (random() & 1u) != 0, (random() & 1u) != 0, static_cast<std::uint8_t>(random() & 0x3f)};
+    const crc6_runtime crc(p);
+    std::vector<character> characters(600);
+    const encode_result e = encode_transmission(span<character>(characters.data(), characters.size()), example, crc);
+    ASSERT_TRUE(e);
+    characters.resize(e.length);
+    transmission_parser<256, 16, crc6_runtime> parser(crc);
+    EXPECT_EQ(push_all(parser, characters).back(), parse_status::ok);
+  }
+  const std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  EXPECT_EQ(crc6_runtime().compute(check), crc6_g704::compute(check));
+  EXPECT_EQ(runtime_darc.compute(check), darc::compute(check));
+
+  static_assert(std::is_empty<crc6_g704>::value, "a static policy is held as nothing");
+  EXPECT_EQ(sizeof(transmission_parser<256, 16, crc6_runtime>) - sizeof(transmission_parser<>),
+            alignof(transmission_parser<>));  // the 5 bytes of the object, padded
+}
+
 // ---- bits to transmissions
 
 std::vector<bool> bits_of(const std::vector<character>& characters) {
@@ -425,6 +471,21 @@ std::vector<bit_result> push_bits(Receiver& rx, const std::vector<bool>& bits) {
     if (r.status != bit_status::nothing_yet) events.push_back(r);
   }
   return events;
+}
+
+TEST(GeniusTransmissionReceiver, TakesARunTimeCrcObject) {
+  const crc6_runtime darc(crc6_parameters{0x19, 0x00, true, true, 0x00});
+  std::vector<character> characters(600);
+  const encode_result e = encode_transmission(span<character>(characters.data(), characters.size()), example, darc);
+  ASSERT_TRUE(e);
+  characters.resize(e.length);
+  transmission_receiver<256, 16, crc6_runtime> with_darc(darc);
+  const std::vector<bit_result> events = push_bits(with_darc, bits_of(characters));
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().parse, parse_status::ok);
+  transmission_receiver<> with_default;
+  EXPECT_NE(push_bits(with_default, bits_of(characters)).back().parse, parse_status::ok);
+  EXPECT_EQ(with_default.parser().count(parse_status::ok), 0u);
 }
 
 TEST(GeniusTransmissionReceiver, RandomTransmissionsWithIdleGapsRoundTrip) {

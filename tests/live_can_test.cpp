@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -35,22 +36,39 @@ TEST(LiveCan, MonitorDecodesCandumpTextAndCapturesIt) {
                          "not a frame\n"
                          "7FF#0000000000000000\n");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("{\"time\":1700000000.123456,\"event\":\"vr\",\"id\":40,\"from\":1,\"to\":4,\"vr\":1,"
-                       "\"negative\":false,\"int\":2,\"frac\":3450,\"value\":2.345}"),
+  // The fields of `can decode`, with the line's own time
+  EXPECT_NE(r.out.find("{\"event\":\"vr\",\"time\":\"1700000000.123456000\",\"line\":1,\"id\":40,\"from\":1,\"to\":4,"
+                       "\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,\"value\":2.345}"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("\"event\":\"vr\",\"id\":22,\"from\":4,\"to\":2,\"vr\":5,\"negative\":true,\"int\":1,"
+  std::size_t untimed = 0;
+  const std::string out = trionet::test::without_times(r.out, &untimed);
+  EXPECT_EQ(untimed, 0u) << r.out;
+  EXPECT_NE(out.find("\"event\":\"vr\",\"line\":3,\"id\":22,\"from\":4,\"to\":2,\"vr\":5,\"negative\":true,\"int\":1,"
                        "\"frac\":5000,\"value\":-1.5}"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("\"event\":\"error\",\"reason\":\"bad_dlc\",\"frame\":\"028#02\""), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"event\":\"error\",\"reason\":\"syntax\",\"line\":5"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"event\":\"error\",\"reason\":\"unknown_id\",\"frame\":\"7FF#0000000000000000\""),
+  EXPECT_NE(out.find("\"event\":\"error\",\"line\":4,\"reason\":\"bad_dlc\",\"id\":40}"), std::string::npos) << r.out;
+  EXPECT_NE(out.find("\"event\":\"error\",\"line\":5,\"reason\":\"syntax\",\"detail\":\"identifier\"}"),
             std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("\"event\":\"counters\",\"frames\":4,\"vr\":2,\"errors\":2,\"error_frames\":0,\"syntax\":1}"),
+  EXPECT_NE(out.find("\"event\":\"frame\",\"line\":6,\"kind\":\"foreign_id\",\"id\":2047,\"length\":8}"),
             std::string::npos)
       << r.out;
+  EXPECT_NE(out.find("\"event\":\"counters\",\"frames\":4,\"vr\":2,\"errors\":2,\"error_frames\":0,\"syntax\":1}"),
+            std::string::npos)
+      << r.out;
+
+  // What `can decode --pcap` reads back from the capture: the same events with the same fields.
+  const auto decoded = run_cli("can decode --pcap " + pcap);
+  ASSERT_EQ(decoded.exit_code, 0) << decoded.err;
+  const std::vector<std::string> kinds = {"vr", "frame", "error"};
+  std::vector<std::string> frames = trionet::test::events_without_positions(r.out, kinds);
+  frames.erase(std::remove_if(frames.begin(), frames.end(),
+                              [](const std::string& e) { return e.find("\"syntax\"") != std::string::npos; }),
+               frames.end());  // a line that is not a frame has no record
+  EXPECT_EQ(frames.size(), 4u) << r.out;
+  EXPECT_EQ(trionet::test::events_without_positions(decoded.out, kinds), frames) << decoded.out;
 
   std::ifstream in(pcap, std::ios::binary);
   trionet::host::pcapng_reader reader(in);
@@ -75,9 +93,10 @@ TEST(LiveCan, MonitorDecodesCandumpTextAndCapturesIt) {
 TEST(LiveCan, AnEndlessLineIsOneSyntaxErrorAndTheNextIsRead) {
   const auto r = run_cli("can monitor - --json", std::string(300000, '0') + "\n028#0100000000020D7A\n");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("\"event\":\"error\",\"reason\":\"syntax\",\"line\":1}"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("\"line\":2}"), std::string::npos) << "the rest of the long line is not a line of its own";
-  EXPECT_NE(r.out.find("\"event\":\"vr\",\"id\":40"), std::string::npos) << r.out;
+  const std::string out = trionet::test::without_times(r.out);
+  EXPECT_NE(out.find("\"event\":\"error\",\"line\":1,\"reason\":\"syntax\""), std::string::npos) << r.out;
+  EXPECT_EQ(out.find("\"line\":2,\"reason\""), std::string::npos) << "the rest of the long line is not a line of its own";
+  EXPECT_NE(out.find("\"event\":\"vr\",\"line\":2,\"id\":40"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"frames\":1,\"vr\":1,\"errors\":0,\"error_frames\":0,\"syntax\":1}"), std::string::npos) << r.out;
 }
 
@@ -102,7 +121,7 @@ TEST(LiveCan, NodeWritesWhatItReceivesAndSendsWhatItIsAsked) {
                          "send 2 5 -1.5\n"
                          "send 4 5 1\n"
                          "counters\n");
-  const std::string& events = r.err;
+  const std::string events = trionet::test::without_times(r.err);
   EXPECT_EQ(r.exit_code, 0) << events;
   // standard output: the frames it sent, as candump log lines (for canplayer)
   const trionet::host::candump_result sent = trionet::host::parse_candump_line(r.out.substr(0, r.out.find('\n')));
@@ -110,10 +129,10 @@ TEST(LiveCan, NodeWritesWhatItReceivesAndSendsWhatItIsAsked) {
   EXPECT_EQ(trionet::host::format_candump_frame(sent.record.frame), "016#0501000000011388");  // node 4 -> node 2
   EXPECT_EQ(tool_process::occurrences(r.out, "\n"), 1u) << r.out;
   // standard error: the events
-  EXPECT_NE(events.find("{\"time\":1700000000.000001,\"event\":\"vr_write\",\"from\":1,\"vr\":1,\"value\":2.345,"
-                        "\"status\":\"ok\"}"),
+  EXPECT_NE(r.err.find("{\"event\":\"vr_write\",\"time\":\"1700000000.000001000\",\"from\":1,\"vr\":1,\"value\":2.345,"
+                       "\"status\":\"ok\"}"),
             std::string::npos)
-      << events;
+      << r.err;
   EXPECT_NE(events.find("\"event\":\"error\",\"from\":1,\"frame\":\"028#0102000000000000\",\"status\":\"bad_sign\""),
             std::string::npos)
       << events;
@@ -133,14 +152,15 @@ TEST(LiveCan, CandumpPipelines) {
   const std::string command = tool + " can send - --from 1 --to 4 --vr 9 --value 0.5 | " + tool +
                               " can node - --node 4 --json 2>" + out + ".err >" + out + ".out";
   ASSERT_EQ(std::system(command.c_str()), 0);
-  const std::string events = trionet::test::slurp(out + ".err");
+  const std::string events = trionet::test::without_times(trionet::test::slurp(out + ".err"));
   EXPECT_NE(events.find("\"event\":\"vr_write\",\"from\":1,\"vr\":9,\"value\":0.5,\"status\":\"ok\""), std::string::npos)
       << events;
   const std::string chain = "printf 'send 3 7 12.25\\n' | " + tool + " can node - --node 1 2>/dev/null | " + tool +
                             " can monitor - >" + out + ".out";
   ASSERT_EQ(std::system(chain.c_str()), 0);
   const std::string seen = trionet::test::slurp(out + ".out");
-  EXPECT_NE(seen.find(" vr id=30 from=1 to=3 vr=7 negative=false int=12 frac=2500 value=12.25\n"), std::string::npos)
+  EXPECT_NE(seen.find(" vr line=1 id=30 from=1 to=3 vr=7 negative=false int=12 frac=2500 value=12.25\n"),
+            std::string::npos)
       << seen;
   std::remove((out + ".err").c_str());
   std::remove((out + ".out").c_str());
@@ -159,7 +179,7 @@ TEST(LiveCan, CanUtilsReadAndWriteTheSameText) {
             std::string::npos)
       << trionet::test::slurp(base + ".asc");
   ASSERT_EQ(std::system(("asc2log -I " + base + ".asc | " + tool + " can monitor - --json >" + base + ".out").c_str()), 0);
-  EXPECT_NE(trionet::test::slurp(base + ".out").find("\"event\":\"vr\",\"id\":40,\"from\":1,\"to\":4,\"vr\":1"),
+  EXPECT_NE(trionet::test::without_times(trionet::test::slurp(base + ".out")).find("\"event\":\"vr\",\"line\":1,\"id\":40,\"from\":1,\"to\":4,\"vr\":1"),
             std::string::npos)
       << trionet::test::slurp(base + ".out");
   for (const char* ext : {".log", ".asc", ".out"}) std::remove((base + ext).c_str());

@@ -274,3 +274,42 @@ TEST(RingVariableLayout, MotionCoordinatorsSendAndReceiveInTheirLayout) {
   EXPECT_EQ(vr_b[200], 99.0);
   EXPECT_EQ(b.netstat(), 0);
 }
+
+namespace {
+
+// A CRC chosen at run time (a profile's): the nodes take the object, send with it and check with it.
+TEST(RingVariableLayout, NodesTakeACrcChosenAtRunTime) {
+  using msf = ring::variable_layout<ring::group_order::most_significant_first,
+                                    ring::group_order::most_significant_first>;
+  const ring::crc16_runtime modbus(ring::crc16_parameters{0x8005, 0xFFFF, true, true, 0});
+  using mc = ring::motion_coordinator<256, 32, 32, ring::crc16_runtime, ring::default_max_characters, msf>;
+  trionet::vr_table<256> vr_a, vr_b;
+  mc a(vr_a, ring::default_defkey, modbus), b(vr_b, ring::default_defkey, modbus);
+  ASSERT_EQ(a.send_variable(10, 200, 99.0), ring::send_status::ok);
+  std::uint8_t byte = 0;
+  std::vector<std::uint8_t> wire;
+  while (a.transmit(byte)) wire.push_back(byte);
+  std::uint8_t expected[16];
+  ASSERT_TRUE((ring::encode_variable<ring::crc16_runtime, msf>(expected, 1, 200, trionet::q32_from_integer(99),
+                                                               modbus)));
+  ASSERT_EQ(wire, std::vector<std::uint8_t>(expected, expected + 16));
+  for (std::uint8_t w : wire) b.receive(w);
+  EXPECT_EQ(vr_b[200], 99.0);
+  EXPECT_EQ(b.netstat(), 0);
+
+  // A node left with the default CRC object (CRC-16/CCITT-FALSE) refuses the frame: a CRC error.
+  trionet::vr_table<256> vr_c;
+  mc c(vr_c);
+  for (std::uint8_t w : wire) c.receive(w);
+  EXPECT_EQ(vr_c[200], 0.0);
+  EXPECT_EQ(c.counters().crc_errors, 1u);
+
+  // A keypad checks with its object too: the MODBUS frame passes its CRC check (and is ignored, counted).
+  ring::keypad<16, 16, ring::default_max_characters, ring::crc16_runtime, msf> k(ring::keypad_config{}, modbus);
+  for (int w : {0x8b, 0x01, 0x88}) k.receive(static_cast<std::uint8_t>(w));  // keypad offset 1: network mode
+  for (std::uint8_t w : wire) k.receive(w);
+  EXPECT_EQ(k.counters().crc_errors, 0u);
+  EXPECT_EQ(k.counters().variables_ignored, 1u);
+}
+
+}  // namespace

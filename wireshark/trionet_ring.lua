@@ -102,12 +102,15 @@ local function crc16(data, from, count)
   return band(bxor(crc, pref_number(ring.prefs.crc_xorout, 0)), 0xFFFF)
 end
 
--- The characters with \\, \r, \n, \t and \xNN escaped, so that every character (NUL too) shows.
+-- The characters with \\, \r, \n, \t and \xNN escaped, so that every character (NUL too) shows; the byte
+-- after ESC 'H' is a display position, a number: always \xNN.
 local function escaped_text(data, from, count)
   local out = {}
   for i = from, from + count - 1 do
     local c = data[i]
-    if c == 92 then
+    if i >= from + 2 and data[i - 2] == 27 and data[i - 1] == 72 then
+      out[#out + 1] = string.format("\\x%02x", c)
+    elseif c == 92 then
       out[#out + 1] = "\\\\"
     elseif c == 13 then
       out[#out + 1] = "\\r"

@@ -10,7 +10,8 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
-#include "live.hpp"
+#include "can_cli.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/candump.hpp"
 #include "trionet/host/capture.hpp"
 
@@ -45,18 +46,6 @@ constexpr const char* table_usage =
     "usage: trionet can table [--nodes K]\n"
     "Prints the note's receive-identifier table, a blank line, then its transmit-identifier table, tab-separated.\n";
 
-bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& error) {
-  out = can::default_node_count;
-  if (!parsed.has("--nodes")) return true;
-  long long value = 0;
-  if (!parse_integer(parsed.options.at("--nodes"), can::min_node_count, can::max_node_count, value)) {
-    error = "--nodes must be an integer from 2 to 11, got '" + host::clipped(parsed.options.at("--nodes")) + "'";
-    return false;
-  }
-  out = static_cast<std::uint8_t>(value);
-  return true;
-}
-
 bool parse_args(const words& all, const std::set<std::string>& options, const std::set<std::string>& flags,
                 arguments& parsed, std::string& error) {
   if (!parse_arguments(all, options, flags, parsed, error)) return false;
@@ -70,95 +59,15 @@ bool parse_args(const words& all, const std::set<std::string>& options, const st
 int encode_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(all, {"--nodes", "--from", "--to", "--vr", "--value"}, {}, parsed, error)) return fail(error);
-  std::uint8_t nodes = 0;
-  if (!parse_node_count(parsed, nodes, error)) return fail(error);
-  for (const char* required : {"--from", "--to", "--vr", "--value"}) {
-    if (!parsed.has(required)) return fail(std::string("encode needs ") + required);
-  }
-  long long from = 0;
-  long long to = 0;
-  long long vr = 0;
-  double value = 0;
-  const std::string node_range = "an integer from 1 to " + std::to_string(nodes);
-  const auto given = [&parsed](const char* name) { return "'" + host::clipped(parsed.options.at(name)) + "'"; };
-  if (!parse_integer(parsed.options.at("--from"), 1, nodes, from)) {
-    return fail("--from must be " + node_range + ", got " + given("--from"));
-  }
-  if (!parse_integer(parsed.options.at("--to"), 1, nodes, to)) {
-    return fail("--to must be " + node_range + ", got " + given("--to"));
-  }
-  if (from == to) return fail("--from and --to are the same node; a node does not send to itself");
-  if (!parse_integer(parsed.options.at("--vr"), 0, can::max_message_vr, vr)) {
-    return fail("--vr must be an integer from 0 to 255, got " + given("--vr"));
-  }
-  if (!parse_real(parsed.options.at("--value"), value)) {
-    return fail("--value must be a finite decimal number, got " + given("--value"));
-  }
-  const can::identifier_result id =
-      can::exchange_identifier(nodes, static_cast<std::uint8_t>(from), static_cast<std::uint8_t>(to));
+  if (!parse_args(all, can_message_options(), {}, parsed, error)) return fail(error);
   can::frame out;
-  out.id = id.identifier;
-  out.dlc = can::vr_message_size;
-  const can::encode_status encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data);
-  if (encoded == can::encode_status::too_large) {
-    return fail("--value magnitude must round to less than 4294967296, got " + given("--value"));
-  }
-  if (encoded != can::encode_status::ok || id.status != can::scheme_status::ok) {
-    return fail("cannot encode this message");  // unreachable: every input was checked above
-  }
-  // What is printed must be what `can decode` accepts.
-  if (!can::decode_vr_frame(out) || !can::route_of(nodes, out.identifier())) {
-    return fail("cannot encode this message: the decoder would reject it");
-  }
+  if (!can_message_frame(parsed, out, error)) return fail(error);
   std::printf("%s\n", host::format_candump_frame(out).c_str());
   return exit_ok;
 }
 
 // ---------------------------------------------------------------------------------------------------------
 // decode
-
-// What a frame is to the VR exchange, and its event. `where` adds the event's position.
-template <class Where>
-void append_frame_event(std::string& out, std::uint8_t nodes, const host::candump_record& r, Where&& where) {
-  const auto other = [&](const char* kind, std::uint32_t id) {
-    event e(out, "frame");
-    where(e);
-    e.text("kind", kind).number("id", id).number("length", r.length);
-    if (r.type == host::candump_frame_type::xl) e.number("vcid", r.can_id >> 16U & 0xFFU);
-  };
-  const std::uint32_t id = r.can_id;
-  switch (r.type) {
-    case host::candump_frame_type::error:
-      return other("error_frame", id & can::frame::extended_mask);
-    case host::candump_frame_type::fd:
-      return other("fd", id & ((id & can::frame::extended_flag) != 0 ? can::frame::extended_mask : 0xFFFFFU));
-    case host::candump_frame_type::xl:
-      return other("xl", id & 0x7FFU);
-    case host::candump_frame_type::classic:
-      break;
-  }
-  if ((id & can::frame::extended_flag) != 0) return other("extended", id & can::frame::extended_mask);
-  if (!r.classic_frame()) return other("bad_identifier", id & ~can::frame::remote_flag);
-  const can::frame& frame = r.frame;
-  if (frame.remote()) return other("remote", frame.identifier());
-  const can::route_result route = can::route_of(nodes, frame.identifier());
-  if (!route) return other("foreign_id", frame.identifier());
-  const can::decode_result decoded = can::decode_vr_frame(frame);
-  if (!decoded) {
-    event e(out, "error");
-    where(e);
-    e.text("reason", can::to_string(decoded.status)).number("id", frame.identifier());
-    return;
-  }
-  const can::vr_message& message = decoded.message;
-  event e(out, "vr");
-  where(e);
-  e.number("id", frame.identifier()).number("from", route.value.sender).number("to", route.value.receiver);
-  e.number("vr", message.vr).boolean("negative", message.value.negative);
-  e.number("int", message.value.integer_part).number("frac", message.value.fraction);
-  e.real("value", trionet::to_double(message.value));
-}
 
 // Lines of candump text, read in pieces, one event per line that is not blank.
 class candump_reader {
@@ -219,7 +128,7 @@ class candump_reader {
       e.number("line", number_).text("reason", "syntax").text("detail", host::to_string(status));
       return;
     }
-    append_frame_event(out_, nodes_, record_, where);
+    append_can_frame_event(out_, nodes_, record_, where);
   }
 
   std::string& out_;
@@ -247,7 +156,13 @@ bool record_of(const host::pcapng_record& record, host::candump_record& out, hos
       out.length = read.frame.data_length();
       return true;
     case host::socketcan_record_status::not_classic:
-      out.type = (record.bytes[5] & 0x80U) != 0 ? host::candump_frame_type::xl : host::candump_frame_type::fd;
+      if ((record.bytes[5] & 0x80U) != 0) {
+        out.type = host::candump_frame_type::xl;
+      } else {
+        // The error flag makes an error frame of a CAN FD frame too, as candump text reads it (`20000080##0`).
+        out.type = (out.can_id & host::can_error_flag) != 0 ? host::candump_frame_type::error
+                                                            : host::candump_frame_type::fd;
+      }
       return true;
     case host::socketcan_record_status::error_frame:
       out.type = host::candump_frame_type::error;
@@ -274,7 +189,7 @@ int decode_command(const words& all) {
                           host::socketcan_record_status status{};
                           const auto here = [&where](event& e) { add_position(e, where); };
                           if (record_of(record, frame, status)) {
-                            append_frame_event(out, nodes, frame, here);
+                            append_can_frame_event(out, nodes, frame, here);
                           } else {
                             event e(out, "error");
                             here(e);
@@ -285,17 +200,8 @@ int decode_command(const words& all) {
   if (parsed.flag("--json")) return fail("--json applies to --pcap (the output is JSON already)");
   output out;
   candump_reader reader(out.text(), nodes);
-  input in;
-  std::string_view chunk;
-  while (true) {
-    if (!in.read(chunk, error)) {
-      out.flush();
-      return fail_io(error);
-    }
-    if (chunk.empty()) break;
-    reader.push(chunk);
-    if (!out.flush()) return fail_io("cannot write standard output");
-  }
+  const int status = stream_stdin(out, [&reader](std::string_view chunk) { reader.push(chunk); });
+  if (status != exit_ok) return status;
   reader.finish();
   return out.flush() ? exit_ok : fail_io("cannot write standard output");
 }
@@ -343,6 +249,86 @@ const command can_commands[] = {
 };
 
 }  // namespace
+
+bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& error) {
+  out = active_profile().can.node_count;
+  if (!parsed.has("--nodes")) return true;
+  long long value = 0;
+  if (!parse_integer(parsed.options.at("--nodes"), can::min_node_count, can::max_node_count, value)) {
+    error = "--nodes must be an integer from 2 to 11, got '" + host::clipped(parsed.options.at("--nodes")) + "'";
+    return false;
+  }
+  out = static_cast<std::uint8_t>(value);
+  return true;
+}
+
+const std::set<std::string>& can_message_options() {
+  static const std::set<std::string> options = {"--nodes", "--from", "--to", "--vr", "--value"};
+  return options;
+}
+
+bool can_message_frame(const arguments& parsed, can::frame& out, std::string& error) {
+  std::uint8_t nodes = 0;
+  if (!parse_node_count(parsed, nodes, error)) return false;
+  for (const char* required : {"--from", "--to", "--vr", "--value"}) {
+    if (!parsed.has(required)) {
+      error = std::string("missing ") + required;
+      return false;
+    }
+  }
+  long long from = 0;
+  long long to = 0;
+  long long vr = 0;
+  double value = 0;
+  const std::string node_range = "an integer from 1 to " + std::to_string(nodes);
+  const auto given = [&parsed](const char* name) { return "'" + host::clipped(parsed.options.at(name)) + "'"; };
+  if (!parse_integer(parsed.options.at("--from"), 1, nodes, from)) {
+    error = "--from must be " + node_range + ", got " + given("--from");
+    return false;
+  }
+  if (!parse_integer(parsed.options.at("--to"), 1, nodes, to)) {
+    error = "--to must be " + node_range + ", got " + given("--to");
+    return false;
+  }
+  if (from == to) {
+    error = "--from and --to are the same node (own_node): a node does not send to itself";
+    return false;
+  }
+  if (!parse_integer(parsed.options.at("--vr"), 0, can::max_message_vr, vr)) {
+    error = "--vr must be an integer from 0 to 255, got " + given("--vr");
+    return false;
+  }
+  if (!parse_real(parsed.options.at("--value"), value)) {
+    error = "--value must be a finite decimal number, got " + given("--value");
+    return false;
+  }
+  const can::identifier_result id =
+      can::exchange_identifier(nodes, static_cast<std::uint8_t>(from), static_cast<std::uint8_t>(to));
+  out = can::frame{};
+  out.id = id.identifier;
+  out.dlc = can::vr_message_size;
+  const can::encode_status encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data);
+  if (encoded == can::encode_status::too_large) {
+    error = "--value magnitude must round to less than 4294967296, got " + given("--value");
+    return false;
+  }
+  // Every input was checked above; and what is written must be what `can decode` accepts.
+  if (encoded != can::encode_status::ok || id.status != can::scheme_status::ok || !can::decode_vr_frame(out) ||
+      !can::route_of(nodes, out.identifier())) {
+    error = "cannot encode this message";
+    return false;
+  }
+  return true;
+}
+
+host::candump_record candump_record_of(const can::frame& frame, bool error_frame) {
+  host::candump_record r;
+  r.type = error_frame ? host::candump_frame_type::error : host::candump_frame_type::classic;
+  r.can_id = error_frame ? (frame.id & can::frame::extended_mask) | host::can_error_flag : frame.id;
+  r.length = frame.remote() ? frame.dlc : frame.data_length();
+  r.frame = frame;
+  return r;
+}
 
 const part can_part = {"can", "Trio TN20-17 CANbus VR exchange (encode, decode, table, monitor, send, node)", can_commands,
                        sizeof can_commands / sizeof can_commands[0],

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "can_cli.hpp"
 #include "cli.hpp"
 #include "live.hpp"
 #include "trionet/can.hpp"
@@ -39,18 +40,6 @@ const char* const can_live_usage =
 namespace {
 
 const std::set<std::string> common_values = {"--nodes", "--pcap", "--interface-name"};
-
-bool node_count_of(const arguments& args, std::uint8_t& out, std::string& error) {
-  out = can::default_node_count;
-  if (!args.has("--nodes")) return true;
-  long long value = 0;
-  if (!parse_integer(args.options.at("--nodes"), can::min_node_count, can::max_node_count, value)) {
-    error = "--nodes must be an integer from 2 to 11, got '" + args.options.at("--nodes") + "'";
-    return false;
-  }
-  out = static_cast<std::uint8_t>(value);
-  return true;
-}
 
 // Where frames come from and go to: a SocketCAN socket, or candump text on standard input and output.
 class bus {
@@ -102,55 +91,56 @@ class bus {
 struct bus_counters {
   std::uint64_t frames = 0;
   std::uint64_t vr_frames = 0;
-  std::uint64_t errors = 0;
+  std::uint64_t errors = 0;        // frames that are no VR message
   std::uint64_t error_frames = 0;  // SocketCAN error frames (controller reports)
   std::uint64_t syntax = 0;        // candump lines that are not frames
 
-  void count(const live::event& e) {
+  void count(bool vr) {
     ++frames;
-    if (e.name == "vr") {
+    if (vr) {
       ++vr_frames;
     } else {
       ++errors;
     }
   }
-  live::event as_event(const std::string& name = "counters") const {
-    live::event e(live::now_ns(), name);
-    e.number("frames", static_cast<unsigned long long>(frames)).number("vr", static_cast<unsigned long long>(vr_frames));
-    e.number("errors", static_cast<unsigned long long>(errors));
-    e.number("error_frames", static_cast<unsigned long long>(error_frames));
-    e.number("syntax", static_cast<unsigned long long>(syntax));
-    return e;
+  void add(event& e) const {
+    e.number("frames", frames).number("vr", vr_frames).number("errors", errors);
+    e.number("error_frames", error_frames).number("syntax", syntax);
   }
 };
 
-// One input line of candump text: the frame and its time (the line's own, else now); false if not a frame.
-bool frame_of_line(const std::string& line, can::frame& frame, std::uint64_t& time_ns) {
-  const host::candump_result parsed = host::parse_candump_line(line);
-  if (!parsed) return false;
-  frame = parsed.record.frame;
-  time_ns = parsed.record.has_timestamp
-                ? parsed.record.seconds * 1000000000u + parsed.record.nanoseconds
-                : live::now_ns();
-  return true;
+// One input line of candump text as a record, with its time (the line's own, else now).
+host::candump_status record_of_line(const std::string& line, host::candump_record& record, std::uint64_t& time_ns) {
+  host::candump_result parsed = host::parse_candump_line(line);
+  if (!parsed) return parsed.status;
+  record = std::move(parsed.record);
+  time_ns = record.has_timestamp ? record.seconds * 1000000000u + record.nanoseconds : live::now_ns();
+  return host::candump_status::ok;
 }
 
-void capture_frame(live::capture_file& capture, std::uint32_t interface, std::uint64_t time_ns, const can::frame& frame) {
-  if (!capture.is_open()) return;
-  const auto record = host::socketcan_record(frame);
+// A classic frame into the capture (a frame of another kind has no SocketCAN record of a classic bus).
+void capture_frame(live::capture_file& capture, std::uint32_t interface, std::uint64_t time_ns,
+                   const host::candump_record& r) {
+  if (!capture.is_open() || !r.classic_frame()) return;
+  const auto record = host::socketcan_record(r.frame);
   capture.write(interface, time_ns, byte_view(record.data(), record.size()));
+}
+
+// A line of candump text that is not a frame: the event `can decode` prints for it, with its time.
+void syntax_event(std::string& out, std::uint64_t line_number, host::candump_status status) {
+  event(out, "error").time(live::now_ns()).number("line", line_number).text("reason", "syntax").text(
+      "detail", host::to_string(status));
 }
 
 // ---- can monitor ----
 
-int monitor_main(const std::vector<std::string>& given) {
+int monitor_main(const words& given) {
   arguments args;
   std::string error;
   if (!parse_arguments(given, common_values, {"--json"}, args, error)) return fail("can monitor: " + error);
   if (args.positionals.size() != 1) return fail("can monitor takes one IFACE (or - for candump text)");
   std::uint8_t nodes = 0;
-  if (!node_count_of(args, nodes, error)) return fail("can monitor: " + error);
-  const bool json = args.flags.count("--json") != 0;
+  if (!parse_node_count(args, nodes, error)) return fail("can monitor: " + error);
   bus can_bus;
   if (!can_bus.open(args.positionals[0], "can0", error)) return fail("can monitor: " + error);
   live::capture_file capture;
@@ -160,18 +150,19 @@ int monitor_main(const std::vector<std::string>& given) {
     interface = capture.add(can_bus.text() ? "candump" : can_bus.name(), host::capture_network::can);
   }
   live::signal_watch signals;
+  live::event_log log(args.flag("--json"));
   bus_counters counters;
-  live::line_reader input(STDIN_FILENO);
-  std::size_t line_number = 0;
-  const auto seen = [&](const can::frame& frame, std::uint64_t time_ns) {
-    capture_frame(capture, interface, time_ns, frame);
-    const live::event e = live::can_event(time_ns, frame, nodes);
-    counters.count(e);
-    live::emit(e, json);
+  const auto counters_event = [&]() {
+    event e(log.text(), "counters");
+    e.time(live::now_ns());
+    counters.add(e);
   };
+  live::line_reader input(STDIN_FILENO);
+  std::uint64_t line_number = 0;
   std::string ended;
   while (!live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) live::emit(counters.as_event(), json);
+    if (live::signal_watch::take_report_request()) counters_event();
+    log.flush();
     if (can_bus.text()) {
       pollfd p{STDIN_FILENO, POLLIN, 0};
       if (::poll(&p, 1, 1000) <= 0) continue;
@@ -180,34 +171,41 @@ int monitor_main(const std::vector<std::string>& given) {
       while (input.next(line)) {
         ++line_number;
         if (line.find_first_not_of(" \t") == std::string::npos) continue;
-        can::frame frame;
+        host::candump_record record;
         std::uint64_t time_ns = 0;
-        if (frame_of_line(line, frame, time_ns)) {
-          seen(frame, time_ns);
-        } else {
+        const host::candump_status status = record_of_line(line, record, time_ns);
+        if (status != host::candump_status::ok) {
           ++counters.syntax;
-          live::emit(live::event(live::now_ns(), "error").text("reason", "syntax").number(
-                         "line", static_cast<unsigned long long>(line_number)),
-                     json);
+          syntax_event(log.text(), line_number, status);
+          continue;
         }
+        capture_frame(capture, interface, time_ns, record);
+        counters.count(append_can_frame_event(log.text(), nodes, record, [&](event& e) {
+          e.time(time_ns).number("line", line_number);
+        }));
       }
       if (!more) break;
       continue;
     }
     can::frame frame;
     const host::socketcan_receive_status got = can_bus.socket().receive(frame, 1000);
+    const std::uint64_t time_ns = live::now_ns();
+    const auto at = [time_ns](event& e) { e.time(time_ns); };
     if (got == host::socketcan_receive_status::ok) {
-      seen(frame, live::now_ns());
+      const host::candump_record record = candump_record_of(frame);
+      capture_frame(capture, interface, time_ns, record);
+      counters.count(append_can_frame_event(log.text(), nodes, record, at));
     } else if (got == host::socketcan_receive_status::error_frame) {
       ++counters.error_frames;
-      live::emit(live::event(live::now_ns(), "error_frame").text("frame", host::format_candump_frame(frame)), json);
+      append_can_frame_event(log.text(), nodes, candump_record_of(frame, true), at);
     } else if (got == host::socketcan_receive_status::failed && !live::signal_watch::stop_requested() &&
                errno != EINTR) {
       ended = can_bus.name() + ": " + std::strerror(errno);
       break;
     }
   }
-  live::emit(counters.as_event(), json);
+  counters_event();
+  log.flush();
   if (!ended.empty()) std::fprintf(stderr, "trionet: can monitor: %s\n", ended.c_str());
   if (!capture.good()) return fail("can monitor: writing the capture failed");
   return exit_ok;
@@ -215,46 +213,22 @@ int monitor_main(const std::vector<std::string>& given) {
 
 // ---- can send ----
 
-int send_main(const std::vector<std::string>& given) {
+int send_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, {"--nodes", "--from", "--to", "--vr", "--value", "--interface-name"}, {}, args, error))
-    return fail("can send: " + error);
+  std::set<std::string> values = can_message_options();
+  values.insert("--interface-name");
+  if (!parse_arguments(given, values, {}, args, error)) return fail("can send: " + error);
   if (args.positionals.size() != 1) return fail("can send takes one IFACE (or - for candump text)");
-  std::uint8_t nodes = 0;
-  if (!node_count_of(args, nodes, error)) return fail("can send: " + error);
-  for (const char* required : {"--from", "--to", "--vr", "--value"}) {
-    if (!args.has(required)) return fail(std::string("can send needs ") + required);
-  }
-  long long from = 0;
-  long long to = 0;
-  long long vr = 0;
-  double value = 0;
-  if (!parse_integer(args.options.at("--from"), 1, nodes, from) || !parse_integer(args.options.at("--to"), 1, nodes, to))
-    return fail("can send: --from and --to must be nodes 1.." + std::to_string(nodes));
-  if (!parse_integer(args.options.at("--vr"), 0, can::max_message_vr, vr))
-    return fail("can send: --vr must be an integer from 0 to 255, got '" + args.options.at("--vr") + "'");
-  if (!parse_real(args.options.at("--value"), value))
-    return fail("can send: --value must be a finite decimal number, got '" + args.options.at("--value") + "'");
+  can::frame frame;
+  if (!can_message_frame(args, frame, error)) return fail("can send: " + error);
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
   if (!can_bus.open(args.positionals[0], name, error)) return fail("can send: " + error);
-  // The node's own send path: the frame node `from` sends to node `to`.
-  struct frame_keeper final : can::port {
-    can::frame frame;
-    can::transmit_status send(const can::frame& outgoing) noexcept override {
-      frame = outgoing;
-      return can::transmit_status::ok;
-    }
-  } keeper;
-  vr_table<1> unused;
-  can::vr_exchange_node sender(can::make_node_address(nodes, static_cast<std::uint8_t>(from)).address, keeper, unused);
-  const can::send_status encoded = sender.send_to_node(static_cast<std::uint8_t>(to), static_cast<std::uint16_t>(vr), value);
-  if (encoded != can::send_status::ok) return fail(std::string("can send: cannot send this frame: ") + can::to_string(encoded));
-  const can::transmit_status sent = can_bus.send(keeper.frame, live::now_ns());
+  const can::transmit_status sent = can_bus.send(frame, live::now_ns());
   if (sent != can::transmit_status::ok)
     return fail("can send: " + can_bus.name() + " did not take the frame: " + can::to_string(sent));
-  if (!can_bus.text()) std::printf("%s\n", host::format_candump_frame(keeper.frame).c_str());
+  if (!can_bus.text()) std::printf("%s\n", host::format_candump_frame(frame).c_str());
   return exit_ok;
 }
 
@@ -270,7 +244,7 @@ class node_port final : public can::port {
   can::transmit_status send(const can::frame& outgoing) noexcept override {
     const std::uint64_t t = live::now_ns();
     const can::transmit_status status = bus_->send(outgoing, t);
-    if (status == can::transmit_status::ok) capture_frame(*capture_, interface_, t, outgoing);
+    if (status == can::transmit_status::ok) capture_frame(*capture_, interface_, t, candump_record_of(outgoing));
     return status;
   }
 
@@ -280,7 +254,7 @@ class node_port final : public can::port {
   std::uint32_t interface_;
 };
 
-int node_main(const std::vector<std::string>& given) {
+int node_main(const words& given) {
   arguments args;
   std::string error;
   std::set<std::string> values = common_values;
@@ -288,12 +262,11 @@ int node_main(const std::vector<std::string>& given) {
   if (!parse_arguments(given, values, {"--json", "--trace"}, args, error)) return fail("can node: " + error);
   if (args.positionals.size() != 1) return fail("can node takes one IFACE (or - for candump text)");
   std::uint8_t nodes = 0;
-  if (!node_count_of(args, nodes, error)) return fail("can node: " + error);
+  if (!parse_node_count(args, nodes, error)) return fail("can node: " + error);
   long long own = 0;
   if (!args.has("--node") || !parse_integer(args.options.at("--node"), 1, nodes, own))
     return fail("can node needs --node I, a node 1.." + std::to_string(nodes));
-  const bool json = args.flags.count("--json") != 0;
-  const bool trace = args.flags.count("--trace") != 0;
+  const bool trace = args.flag("--trace");
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
   if (!can_bus.open(args.positionals[0], name, error)) return fail("can node: " + error);
@@ -307,45 +280,46 @@ int node_main(const std::vector<std::string>& given) {
   auto vrs = std::make_unique<node_vrs>();
   node_port port(can_bus, capture, interface);
   can::vr_exchange_node node(can::make_node_address(nodes, static_cast<std::uint8_t>(own)).address, port, *vrs);
-  const auto print = [&](const live::event& e) { live::emit(e, json, events); };
+  live::event_log log(args.flag("--json"), events);
   bus_counters counters;
 
-  const auto received = [&](const can::frame& frame, std::uint64_t time_ns) {
-    capture_frame(capture, interface, time_ns, frame);
-    const live::event seen = live::can_event(time_ns, frame, nodes);
-    counters.count(seen);
-    const can::receive_result r = node.receive(frame);
+  // A frame from the bus: what the node makes of it, and with --trace also a frame for another node.
+  std::string seen;
+  const auto received = [&](const host::candump_record& record, std::uint64_t time_ns) {
+    capture_frame(capture, interface, time_ns, record);
+    seen.clear();
+    counters.count(append_can_frame_event(seen, nodes, record, [time_ns](event& e) { e.time(time_ns); }));
+    const can::receive_result r =
+        record.classic_frame() ? node.receive(record.frame) : can::receive_result{};
     if (r.status == can::receive_status::foreign) {
-      if (trace) print(seen);
+      if (trace) log.text() += seen;
       return;
     }
-    live::event e(time_ns, "vr_write");
-    e.number("from", static_cast<long long>(r.sender)).number("vr", static_cast<long long>(r.message.vr));
-    if (r.status == can::receive_status::ok || r.status == can::receive_status::refused ||
-        r.status == can::receive_status::out_of_range || r.status == can::receive_status::value_out_of_range) {
-      e.real("value", trionet::to_double(r.message.value));
+    const bool written = r.status == can::receive_status::ok || r.status == can::receive_status::refused ||
+                         r.status == can::receive_status::out_of_range ||
+                         r.status == can::receive_status::value_out_of_range;
+    event e(log.text(), written ? "vr_write" : "error");
+    e.time(time_ns).number("from", r.sender);
+    if (written) {
+      e.number("vr", r.message.vr).real("value", trionet::to_double(r.message.value));
     } else {
-      e = live::event(time_ns, "error");
-      e.number("from", static_cast<long long>(r.sender)).text("frame", host::format_candump_frame(frame));
+      e.text("frame", host::format_candump_frame(record.frame));
     }
     e.text("status", can::to_string(r.status));
-    print(e);
   };
   const auto node_counters = [&]() {
-    live::event e = counters.as_event();
+    event e(log.text(), "counters");
+    e.time(live::now_ns());
+    counters.add(e);
     const can::node_counters& c = node.counters();
-    e.number("sent", static_cast<unsigned long long>(c.sent)).number("send_busy", static_cast<unsigned long long>(c.send_busy));
-    e.number("send_failed", static_cast<unsigned long long>(c.send_failed));
-    e.number("written", static_cast<unsigned long long>(c.written)).number("refused", static_cast<unsigned long long>(c.refused));
-    e.number("out_of_range", static_cast<unsigned long long>(c.out_of_range));
-    e.number("foreign", static_cast<unsigned long long>(c.foreign));
-    e.number("bad_dlc", static_cast<unsigned long long>(c.bad_dlc)).number("bad_sign", static_cast<unsigned long long>(c.bad_sign));
-    e.number("bad_fraction", static_cast<unsigned long long>(c.bad_fraction));
-    return e;
+    e.number("sent", c.sent).number("send_busy", c.send_busy).number("send_failed", c.send_failed);
+    e.number("written", c.written).number("refused", c.refused).number("out_of_range", c.out_of_range);
+    e.number("foreign", c.foreign).number("bad_dlc", c.bad_dlc).number("bad_sign", c.bad_sign);
+    e.number("bad_fraction", c.bad_fraction);
   };
   bool quit = false;
   const auto reply_error = [&](const std::string& command, const std::string& reason) {
-    print(live::event(live::now_ns(), "error").text("command", command).text("reason", reason));
+    event(log.text(), "error").time(live::now_ns()).text("command", command).text("reason", reason);
   };
   const auto run = [&](const std::string& line) {
     const std::vector<std::string> w = live::words_of(line);
@@ -359,7 +333,7 @@ int node_main(const std::vector<std::string>& given) {
         return reply_error(w[0], "usage: send J VR VALUE (J a node 1.." + std::to_string(nodes) + ", VR 0..255)");
       const can::send_status s = node.send_to_node(static_cast<std::uint8_t>(a), static_cast<std::uint16_t>(b), value);
       if (s != can::send_status::ok) return reply_error(w[0], can::to_string(s));
-      print(live::event(live::now_ns(), "sent").number("to", a).number("vr", b).real("value", value));
+      event(log.text(), "sent").time(live::now_ns()).signed_number("to", a).signed_number("vr", b).real("value", value);
       return;
     }
     if (w[0] == "vr") {
@@ -369,10 +343,10 @@ int node_main(const std::vector<std::string>& given) {
         if (!parse_real(w[2], value)) return reply_error(w[0], "VALUE must be a real number");
         (*vrs)[static_cast<std::size_t>(a)] = value;
       }
-      print(live::event(live::now_ns(), "vr").number("vr", a).real("value", (*vrs)[static_cast<std::size_t>(a)]));
+      event(log.text(), "vr").time(live::now_ns()).signed_number("vr", a).real("value", (*vrs)[static_cast<std::size_t>(a)]);
       return;
     }
-    if (w[0] == "counters") return print(node_counters());
+    if (w[0] == "counters") return node_counters();
     if (w[0] == "quit") {
       quit = true;
       return;
@@ -384,7 +358,8 @@ int node_main(const std::vector<std::string>& given) {
   live::line_reader input(STDIN_FILENO);
   std::string ended;
   while (!quit && !live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) print(node_counters());
+    if (live::signal_watch::take_report_request()) node_counters();
+    log.flush();
     pollfd fds[2] = {{STDIN_FILENO, POLLIN, 0}, {can_bus.text() ? -1 : can_bus.socket().fd(), POLLIN, 0}};
     const bool input_open = !input.ended();
     if (!input_open) fds[0].fd = -1;
@@ -394,10 +369,10 @@ int node_main(const std::vector<std::string>& given) {
       input.read_some();
       std::string line;
       while (!quit && input.next(line)) {
-        can::frame frame;
+        host::candump_record record;
         std::uint64_t time_ns = 0;
-        if (can_bus.text() && frame_of_line(line, frame, time_ns)) {
-          received(frame, time_ns);
+        if (can_bus.text() && record_of_line(line, record, time_ns) == host::candump_status::ok) {
+          received(record, time_ns);
         } else {
           run(line);
         }
@@ -407,7 +382,7 @@ int node_main(const std::vector<std::string>& given) {
       can::frame frame;
       const host::socketcan_receive_status got = can_bus.socket().receive(frame, 0);
       if (got == host::socketcan_receive_status::ok) {
-        received(frame, live::now_ns());
+        received(candump_record_of(frame), live::now_ns());
       } else if (got == host::socketcan_receive_status::error_frame) {
         ++counters.error_frames;
       } else if (got == host::socketcan_receive_status::failed) {
@@ -416,7 +391,8 @@ int node_main(const std::vector<std::string>& given) {
       }
     }
   }
-  print(node_counters());
+  node_counters();
+  log.flush();
   if (!ended.empty()) std::fprintf(stderr, "trionet: can node: %s\n", ended.c_str());
   if (!capture.good()) return fail("can node: writing the capture failed");
   return exit_ok;
@@ -424,20 +400,14 @@ int node_main(const std::vector<std::string>& given) {
 
 }  // namespace
 
-int can_live_main(const std::string& command, const std::vector<std::string>& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::fputs(can_live_usage, stdout);
-    return exit_ok;
-  }
-  if (command == "monitor") return monitor_main(args);
-  if (command == "send") return send_main(args);
-  if (command == "node") return node_main(args);
-  std::fputs(can_live_usage, stderr);
-  return exit_usage;
+int can_monitor_main(const words& args) {
+  return monitor_main(args);
 }
-
-int can_monitor_main(const std::vector<std::string>& args) { return can_live_main("monitor", args); }
-int can_send_main(const std::vector<std::string>& args) { return can_live_main("send", args); }
-int can_node_main(const std::vector<std::string>& args) { return can_live_main("node", args); }
+int can_send_main(const words& args) {
+  return send_main(args);
+}
+int can_node_main(const words& args) {
+  return node_main(args);
+}
 
 }  // namespace trionet::cli

@@ -10,7 +10,7 @@ namespace trionet::cli {
 void add_position(event& e, const capture_position& where) {
   e.number("record", where.record).number("interface_id", where.interface);
   if (!where.interface_name.empty()) e.text("interface", where.interface_name);
-  e.json("time", "\"" + epoch_text(where.time_ns) + "\"");
+  e.time(where.time_ns);
 }
 
 int read_capture(const std::string& path, host::capture_network network, bool fields, std::uint8_t can_node_count,

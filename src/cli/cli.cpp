@@ -1,5 +1,6 @@
 // The tool's shared pieces: see cli.hpp.
 #include "cli.hpp"
+#include "profile_cli.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -78,11 +79,14 @@ int dispatch(const part& p, const words& args) {
   for (std::size_t i = 0; i < p.count; ++i) {
     const command& c = p.commands[i];
     if (name != c.name) continue;
-    const words rest(args.begin() + 1, args.end());
+    words rest(args.begin() + 1, args.end());
     if (asks_for_help(rest)) {
       std::fputs(c.usage, stdout);
       return exit_ok;
     }
+    // Every command encodes and decodes with the profile in effect: one option for all, taken here.
+    const int loaded = take_profile_option(rest);
+    if (loaded != exit_ok) return loaded;
     return c.run(rest);
   }
   return fail("unknown " + std::string(p.name) + " command '" + name + "' (expected " + command_names(p) + ")");
@@ -94,7 +98,9 @@ bool parse_arguments(const words& args, const std::set<std::string>& value_optio
   bool options_done = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& word = args[i];
-    const bool looks_like_option = word.size() > 2 && word.compare(0, 2, "--") == 0;
+    // "-o" and other short options are options only where the command has them.
+    const bool looks_like_option = (word.size() > 2 && word.compare(0, 2, "--") == 0) ||
+                                   value_options.count(word) != 0 || flag_options.count(word) != 0;
     if (options_done || !looks_like_option) {
       if (word == "--" && !options_done) {
         options_done = true;
@@ -295,6 +301,10 @@ event& event::json(std::string_view name, std::string_view value) {
   key(name);
   put(value.data(), value.size());
   return *this;
+}
+
+event& event::time(std::uint64_t time_ns) {
+  return json("time", "\"" + epoch_text(time_ns) + "\"");
 }
 
 std::string epoch_text(std::uint64_t time_ns) {

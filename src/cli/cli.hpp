@@ -74,6 +74,7 @@ std::string version_line();
 extern const part ring_part;    ///< ring_cli.cpp
 extern const part can_part;     ///< can_cli.cpp
 extern const part genius_part;  ///< genius_cli.cpp
+extern const part profile_part;  ///< profile_cli.cpp
 
 // ---------------------------------------------------------------------------------------------------------
 // arguments
@@ -140,6 +141,24 @@ class input {
   std::vector<char> buffer_;
 };
 
+/// Reads standard input to its end, each chunk through `feed(std::string_view)` as soon as it is read, and
+/// flushes `out` after each. Returns the exit status: 0, or 1 when reading or writing failed.
+template <class Feed>
+int stream_stdin(output& out, Feed&& feed) {
+  input in;
+  std::string error;
+  std::string_view chunk;
+  while (true) {
+    if (!in.read(chunk, error)) {
+      out.flush();
+      return fail_io(error);
+    }
+    if (chunk.empty()) return exit_ok;
+    feed(chunk);
+    if (!out.flush()) return fail_io("cannot write standard output");
+  }
+}
+
 /// Appends one JSON event line, `{"event":"<kind>",...}\n`, to a string as its fields are added. The line is
 /// put together in a buffer of its own and appended at once (the decoders' output is their hot path).
 class event {
@@ -165,6 +184,10 @@ class event {
   event& text(std::string_view name, std::string_view value);
   /// A field whose value is already JSON.
   event& json(std::string_view name, std::string_view value);
+  /// "time": nanoseconds since 1970 (or since the start of a simulation) as a string of decimal seconds with
+  /// 9 digits, "1700000000.123456789" (as Wireshark's frame.time_epoch): the position of a capture record or
+  /// of a live event.
+  event& time(std::uint64_t time_ns);
 
   /// Raw text (for host::append_json_string, which escapes into the event).
   void push_back(char c) {

@@ -11,6 +11,8 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
+#include "learn_cli.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/capture_view.hpp"
 
@@ -87,9 +89,13 @@ std::vector<std::string> split_lines(const std::string& joined) {
   return parts;
 }
 
-// The parser `genius decode` uses (the library's defaults, as the Wireshark dissector): what `encode` checks
-// its output against.
-using decode_parser = genius::transmission_parser<>;
+// The parser `genius decode` uses (the library's capacities, the profile's CRC-6): what `encode` checks its
+// output against.
+using decode_parser = genius::transmission_parser<256, 16, genius::crc6_runtime>;
+
+genius::crc6_runtime profile_crc() {
+  return genius::crc6_runtime(active_profile().genius.crc);
+}
 
 // ---------------------------------------------------------------------------------------------------
 // encode
@@ -136,10 +142,10 @@ int encode_main(const std::vector<std::string>& words) {
   if (!length) return fail("cannot encode this transmission");
   std::vector<genius::character> out(length.length);
   const genius::encode_result written =
-      genius::encode_transmission(span<genius::character>(out.data(), out.size()), t);
+      genius::encode_transmission(span<genius::character>(out.data(), out.size()), t, profile_crc());
   if (!written) return fail("cannot encode this transmission");
   // What is printed must be what `genius decode` accepts: parse it with the same parser.
-  decode_parser check;
+  decode_parser check(profile_crc());
   genius::parse_status parsed = genius::parse_status::in_progress;
   for (const genius::character& c : out) {
     parsed = check.push(c);
@@ -195,7 +201,7 @@ std::string shown(std::string_view token) {
 // character also goes to a capture.
 class genius_stream {
  public:
-  explicit genius_stream(std::string& out) : out_(out) {}
+  explicit genius_stream(std::string& out) : out_(out), parser_(profile_crc()) {}
 
   void capture_to(host::pcapng_writer* writer, std::uint32_t interface, double character_ns) {
     writer_ = writer;
@@ -423,33 +429,26 @@ int decode_main(const std::vector<std::string>& all) {
       tokens.push(" ");
     }
   } else {
-    input in;
-    std::string_view chunk;
-    while (true) {
-      if (!in.read(chunk, error)) {
-        out.flush();
-        return fail_io(error);
-      }
-      if (chunk.empty()) break;
+    const int status = stream_stdin(out, [&](std::string_view chunk) {
       if (!raw) {
         tokens.push(chunk);
-      } else {
-        for (const char c : chunk) {
-          const auto byte = static_cast<std::uint8_t>(c);
-          if (odd < 0) {
-            odd = byte;
-          } else {
-            const auto w = static_cast<std::uint16_t>(odd << 8 | byte);
-            char token[8];
-            std::snprintf(token, sizeof token, "w:%03x", static_cast<unsigned>(w));
-            stream.word(w, "offset " + std::to_string(offset), token);
-            offset += 2;
-            odd = -1;
-          }
+        return;
+      }
+      for (const char c : chunk) {
+        const auto byte = static_cast<std::uint8_t>(c);
+        if (odd < 0) {
+          odd = byte;
+        } else {
+          const auto w = static_cast<std::uint16_t>(odd << 8 | byte);
+          char token[8];
+          std::snprintf(token, sizeof token, "w:%03x", static_cast<unsigned>(w));
+          stream.word(w, "offset " + std::to_string(offset), token);
+          offset += 2;
+          odd = -1;
         }
       }
-      if (!out.flush()) return fail_io("cannot write standard output");
-    }
+    });
+    if (status != exit_ok) return status;
   }
   if (raw) {
     if (odd >= 0) stream.input_error("offset " + std::to_string(offset) + ": an odd byte at the end of the input");
@@ -721,11 +720,17 @@ const command genius_commands[] = {
     {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main},
     {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
      scan_time_main},
+    {"learn", "crc: find the CRC-6 from captured transmissions, write it into a profile", genius_learn_usage,
+     genius_learn_main},
 };
 
 }  // namespace
 
-const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time)", genius_commands,
+bool parse_genius_token(std::string_view text, std::uint16_t& word) {
+  return parse_token(text, word);
+}
+
+const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time, learn)", genius_commands,
                           sizeof genius_commands / sizeof genius_commands[0], ""};
 
 }  // namespace trionet::cli

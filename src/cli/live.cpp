@@ -5,14 +5,9 @@
 
 #include <cctype>
 #include <cerrno>
-#include <cinttypes>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-
-#include "cli.hpp"
-#include "trionet/can.hpp"
-#include "trionet/host/candump.hpp"
 
 namespace trionet::cli::live {
 
@@ -22,109 +17,88 @@ std::uint64_t now_ns() {
   return static_cast<std::uint64_t>(t.tv_sec) * 1000000000u + static_cast<std::uint64_t>(t.tv_nsec);
 }
 
-event& event::text(const std::string& field, std::string_view value) {
-  fields.emplace_back(field, json_string(value));
-  return *this;
-}
-event& event::number(const std::string& field, long long value) {
-  fields.emplace_back(field, std::to_string(value));
-  return *this;
-}
-event& event::number(const std::string& field, unsigned long long value) {
-  fields.emplace_back(field, std::to_string(value));
-  return *this;
-}
-event& event::real(const std::string& field, double value) {
-  fields.emplace_back(field, format_real(value));
-  return *this;
-}
-event& event::flag(const std::string& field, bool value) {
-  fields.emplace_back(field, value ? "true" : "false");
-  return *this;
-}
-
-event ring_event(std::uint64_t time_ns, const ring::decode_result& result) {
-  const ring::message& m = result.msg;
-  switch (result.status) {
-    case ring::decode_status::incomplete:
-    case ring::decode_status::frame_error:
-      return event(time_ns, "frame_error").text("reason", ring::to_string(result.error));
-    case ring::decode_status::no_room:
-      return event(time_ns, "no_room").number("hops", static_cast<long long>(m.hops));
-    case ring::decode_status::crc_error:
-      return event(time_ns, "crc_error").number("hops", static_cast<long long>(m.hops)).number(
-          "vr", static_cast<long long>(m.vr));
-    case ring::decode_status::ok:
-      break;
+void event_log::flush() {
+  if (text_.empty()) return;
+  if (json_ && keep_ == 0) {
+    std::fwrite(text_.data(), 1, text_.size(), to_);
+    std::fflush(to_);
+    text_.clear();
+    return;
   }
-  event e(time_ns, "message");
-  switch (m.type) {
-    case ring::message_type::character:
-      e.text("type", "char").number("hops", static_cast<long long>(m.hops));
-      e.text("text", std::string_view(reinterpret_cast<const char*>(m.text.data()), m.text.size()));
-      break;
-    case ring::message_type::variable: {
-      char raw[24];
-      std::snprintf(raw, sizeof raw, "0x%016" PRIx64, trionet::q32_to_raw(m.value));
-      e.text("type", "var").number("hops", static_cast<long long>(m.hops)).number("vr", static_cast<long long>(m.vr));
-      e.text("raw", raw).real("value", trionet::q32_to_double(m.value));
-      break;
+  std::size_t at = 0;
+  while (at < text_.size()) {
+    std::size_t end = text_.find('\n', at);
+    if (end == std::string::npos) end = text_.size();
+    std::string line = text_for_people(std::string_view(text_).substr(at, end - at));
+    at = end + 1;
+    if (keep_ != 0) {
+      kept_.push_back(std::move(line));
+      if (kept_.size() > keep_) kept_.pop_front();
+    } else {
+      line += '\n';
+      std::fwrite(line.data(), 1, line.size(), to_);
     }
-    case ring::message_type::keypad_offset:
-      e.text("type", "offset").number("hops", static_cast<long long>(m.hops)).number(
-          "offset", static_cast<long long>(m.offset));
-      break;
-    case ring::message_type::keypad_mode:
-      e.text("type", "mode").number("hops", static_cast<long long>(m.hops)).number(
-          "mode", static_cast<long long>(m.mode));
-      break;
   }
-  return e;
+  text_.clear();
+  if (keep_ == 0) std::fflush(to_);
 }
 
-event can_event(std::uint64_t time_ns, const can::frame& frame, std::uint8_t nodes) {
-  const auto error = [&](const char* reason) {
-    return event(time_ns, "error").text("reason", reason).text("frame", host::format_candump_frame(frame));
-  };
-  if (frame.extended() || frame.remote()) return error("unknown_id");
-  const can::route_result route = can::route_of(nodes, frame.identifier());
-  if (route.status != can::scheme_status::ok) return error("unknown_id");
-  const can::decode_result decoded = can::decode_vr_frame(frame);
-  if (!decoded) return error(can::to_string(decoded.status));
-  const can::vr_message& message = decoded.message;
-  event e(time_ns, "vr");
-  e.number("id", static_cast<long long>(frame.identifier()));
-  e.number("from", static_cast<long long>(route.value.sender)).number("to", static_cast<long long>(route.value.receiver));
-  e.number("vr", static_cast<long long>(message.vr)).flag("negative", message.value.negative);
-  e.number("int", static_cast<long long>(message.value.integer_part));
-  e.number("frac", static_cast<long long>(message.value.fraction));
-  e.real("value", trionet::to_double(message.value));
-  return e;
+namespace {
+
+// The end of the JSON value at `at` in a line that `event` wrote: a string (escapes skipped) or a bare word.
+std::size_t value_end(std::string_view line, std::size_t at) {
+  if (at < line.size() && line[at] == '"') {
+    for (++at; at < line.size() && line[at] != '"'; ++at) {
+      if (line[at] == '\\') ++at;
+    }
+    return at < line.size() ? at + 1 : line.size();
+  }
+  while (at < line.size() && line[at] != ',' && line[at] != '}') ++at;
+  return at;
 }
 
-std::string format(const event& e, bool json) {
-  const auto seconds = static_cast<std::time_t>(e.time_ns / 1000000000u);
-  const auto micros = static_cast<unsigned>(e.time_ns % 1000000000u / 1000u);
-  std::string out;
-  char stamp[40];
-  if (json) {
-    std::snprintf(stamp, sizeof stamp, "%lld.%06u", static_cast<long long>(seconds), micros);
-    out = std::string("{\"time\":") + stamp + ",\"event\":" + json_string(e.name);
-    for (const auto& [name, value] : e.fields) out += "," + json_string(name) + ":" + value;
-    return out + "}";
-  }
+// "1700000000.123456789" as the local time of day with microseconds, "19:39:11.925318".
+std::string time_of_day(std::string_view epoch) {
+  std::uint64_t seconds = 0;
+  std::size_t i = 0;
+  for (; i < epoch.size() && epoch[i] >= '0' && epoch[i] <= '9'; ++i) seconds = seconds * 10 + static_cast<std::uint64_t>(epoch[i] - '0');
+  std::string micros = i < epoch.size() && epoch[i] == '.' ? std::string(epoch.substr(i + 1, 6)) : "";
+  micros.resize(6, '0');
+  const auto t = static_cast<std::time_t>(seconds);
   std::tm local{};
-  ::localtime_r(&seconds, &local);
-  std::snprintf(stamp, sizeof stamp, "%02d:%02d:%02d.%06u", local.tm_hour, local.tm_min, local.tm_sec, micros);
-  out = std::string(stamp) + " " + e.name;
-  for (const auto& [name, value] : e.fields) out += " " + name + "=" + value;
-  return out;
+  ::localtime_r(&t, &local);
+  char stamp[24];
+  std::snprintf(stamp, sizeof stamp, "%02d:%02d:%02d.", local.tm_hour, local.tm_min, local.tm_sec);
+  return stamp + micros;
 }
 
-void emit(const event& e, bool json, std::FILE* to) {
-  const std::string line = format(e, json) + "\n";
-  std::fwrite(line.data(), 1, line.size(), to);
-  std::fflush(to);
+}  // namespace
+
+std::string text_for_people(std::string_view line) {
+  std::string kind;
+  std::string time;
+  std::string fields;
+  std::size_t at = line.empty() ? 0 : 1;  // after '{'
+  while (at < line.size() && line[at] == '"') {
+    const std::size_t name_end = line.find('"', at + 1);
+    if (name_end == std::string_view::npos || name_end + 1 >= line.size()) break;
+    const std::string_view name = line.substr(at + 1, name_end - at - 1);
+    const std::size_t value_at = name_end + 2;  // after ':'
+    const std::size_t end = value_end(line, value_at);
+    const std::string_view value = line.substr(value_at, end - value_at);
+    if (name == "event" && value.size() >= 2) {
+      kind = std::string(value.substr(1, value.size() - 2));
+    } else if (name == "time" && value.size() >= 2) {
+      time = time_of_day(value.substr(1, value.size() - 2));
+    } else {
+      fields += ' ';
+      fields.append(name.data(), name.size());
+      fields += '=';
+      fields.append(value.data(), value.size());
+    }
+    at = end + 1;  // after ','
+  }
+  return time.empty() ? kind + fields : time + " " + kind + fields;
 }
 
 // ---- signals ----

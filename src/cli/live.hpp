@@ -1,19 +1,19 @@
-// Pieces the live-network commands share (ring monitor/send/join, can monitor/send/node): the one event
-// formatter, the wall clock, signals, a capture file, and command lines read from standard input.
+// Pieces the live-network commands share (ring monitor/send/join, can monitor/send/node): their events, the
+// wall clock, signals, a capture file, and command lines read from standard input.
 #pragma once
 
 #include <csignal>
 #include <cstdint>
+#include <cstdio>
+#include <deque>
 #include <fstream>
 #include <memory>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
-#include "trionet/can/frame.hpp"
+#include "cli.hpp"
 #include "trionet/host/pcapng.hpp"
-#include "trionet/ring/decoder.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::cli::live {
@@ -21,38 +21,41 @@ namespace trionet::cli::live {
 /// Nanoseconds since 1970 (CLOCK_REALTIME): event times and capture timestamps.
 std::uint64_t now_ns();
 
-// ---- events: one formatter for both networks ----
+// ---- events ----
 
-/// One thing that happened, with its time and its fields in print order (values already JSON: numbers,
-/// strings with quotes, true/false).
-struct event {
-  std::uint64_t time_ns = 0;
-  std::string name;  ///< "message", "frame_error", "vr", "counters", ...
-  std::vector<std::pair<std::string, std::string>> fields;
+/// The live commands' events: lines of the tool's one `event` (cli.hpp), with the field names and order of
+/// the decoders (`ring decode`, `can decode`); the position of a live event is its `time` (`event::time`).
+/// They gather in `text()` and go out at `flush()`, which a command calls before every wait, so each event is
+/// seen as soon as it happened. As JSON, or as text for people: "HH:MM:SS.ffffff kind name=value ..." (local
+/// time; values as in JSON).
+class event_log {
+ public:
+  explicit event_log(bool json, std::FILE* to = stdout) : json_(json), to_(to) {}
+  ~event_log() { flush(); }
+  event_log(const event_log&) = delete;
+  event_log& operator=(const event_log&) = delete;
 
-  event(std::uint64_t time, std::string event_name) : time_ns(time), name(std::move(event_name)) {}
-  event& text(const std::string& field, std::string_view value);
-  event& number(const std::string& field, long long value);
-  event& number(const std::string& field, unsigned long long value);
-  event& real(const std::string& field, double value);
-  event& flag(const std::string& field, bool value);
+  /// Where an event is appended: `event(log.text(), "kind").time(t)...`.
+  std::string& text() noexcept { return text_; }
+  /// Writes the events gathered so far and flushes the stream.
+  void flush();
+  /// From now on `flush` keeps the last `count` events as text for people instead of writing them (a
+  /// screen shows them).
+  void keep_last(std::size_t count) noexcept { keep_ = count; }
+  /// The events kept, oldest first.
+  [[nodiscard]] const std::deque<std::string>& kept() const noexcept { return kept_; }
+
+ private:
+  std::string text_;
+  bool json_;
+  std::FILE* to_;
+  std::size_t keep_ = 0;
+  std::deque<std::string> kept_;
 };
 
-/// A ring decoder result as an event: the fields and names of `trionet ring decode` (event, type, hops,
-/// text, vr, raw, value, offset, mode, reason), and its time.
-event ring_event(std::uint64_t time_ns, const ring::decode_result& result);
-
-/// A CAN frame as an event: for a VR frame of an exchange of `nodes` controllers the fields of
-/// `trionet can decode` (event "vr", id, from, to, vr, negative, int, frac, value); otherwise
-/// {"event":"error","reason":...} with the frame itself (id, frame as compact candump text).
-event can_event(std::uint64_t time_ns, const can::frame& frame, std::uint8_t nodes);
-
-/// The event as one line without its newline: JSON {"time":S.ffffff,"event":NAME,...}, or text
-/// "HH:MM:SS.ffffff NAME field=value ..." (local time) for people.
-std::string format(const event& e, bool json);
-
-/// Prints the event on standard output (or `to`) and flushes it, so it is seen as soon as it happened.
-void emit(const event& e, bool json, std::FILE* to = stdout);
+/// One JSON event line (as `event` writes it) as text for people: its "time" first as the local time of day
+/// with microseconds, then the kind, then `name=value` for every other field.
+std::string text_for_people(std::string_view json_line);
 
 // ---- signals ----
 
@@ -126,13 +129,3 @@ std::vector<std::string> words_of(std::string_view line);
 bool unescape(std::string_view text, std::string& out, std::string& error);
 
 }  // namespace trionet::cli::live
-
-namespace trionet::cli {
-/// `trionet can monitor|send|node ...` (`command` is the word after `can`).
-int can_live_main(const std::string& command, const std::vector<std::string>& words);
-/// The same, one command each, for the can part's command table; their help text.
-int can_monitor_main(const std::vector<std::string>& args);
-int can_send_main(const std::vector<std::string>& args);
-int can_node_main(const std::vector<std::string>& args);
-extern const char* const can_live_usage;
-}  // namespace trionet::cli

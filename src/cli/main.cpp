@@ -10,7 +10,8 @@ namespace {
 
 using trionet::cli::part;
 
-const part* const parts[] = {&trionet::cli::ring_part, &trionet::cli::can_part, &trionet::cli::genius_part};
+const part* const parts[] = {&trionet::cli::ring_part, &trionet::cli::can_part, &trionet::cli::genius_part,
+                             &trionet::cli::profile_part};
 
 std::string usage() {
   std::string out = "usage: trionet <part> <command> [options]\n       trionet --version\n\nparts:\n";
@@ -20,8 +21,9 @@ std::string usage() {
     out += "  " + name + " " + p->summary + "\n";
   }
   out += "\nRun `trionet <part> --help` for a part's commands, `trionet <part> <command> --help` for a command's\n"
-         "options. Exit status: 0 the input was read (wire errors are reported as events), 1 reading or\n"
-         "writing failed, 2 bad arguments, 3 a --check failed.\n";
+         "options. Every command takes --profile FILE: the wire parameters to use (docs/profile.md).\n"
+         "Exit status: 0 the input was read (wire errors are reported as events), 1 reading or\n"
+         "writing failed, 2 bad arguments, 3 a --check failed or a learn command found no single answer.\n";
   return out;
 }
 
@@ -30,7 +32,7 @@ std::string usage() {
 int main(int argc, char** argv) {
   std::vector<std::string> words(argv + 1, argv + argc);
   if (words.empty()) {
-    std::fputs(("trionet: a part is needed: ring, can or genius\n" + usage()).c_str(), stderr);
+    std::fputs(("trionet: a part is needed: ring, can, genius or profile\n" + usage()).c_str(), stderr);
     return trionet::cli::exit_usage;
   }
   if (words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
@@ -44,5 +46,5 @@ int main(int argc, char** argv) {
   for (const part* p : parts) {
     if (words[0] == p->name) return trionet::cli::dispatch(*p, std::vector<std::string>(words.begin() + 1, words.end()));
   }
-  return trionet::cli::fail("unknown part '" + trionet::host::clipped(words[0]) + "' (expected ring, can or genius)");
+  return trionet::cli::fail("unknown part '" + trionet::host::clipped(words[0]) + "' (expected ring, can, genius or profile)");
 }

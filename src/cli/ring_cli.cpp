@@ -6,8 +6,11 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
+#include "learn_cli.hpp"
+#include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
+#include "ring_message_arguments.hpp"
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
@@ -35,120 +38,15 @@ constexpr const char* decode_usage =
     "With --pcap, --json prints each record as the fields Wireshark's dissector shows (docs/wireshark.md).\n"
     "Exit status 0 when the input was read, 1 when reading or writing failed, 2 for bad arguments.\n";
 
-std::string hex_line(const std::uint8_t* bytes, std::size_t length) {
-  std::string line;
-  char text[4];
-  for (std::size_t i = 0; i < length; ++i) {
-    std::snprintf(text, sizeof text, "%02x", bytes[i]);
-    if (i != 0) line += ' ';
-    line += text;
-  }
-  return line;
-}
-
-bool basic_address(const arguments& args, const std::string& name, std::uint8_t& hops, std::string& error) {
-  auto found = args.options.find(name);
-  if (found == args.options.end()) {
-    error = "missing " + name + " (a BASIC address 10..24)";
-    return false;
-  }
-  long long n = 0;
-  if (!parse_integer(found->second, ring::first_basic_address, ring::last_basic_address, n)) {
-    error = name + " must be a BASIC address 10..24, got '" + host::clipped(found->second) + "'";
-    return false;
-  }
-  hops = *ring::hops_from_basic_address(static_cast<int>(n));
-  return true;
-}
-
 int encode_main(const words& all) {
   if (all.empty()) return fail("ring encode needs a message kind: print, var, offset or mode");
-  const std::string kind = all[0];
   const words rest(all.begin() + 1, all.end());
   arguments args;
   std::string error;
-  if (!parse_arguments(rest, {"--to", "--vr", "--value", "--offset", "--mode"}, {}, args, error))
-    return fail(error);
-  const std::vector<std::string> allowed_for = [&]() -> std::vector<std::string> {
-    if (kind == "print") return {"--to"};
-    if (kind == "var") return {"--to", "--vr", "--value"};
-    if (kind == "offset") return {"--to", "--offset"};
-    if (kind == "mode") return {"--to", "--mode"};
-    return {};
-  }();
-  if (allowed_for.empty())
-    return fail("unknown message kind '" + host::clipped(kind) + "' (expected print, var, offset or mode)");
-  for (const auto& option : args.options) {
-    bool allowed = false;
-    for (const auto& name : allowed_for) allowed = allowed || option.first == name;
-    if (!allowed) return fail("option " + option.first + " does not apply to 'ring encode " + kind + "'");
-  }
-  if (kind != "print" && !args.positionals.empty())
-    return fail("unexpected argument '" + host::clipped(args.positionals[0]) + "'");
-
-  std::uint8_t hops = 0;
-  if (!basic_address(args, "--to", hops, error)) return fail(error);
-
-  ring::message m;
-  std::string text;
-  if (kind == "print") {
-    if (args.positionals.size() != 1) return fail("ring encode print takes exactly one TEXT argument");
-    text = args.positionals[0];
-    if (text.empty()) return fail("TEXT is empty: a character transfer needs at least one character");
-    if (text.size() > ring::default_max_characters) {
-      return fail("TEXT has " + std::to_string(text.size()) + " characters; a character transfer carries at most " +
-                  std::to_string(ring::default_max_characters) + " (docs/protocol.md 1.4)");
-    }
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      if (static_cast<unsigned char>(text[i]) > 127) {
-        return fail("TEXT has a character above 127 at byte " + std::to_string(i) +
-                    " (the ring carries 7-bit characters)");
-      }
-    }
-    m = ring::message::characters(hops,
-                                  byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-  } else if (kind == "var") {
-    if (!args.has("--vr")) return fail("missing --vr (a VR number 0..16383)");
-    if (!args.has("--value")) return fail("missing --value (a real number)");
-    long long vr = 0;
-    if (!parse_integer(args.options.at("--vr"), 0, ring::max_vr, vr)) {
-      return fail("--vr must be a VR number 0..16383, got '" + host::clipped(args.options.at("--vr")) + "'");
-    }
-    double value = 0;
-    if (!parse_real(args.options.at("--value"), value)) {
-      return fail("--value must be a real number, got '" + host::clipped(args.options.at("--value")) + "'");
-    }
-    const trionet::q32_result q = trionet::q32_from_double(value);
-    if (!q)
-      return fail("--value " + host::clipped(args.options.at("--value")) +
-                  " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]");
-    m = ring::message::variable(hops, static_cast<std::uint16_t>(vr), q.raw);
-  } else if (kind == "offset") {
-    std::uint8_t offset = 0;
-    if (!basic_address(args, "--offset", offset, error)) return fail(error);
-    m = ring::message::keypad_offset(hops, offset);
-  } else {
-    if (!args.has("--mode")) return fail("missing --mode (0 or 127)");
-    long long mode = 0;
-    if (!parse_integer(args.options.at("--mode"), 0, 127, mode) || (mode != 0 && mode != 127)) {
-      return fail("--mode must be 0 (key ON) or 127 (key ON and OFF), got '" +
-                  host::clipped(args.options.at("--mode")) + "'");
-    }
-    m = ring::message::keypad_mode(hops, static_cast<std::uint8_t>(mode));
-  }
-
-  std::vector<std::uint8_t> frame(ring::frame_length(m));
-  const ring::encode_result result = ring::encode(byte_buffer(frame.data(), frame.size()), m);
-  if (!result) return fail(std::string("cannot encode: ") + ring::to_string(result.status));
-  // What is printed must be what `ring decode` accepts: decode it with the same decoder.
-  ring::decoder<> check;
-  ring::decode_status decoded = ring::decode_status::incomplete;
-  check.push(byte_view(frame.data(), result.length),
-             [&decoded](const ring::decode_result& r) { decoded = r.status; });
-  if (decoded != ring::decode_status::ok) {
-    return fail(std::string("cannot encode: the decoder would report ") + ring::to_string(decoded));
-  }
-  std::printf("%s\n", hex_line(frame.data(), result.length).c_str());
+  if (!parse_arguments(rest, ring_message_options(), {}, args, error)) return fail(error);
+  std::vector<std::uint8_t> frame;
+  if (!ring_message_frame(all[0], args, frame, error)) return fail(error);
+  std::printf("%s\n", hex_line(frame.data(), frame.size()).c_str());
   return exit_ok;
 }
 
@@ -205,7 +103,7 @@ class ring_stream {
 
   std::string& out_;
   where_kind kind_;
-  ring::decoder<> decoder_;
+  profile_decoder decoder_;
   std::uint64_t start_ = 0;
 };
 
@@ -257,29 +155,11 @@ class hex_reader {
   std::uint64_t line_ = 1;
 };
 
-// Standard input through `feed` in chunks, flushing the output after each.
-template <class Feed>
-int stream_stdin(output& out, Feed&& feed) {
-  input in;
-  std::string error;
-  std::string_view chunk;
-  while (true) {
-    if (!in.read(chunk, error)) {
-      out.flush();
-      return fail_io(error);
-    }
-    if (chunk.empty()) break;
-    feed(chunk);
-    if (!out.flush()) return fail_io("cannot write standard output");
-  }
-  return exit_ok;
-}
-
 int decode_capture(const arguments& args) {
   return read_capture(args.options.at("--pcap"), host::capture_network::ring, args.flag("--json"), 5,
                       [](const host::pcapng_record& record, const capture_position& where, std::string& out) {
                         // Each record on its own, through a fresh decoder, as the dissector sees it.
-                        ring::decoder<> decoder;
+                        profile_decoder decoder;
                         const auto here = [&where](event& e) { add_position(e, where); };
                         bool any = false;
                         for (std::uint8_t byte : record.bytes) {
@@ -344,9 +224,22 @@ const command ring_commands[] = {
     {"send", "put one message on a live ring port", ring_live_usage, ring_send_main},
     {"join", "be a node on a live ring: a Motion Coordinator (--as mc) or a keypad (--as keypad)", ring_live_usage,
      ring_join_main},
+    {"learn", "crc or layout: find the wire parameters from captured frames, write them into a profile",
+     ring_learn_usage, ring_learn_main},
 };
 
 }  // namespace
+
+std::string hex_line(const std::uint8_t* bytes, std::size_t length) {
+  std::string line;
+  char text[4];
+  for (std::size_t i = 0; i < length; ++i) {
+    std::snprintf(text, sizeof text, "%02x", bytes[i]);
+    if (i != 0) line += ' ';
+    line += text;
+  }
+  return line;
+}
 
 void append_ring_event_body(event& e, const ring::decode_result& result) {
   const ring::message& m = result.msg;
@@ -385,22 +278,10 @@ void append_ring_event_body(event& e, const ring::decode_result& result) {
 }
 
 const char* ring_event_kind(const ring::decode_result& result) {
-  switch (result.status) {
-    case ring::decode_status::ok:
-      return "message";
-    case ring::decode_status::frame_error:
-      return "frame_error";
-    case ring::decode_status::crc_error:
-      return "crc_error";
-    case ring::decode_status::no_room:
-      return "no_room";
-    case ring::decode_status::incomplete:
-      break;
-  }
-  return "incomplete";
+  return result.status == ring::decode_status::ok ? "message" : ring::to_string(result.status);
 }
 
-const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join)",
+const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join, learn)",
                         ring_commands, sizeof ring_commands / sizeof ring_commands[0], ""};
 
 }  // namespace trionet::cli

@@ -1,12 +1,17 @@
 // Pieces of `trionet ring` shared between its commands.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "cli.hpp"
 #include "trionet/ring/decoder.hpp"
 
 namespace trionet::cli {
+
+/// Bytes as "91 48 45 90": lower-case hex pairs, what `ring encode` prints and `ring decode` reads.
+std::string hex_line(const std::uint8_t* bytes, std::size_t length);
 
 /// The event name of a decoder result: "message", "frame_error", "crc_error" or "no_room".
 const char* ring_event_kind(const ring::decode_result& result);

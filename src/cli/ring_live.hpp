@@ -9,28 +9,25 @@
 #include <vector>
 
 #include "live.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/link_device.hpp"
 #include "trionet/ring/decoder.hpp"
 
 namespace trionet::cli {
 
-/// `trionet ring monitor|send|join ...` (`command` is the word after `ring`).
-int ring_live_main(const std::string& command, const std::vector<std::string>& words);
-/// The same, one command each, for the ring part's command table; their help text.
-int ring_monitor_main(const std::vector<std::string>& args);
-int ring_send_main(const std::vector<std::string>& args);
-int ring_join_main(const std::vector<std::string>& args);
+/// `trionet ring monitor|send|join ...`, entries of the ring part's command table; their help text.
+int ring_monitor_main(const words& args);
+int ring_send_main(const words& args);
+int ring_join_main(const words& args);
 extern const char* const ring_live_usage;
 
-/// Bytes as "91 48 45 90" (lower-case hex, as `trionet ring encode` prints them).
-std::string hex_text(const std::uint8_t* bytes, std::size_t length);
-
 /// One direction of a ring link as this host sees it: every byte is decoded (a receiver's view of every
-/// message, whatever its hops) into events, cut into capture records, and counted.
+/// message, whatever its hops), cut into capture records, and counted.
 class ring_tap {
  public:
-  using sink = std::function<void(const live::event&)>;
+  /// Gets each decoder result and the time of the byte that completed it.
+  using sink = std::function<void(const ring::decode_result&, std::uint64_t time_ns)>;
 
   /// `capture` may be null; `link_name` names the capture interface ("received on /dev/ttyUSB0").
   ring_tap(live::capture_file* capture, const std::string& link_name);
@@ -46,18 +43,18 @@ class ring_tap {
   /// The hops of the message the last result was about (0 for stray bytes): a node's own traffic is hops 1.
   [[nodiscard]] std::uint8_t last_hops() const noexcept { return last_hops_; }
 
-  /// NETSTAT-style counters as one event: bytes, messages by type, CRC and frame errors (by reason),
-  /// idle lines, and the NETSTAT bits a receiver of everything would show (4 CRC, 8 frame).
-  [[nodiscard]] live::event counters_event(std::uint64_t time_ns) const;
+  /// NETSTAT-style counters as one event appended to `out`: bytes, messages by type, CRC and frame errors (by
+  /// reason), idle lines, and the NETSTAT bits a receiver of everything would show (4 CRC, 8 frame).
+  void counters(std::string& out, std::uint64_t time_ns) const;
   /// The counters' fields added to `e` with `prefix` ("in_" ...).
-  void add_counters(live::event& e, const std::string& prefix) const;
+  void add_counters(event& e, const std::string& prefix) const;
 
   [[nodiscard]] std::uint64_t messages() const noexcept { return messages_; }
 
  private:
   void report(const ring::decode_result& r, std::uint64_t time_ns, const sink& out);
 
-  ring::decoder<> decoder_;
+  profile_decoder decoder_;
   host::ring_record_splitter records_;
   live::capture_file* capture_;
   std::uint32_t interface_ = 0;
@@ -80,6 +77,9 @@ struct join_settings {
   bool json = false;
   bool trace = false;
   std::string pcap;
+  int learn_keypad = 0;      ///< --learn-keypad N: the keypad's BASIC address (0: no learning)
+  int keypad_offset = 0;     ///< --keypad-offset M: the keypad's way back to this MC (BASIC address)
+  std::string learn_output;  ///< -o PROFILE
 };
 
 int join_mc(const join_settings& settings);

@@ -14,6 +14,7 @@
 #include "cli.hpp"
 #include "keypad_terminal.hpp"
 #include "live.hpp"
+#include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "ring_message_arguments.hpp"
 #include "trionet/host/capture.hpp"
@@ -35,6 +36,11 @@ const char* const ring_live_usage =
     "      be a Motion Coordinator on the ring: forward, deliver, and take commands on standard input:\n"
     "        print N TEXT | send N VR VALUE | offset N M | mode N 0|127 | key 3|4 | get 3|4 |\n"
     "        vr V [VALUE] | netstat [clear] | counters | quit        (TEXT escapes: \\r \\n \\t \\\\ \\xNN)\n"
+    "  trionet ring join PORT --as mc --learn-keypad N [--keypad-offset M] -o PROFILE [port options] [--json]\n"
+    "      learn a real keypad's codes: put the keypad at BASIC address N in network mode (keys sent to\n"
+    "      BASIC address M from the keypad, default N: right for a ring of two) and keypad mode 127, ask for\n"
+    "      each key in turn (press and release it), and write the profile in effect with the key ON\n"
+    "      characters and the key OFF rule found to PROFILE (exit 3 if no profile can hold them)\n"
     "  trionet ring join PORT --as keypad [port options] [--json] [--trace] [--pcap FILE]\n"
     "      be a membrane keypad: on a terminal, its display drawn in place and the keyboard as its keys;\n"
     "      otherwise key words from standard input (0..9 . up down clr y n start stop, wait=MS, quit)\n"
@@ -99,7 +105,7 @@ std::set<std::string> with(std::set<std::string> a, const std::set<std::string>&
 
 // ---- ring monitor ----
 
-int monitor_main(const std::vector<std::string>& given) {
+int monitor_main(const words& given) {
   arguments args;
   std::string error;
   if (!parse_arguments(given, port_value_options, {"--json"}, args, error)) return fail("ring monitor: " + error);
@@ -112,11 +118,15 @@ int monitor_main(const std::vector<std::string>& given) {
   if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail("ring monitor: " + error);
   ring_tap tap(capture.is_open() ? &capture : nullptr, "received on " + port.name());
   live::signal_watch signals;
-  const auto print = [&](const live::event& e) { live::emit(e, options.json); };
+  live::event_log log(options.json);
+  const auto print = [&log](const ring::decode_result& r, std::uint64_t time_ns) {
+    append_ring_event(log.text(), r, [time_ns](event& e) { e.time(time_ns); });
+  };
 
   std::string ended = port.name() + " closed";
   while (!live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) print(tap.counters_event(live::now_ns()));
+    if (live::signal_watch::take_report_request()) tap.counters(log.text(), live::now_ns());
+    log.flush();
     pollfd p{port.fd(), POLLIN, 0};
     const int ready = ::poll(&p, 1, options.idle_ms);
     if (ready < 0) {
@@ -138,7 +148,8 @@ int monitor_main(const std::vector<std::string>& given) {
     tap.push(byte_view(in, static_cast<std::size_t>(got)), live::now_ns(), print);
   }
   tap.idle(live::now_ns(), print);  // a message cut short by the end is reported as such
-  print(tap.counters_event(live::now_ns()));
+  tap.counters(log.text(), live::now_ns());
+  log.flush();
   port.close();
   if (!live::signal_watch::stop_requested()) std::fprintf(stderr, "trionet: ring monitor: %s\n", ended.c_str());
   if (!capture.good()) return fail("ring monitor: writing the capture " + options.pcap + " failed");
@@ -147,7 +158,7 @@ int monitor_main(const std::vector<std::string>& given) {
 
 // ---- ring send ----
 
-int send_main(const std::vector<std::string>& given) {
+int send_main(const words& given) {
   arguments args;
   std::string error;
   if (!parse_arguments(given, with(port_value_options, ring_message_options()), {}, args, error))
@@ -182,46 +193,63 @@ int send_main(const std::vector<std::string>& given) {
   if (!port.drain()) return fail("ring send: cannot drain " + port.name() + ": " + std::strerror(errno));
   if (capture.is_open()) {
     ring_tap tap(&capture, "sent on " + port.name());
-    tap.push(byte_view(frame.data(), frame.size()), sent_at, [](const live::event&) {});
-    tap.idle(sent_at, [](const live::event&) {});
+    const ring_tap::sink ignore = [](const ring::decode_result&, std::uint64_t) {};
+    tap.push(byte_view(frame.data(), frame.size()), sent_at, ignore);
+    tap.idle(sent_at, ignore);
   }
   port.close();
-  if (args.positionals[0] != "-") std::printf("%s\n", hex_text(frame.data(), frame.size()).c_str());
+  if (args.positionals[0] != "-") std::printf("%s\n", hex_line(frame.data(), frame.size()).c_str());
   if (!capture.good()) return fail("ring send: writing the capture " + options.pcap + " failed");
   return exit_ok;
 }
 
 }  // namespace
 
-int ring_live_main(const std::string& command, const std::vector<std::string>& given) {
-  if (!given.empty() && (given[0] == "--help" || given[0] == "-h")) {
-    std::fputs(ring_live_usage, stdout);
-    return exit_ok;
-  }
-  if (command == "monitor") return monitor_main(given);
-  if (command == "send") return send_main(given);
-  if (command == "join") {
-    arguments args;
-    std::string error;
-    if (!parse_arguments(given, with(port_value_options, {"--as"}), {"--json", "--trace"}, args, error))
-      return fail("ring join: " + error);
-    if (args.positionals.size() != 1) return fail("ring join takes one PORT");
-    if (!args.has("--as")) return fail("ring join needs --as mc or --as keypad");
-    port_arguments options;
-    if (!port_arguments_of(args, options, error)) return fail("ring join: " + error);
-    const std::string& as = args.options.at("--as");
-    join_settings settings{args.positionals[0], options.link, options.idle_ms, options.json, options.trace,
-                           options.pcap};
-    if (as == "mc") return join_mc(settings);
-    if (as == "keypad") return join_keypad(settings);
-    return fail("ring join: --as must be mc or keypad, got '" + as + "'");
-  }
-  std::fputs(ring_live_usage, stderr);
-  return exit_usage;
+int ring_monitor_main(const words& args) {
+  return monitor_main(args);
 }
 
-int ring_monitor_main(const std::vector<std::string>& args) { return ring_live_main("monitor", args); }
-int ring_send_main(const std::vector<std::string>& args) { return ring_live_main("send", args); }
-int ring_join_main(const std::vector<std::string>& args) { return ring_live_main("join", args); }
+int ring_send_main(const words& args) {
+  return send_main(args);
+}
+
+int ring_join_main(const words& given) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(given, with(port_value_options, {"--as", "--learn-keypad", "--keypad-offset", "-o"}),
+                       {"--json", "--trace"}, args, error))
+    return fail("ring join: " + error);
+  if (args.positionals.size() != 1) return fail("ring join takes one PORT");
+  if (!args.has("--as")) return fail("ring join needs --as mc or --as keypad");
+  port_arguments options;
+  if (!port_arguments_of(args, options, error)) return fail("ring join: " + error);
+  const std::string& as = args.options.at("--as");
+  join_settings settings{args.positionals[0], options.link, options.idle_ms, options.json, options.trace,
+                         options.pcap, 0, 0, ""};
+  const bool learning = args.has("--learn-keypad");
+  if (!learning && (args.has("--keypad-offset") || args.has("-o"))) {
+    return fail("ring join: --keypad-offset and -o go with --learn-keypad");
+  }
+  if (learning) {
+    if (as != "mc") return fail("ring join: --learn-keypad goes with --as mc (the MC learns the keypad's codes)");
+    if (!args.has("-o")) return fail("ring join: --learn-keypad needs -o PROFILE (where the codes go)");
+    long long n = 0;
+    const std::string& address = args.options.at("--learn-keypad");
+    if (!parse_integer(address, ring::first_basic_address, ring::last_basic_address, n)) {
+      return fail("ring join: --learn-keypad takes the keypad's BASIC address 10..24, got '" + host::clipped(address) +
+                  "'");
+    }
+    settings.learn_keypad = static_cast<int>(n);
+    const std::string& back = args.has("--keypad-offset") ? args.options.at("--keypad-offset") : address;
+    if (!parse_integer(back, ring::first_basic_address, ring::last_basic_address, n)) {
+      return fail("ring join: --keypad-offset takes a BASIC address 10..24, got '" + host::clipped(back) + "'");
+    }
+    settings.keypad_offset = static_cast<int>(n);
+    settings.learn_output = args.options.at("-o");
+  }
+  if (as == "mc") return join_mc(settings);
+  if (as == "keypad") return join_keypad(settings);
+  return fail("ring join: --as must be mc or keypad, got '" + host::clipped(as) + "'");
+}
 
 }  // namespace trionet::cli

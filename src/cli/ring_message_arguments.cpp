@@ -1,6 +1,8 @@
 // The arguments that describe one ring message: see ring_message_arguments.hpp.
 #include "ring_message_arguments.hpp"
 
+#include "profile_cli.hpp"
+
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
@@ -14,7 +16,7 @@ bool basic_address(const arguments& args, const std::string& name, std::uint8_t&
   }
   long long n = 0;
   if (!parse_integer(found->second, ring::first_basic_address, ring::last_basic_address, n)) {
-    error = name + " must be a BASIC address 10..24, got '" + found->second + "'";
+    error = name + " must be a BASIC address 10..24, got '" + host::clipped(found->second) + "'";
     return false;
   }
   hops = *ring::hops_from_basic_address(static_cast<int>(n));
@@ -35,6 +37,11 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
       error = "TEXT is empty: a character transfer needs at least one character";
       return false;
     }
+    if (text.size() > ring::default_max_characters) {
+      error = "TEXT has " + std::to_string(text.size()) + " characters; a character transfer carries at most " +
+              std::to_string(ring::default_max_characters) + " (docs/protocol.md 1.4)";
+      return false;
+    }
     for (std::size_t i = 0; i < text.size(); ++i) {
       if (static_cast<unsigned char>(text[i]) > 127) {
         error = "TEXT has a character above 127 at byte " + std::to_string(i) + " (the ring carries 7-bit characters)";
@@ -53,19 +60,22 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
       error = "missing --value (a real number)";
       return false;
     }
+    const std::string& vr_text = args.options.at("--vr");
+    const std::string& value_text = args.options.at("--value");
     long long vr = 0;
-    if (!parse_integer(args.options.at("--vr"), 0, ring::max_vr, vr)) {
-      error = "--vr must be a VR number 0..16383, got '" + args.options.at("--vr") + "'";
+    if (!parse_integer(vr_text, 0, ring::max_vr, vr)) {
+      error = "--vr must be a VR number 0..16383, got '" + host::clipped(vr_text) + "'";
       return false;
     }
     double value = 0;
-    if (!parse_real(args.options.at("--value"), value)) {
-      error = "--value must be a real number, got '" + args.options.at("--value") + "'";
+    if (!parse_real(value_text, value)) {
+      error = "--value must be a real number, got '" + host::clipped(value_text) + "'";
       return false;
     }
     const trionet::q32_result q = trionet::q32_from_double(value);
     if (!q) {
-      error = "--value " + args.options.at("--value") + " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]";
+      error = "--value " + host::clipped(value_text) +
+              " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]";
       return false;
     }
     m = ring::message::variable(hops, static_cast<std::uint16_t>(vr), q.raw);
@@ -83,7 +93,7 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
   }
   long long mode = 0;
   if (!parse_integer(args.options.at("--mode"), 0, 127, mode) || (mode != 0 && mode != 127)) {
-    error = "--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + args.options.at("--mode") + "'";
+    error = "--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + host::clipped(args.options.at("--mode")) + "'";
     return false;
   }
   m = ring::message::keypad_mode(hops, static_cast<std::uint8_t>(mode));
@@ -107,7 +117,7 @@ bool ring_message_frame(const std::string& kind, const arguments& args, std::vec
     return {};
   }();
   if (allowed_for.empty()) {
-    error = "unknown message kind '" + kind + "' (expected print, var, offset or mode)";
+    error = "unknown message kind '" + host::clipped(kind) + "' (expected print, var, offset or mode)";
     return false;
   }
   for (const auto& option : args.options) {
@@ -120,19 +130,27 @@ bool ring_message_frame(const std::string& kind, const arguments& args, std::vec
     }
   }
   if (kind != "print" && !args.positionals.empty()) {
-    error = "unexpected argument '" + args.positionals[0] + "'";
+    error = "unexpected argument '" + host::clipped(args.positionals[0]) + "'";
     return false;
   }
   ring::message m;
   std::string text;
   if (!message_of(kind, args, m, text, error)) return false;
   frame.assign(ring::frame_length(m), 0);
-  const ring::encode_result result = ring::encode(byte_buffer(frame.data(), frame.size()), m);
+  const ring::encode_result result = encode_with_profile(byte_buffer(frame.data(), frame.size()), m);
   if (!result) {
     error = std::string("cannot encode: ") + ring::to_string(result.status);
     return false;
   }
   frame.resize(result.length);
+  // What is written must be what `ring decode` accepts: decode it with the same decoder.
+  profile_decoder check;
+  ring::decode_status decoded = ring::decode_status::incomplete;
+  check.push(byte_view(frame.data(), frame.size()), [&decoded](const ring::decode_result& r) { decoded = r.status; });
+  if (decoded != ring::decode_status::ok) {
+    error = std::string("cannot encode: the decoder would report ") + ring::to_string(decoded);
+    return false;
+  }
   return true;
 }
 

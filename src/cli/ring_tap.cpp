@@ -1,22 +1,9 @@
 // One direction of a ring link as this host sees it: see ring_live.hpp.
-#include <cstdio>
-
 #include "ring_live.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/node.hpp"
 
 namespace trionet::cli {
-
-std::string hex_text(const std::uint8_t* bytes, std::size_t length) {
-  std::string line;
-  char text[4];
-  for (std::size_t i = 0; i < length; ++i) {
-    std::snprintf(text, sizeof text, "%02x", bytes[i]);
-    if (i != 0) line += ' ';
-    line += text;
-  }
-  return line;
-}
 
 ring_tap::ring_tap(live::capture_file* capture, const std::string& link_name) : capture_(capture) {
   if (capture_ != nullptr) interface_ = capture_->add(link_name, host::capture_network::ring);
@@ -68,35 +55,36 @@ void ring_tap::report(const ring::decode_result& r, std::uint64_t time_ns, const
       ++frame_errors_[ring::to_string(r.error)];
       break;
   }
-  out(live::ring_event(time_ns, r));
+  out(r, time_ns);
 }
 
-void ring_tap::add_counters(live::event& e, const std::string& prefix) const {
+void ring_tap::add_counters(event& e, const std::string& prefix) const {
   std::uint64_t frame_errors = 0;
   for (const auto& entry : frame_errors_) frame_errors += entry.second;
-  e.number(prefix + "bytes", static_cast<unsigned long long>(bytes_));
-  e.number(prefix + "messages", static_cast<unsigned long long>(messages_));
-  e.number(prefix + "char", static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::character)]));
-  e.number(prefix + "var", static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::variable)]));
+  e.number(prefix + "bytes", bytes_);
+  e.number(prefix + "messages", messages_);
+  e.number(prefix + "char", by_type_[static_cast<int>(ring::message_type::character)]);
+  e.number(prefix + "var", by_type_[static_cast<int>(ring::message_type::variable)]);
   e.number(prefix + "offset",
-           static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::keypad_offset)]));
-  e.number(prefix + "mode", static_cast<unsigned long long>(by_type_[static_cast<int>(ring::message_type::keypad_mode)]));
-  e.number(prefix + "crc_errors", static_cast<unsigned long long>(crc_errors_));
-  e.number(prefix + "frame_errors", static_cast<unsigned long long>(frame_errors));
+           by_type_[static_cast<int>(ring::message_type::keypad_offset)]);
+  e.number(prefix + "mode", by_type_[static_cast<int>(ring::message_type::keypad_mode)]);
+  e.number(prefix + "crc_errors", crc_errors_);
+  e.number(prefix + "frame_errors", frame_errors);
   for (const auto& entry : frame_errors_) {
-    e.number(prefix + entry.first, static_cast<unsigned long long>(entry.second));
+    e.number(prefix + entry.first, entry.second);
   }
-  e.number(prefix + "idle_lines", static_cast<unsigned long long>(idle_lines_));
+  e.number(prefix + "idle_lines", idle_lines_);
 }
 
-live::event ring_tap::counters_event(std::uint64_t time_ns) const {
-  live::event e(time_ns, "counters");
+void ring_tap::counters(std::string& out, std::uint64_t time_ns) const {
+  event e(out, "counters");
+  e.time(time_ns);
   add_counters(e, "");
   std::uint64_t frame_errors = 0;
   for (const auto& entry : frame_errors_) frame_errors += entry.second;
-  e.number("netstat", static_cast<long long>((crc_errors_ != 0 ? ring::netstat_rx_crc_error : 0) |
-                                             (frame_errors != 0 ? ring::netstat_rx_frame_error : 0)));
-  return e;
+  const auto bit = [](bool raised, ring::netstat_bit b) { return raised ? static_cast<unsigned>(b) : 0U; };
+  e.number("netstat", bit(crc_errors_ != 0, ring::netstat_rx_crc_error) |
+                          bit(frame_errors != 0, ring::netstat_rx_frame_error));
 }
 
 }  // namespace trionet::cli

@@ -76,22 +76,6 @@ std::string colon_hex(const std::uint8_t* data, std::size_t size) {
 // ---------------------------------------------------------------------------------------------------------
 // ring
 
-const char* ring_status_name(ring::decode_status status) {
-  switch (status) {
-    case ring::decode_status::incomplete:
-      return "incomplete";
-    case ring::decode_status::ok:
-      return "message";
-    case ring::decode_status::frame_error:
-      return "frame_error";
-    case ring::decode_status::crc_error:
-      return "crc_error";
-    case ring::decode_status::no_room:
-      return "no_room";
-  }
-  return "unknown";
-}
-
 // One message, stray run or stray end of message: the bytes, then what a fresh decoder makes of them (with
 // the message cut short at the end of the record reported as `interrupted`, as the next header would).
 void ring_unit_fields(byte_view unit, capture_fields& out) {
@@ -142,7 +126,8 @@ void ring_unit_fields(byte_view unit, capture_fields& out) {
   }
   if (decoder.in_message()) results.push_back(decoder.interrupt());
   for (const ring::decode_result& result : results) {
-    add_text(out, "trionet_ring.status", ring_status_name(result.status));
+    add_text(out, "trionet_ring.status",
+             result.status == ring::decode_status::ok ? "message" : ring::to_string(result.status));
     if (result.status == ring::decode_status::frame_error) {
       add_text(out, "trionet_ring.frame_error", ring::to_string(result.error));
       add_marker(out, std::string("trionet_ring.expert.") + ring::to_string(result.error));
@@ -283,28 +268,6 @@ void genius_unit_fields(const std::vector<std::uint16_t>& words, capture_fields&
 // CAN
 
 }  // namespace
-
-std::string escaped_text(byte_view characters) {
-  std::string out;
-  for (std::uint8_t c : characters) {
-    if (c == '\\') {
-      out += "\\\\";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c < 32 || c >= 127) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\x%02x", c);
-      out += escape;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out;
-}
 
 capture_fields ring_record_fields(byte_view record) {
   capture_fields out;

@@ -207,22 +207,8 @@ crc6_learn_result learn_genius_crc(const std::vector<crc6_sample>& samples,
     result.status = crc_learn_status::too_many_candidates;
     return result;
   }
-  for (auto& entry : classes) {
-    auto& members = entry.second.members;
-    std::stable_sort(members.begin(), members.end(), [](const crc6_member& a, const crc6_member& b) {
-      return !a.name.empty() && b.name.empty();
-    });
-    result.classes.push_back(std::move(entry.second));
-  }
-  std::stable_sort(result.classes.begin(), result.classes.end(),
-                   [](const crc6_class& a, const crc6_class& b) {
-                     return !a.members.front().name.empty() && b.members.front().name.empty();
-                   });
-  if (result.classes.empty()) {
-    result.status = crc_learn_status::no_candidate;
-  } else {
-    result.status = result.classes.size() == 1 ? crc_learn_status::ok : crc_learn_status::ambiguous;
-  }
+  for (auto& entry : classes) result.classes.push_back(std::move(entry.second));
+  finish_classes(result);
   return result;
 }
 

@@ -8,10 +8,6 @@
 namespace trionet::learn {
 namespace {
 
-// JSON names of the keys, in `ring::key` order.
-constexpr const char* key_names[ring::key_count] = {"0",     "1",   "2",  "3",     "4",     "5",
-                                                    "6",     "7",   "8",  "9",     "up",    "down",
-                                                    "clear", "yes", "no", "point", "start", "stop"};
 constexpr const char* order_names[] = {"least_significant_first", "most_significant_first"};
 constexpr const char* crc_input_names[] = {"as_sent", "least_significant_first"};
 constexpr const char* key_off_names[] = {"plus_64", "same"};
@@ -213,17 +209,17 @@ class reader {
                    "point", "start", "stop"}))
         return false;
       for (std::size_t k = 0; k < ring::key_count; ++k) {
-        if (auto c = find(*m, key_names[k]);
-            c && !character(*c, join(codes_path, key_names[k]), out.codes.raw[k]))
+        if (auto c = find(*m, keypad_key_names[k]);
+            c && !character(*c, join(codes_path, keypad_key_names[k]), out.codes.raw[k]))
           return false;
       }
       for (std::size_t k = 0; k < ring::key_count; ++k) {
         for (std::size_t other = 0; other < k; ++other) {
           if (out.codes.raw[k] == out.codes.raw[other]) {
-            const json_value* at = find(*m, key_names[k]);
-            if (at == nullptr) at = find(*m, key_names[other]);
-            return fail(profile_status::duplicate_code, join(codes_path, key_names[k]),
-                        std::string("sends the same character as key \"") + key_names[other] + "\"",
+            const json_value* at = find(*m, keypad_key_names[k]);
+            if (at == nullptr) at = find(*m, keypad_key_names[other]);
+            return fail(profile_status::duplicate_code, join(codes_path, keypad_key_names[k]),
+                        std::string("sends the same character as key \"") + keypad_key_names[other] + "\"",
                         at ? *at : *m);
           }
         }
@@ -373,7 +369,7 @@ std::string write_profile(const profile& p) {
   out += "  \"keypad\": {\n";
   out += "    \"codes\": {";
   for (std::size_t k = 0; k < ring::key_count; ++k) {
-    out += std::string(k == 0 ? "" : ", ") + "\"" + key_names[k] +
+    out += std::string(k == 0 ? "" : ", ") + "\"" + keypad_key_names[k] +
            "\": " + character_json(p.keypad.codes.raw[k]);
   }
   out += "},\n";

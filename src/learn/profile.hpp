@@ -48,6 +48,10 @@ struct ring_profile {
   std::size_t receive_buffer = 256;           ///< an MC's receive buffer in characters (1.6)
 };
 
+/// The profile's name of each key (`keypad.codes.<name>`), in the order of `ring::key`.
+inline constexpr const char* keypad_key_names[ring::key_count] = {
+    "0", "1", "2", "3", "4", "5", "6", "7", "8", "9", "up", "down", "clear", "yes", "no", "point", "start", "stop"};
+
 struct keypad_profile {
   ring::keypad_codes codes = ring::default_keypad_codes;  ///< 1.8
   ring::defkey_table defkey = ring::default_defkey;       ///< 1.6 / 1.8

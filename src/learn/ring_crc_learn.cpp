@@ -324,21 +324,9 @@ crc_learn_result learn_ring_crc(const std::vector<variable_frame>& frames, const
       }
       c.members.push_back(std::move(m));
     }
-    if (c.members.empty()) continue;
-    std::stable_sort(c.members.begin(), c.members.end(), [](const crc16_member& a, const crc16_member& b) {
-      return !a.name.empty() && b.name.empty();
-    });
-    result.classes.push_back(std::move(c));
+    if (!c.members.empty()) result.classes.push_back(std::move(c));
   }
-  std::stable_sort(result.classes.begin(), result.classes.end(),
-                   [](const crc16_class& a, const crc16_class& b) {
-                     return !a.members.front().name.empty() && b.members.front().name.empty();
-                   });
-  if (result.classes.empty()) {
-    result.status = crc_learn_status::no_candidate;
-  } else {
-    result.status = result.classes.size() == 1 ? crc_learn_status::ok : crc_learn_status::ambiguous;
-  }
+  finish_classes(result);
   return result;
 }
 

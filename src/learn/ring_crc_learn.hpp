@@ -29,6 +29,7 @@
 // (bit-sliced); about a millisecond. One frame alone: every hypothesis is a survivor, about 50 ms.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -115,5 +116,24 @@ struct crc_learn_options {
 /// covered, compared with its C0 C1.
 [[nodiscard]] bool frame_crc_matches(const ring::crc16_parameters& parameters, const variable_frame& frame,
                                      const ring::variable_layout_parameters& layout = {});
+
+/// The last step of a CRC search (ring or Genius): in each class the members the catalogue names first, then
+/// the classes whose representative it names; the status from the count (none: `no_candidate`, one: `ok`,
+/// more: `ambiguous`).
+template <class Result>
+void finish_classes(Result& result) {
+  for (auto& c : result.classes) {
+    std::stable_sort(c.members.begin(), c.members.end(),
+                     [](const auto& a, const auto& b) { return !a.name.empty() && b.name.empty(); });
+  }
+  std::stable_sort(result.classes.begin(), result.classes.end(), [](const auto& a, const auto& b) {
+    return !a.members.front().name.empty() && b.members.front().name.empty();
+  });
+  if (result.classes.empty()) {
+    result.status = crc_learn_status::no_candidate;
+  } else {
+    result.status = result.classes.size() == 1 ? crc_learn_status::ok : crc_learn_status::ambiguous;
+  }
+}
 
 }  // namespace trionet::learn

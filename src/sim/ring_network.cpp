@@ -11,6 +11,7 @@
 #include "basic/number_format.hpp"
 #include "basic/program.hpp"
 #include "basic/task.hpp"
+#include "trionet/host/text.hpp"
 #include "trionet/ring.hpp"
 #include "trionet/vr.hpp"
 
@@ -27,32 +28,11 @@ constexpr std::size_t vr_table_size = 16384;  // every VR number the ring can ad
 constexpr std::size_t max_terminal_line = 4096;
 constexpr std::size_t max_in_transit = 64;
 
-// Control characters escaped; the position after ESC 'H' always as \xNN (it is a number, not a character).
-std::string readable(byte_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const std::uint8_t c = text[i];
-    const bool position = i >= 2 && text[i - 2] == 27 && text[i - 1] == 'H';
-    if (c == '\r' && !position) {
-      out += "\\r";
-    } else if (c == '\n' && !position) {
-      out += "\\n";
-    } else if (c < 32 || c >= 127 || position) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\x%02x", c);
-      out += escape;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out;
-}
-
 // A message without its hop count, as the trace and the drop reports show it.
 std::string describe(const ring::message& m) {
   switch (m.type) {
     case ring::message_type::character:
-      return "PRINT \"" + readable(m.text) + "\"";
+      return "PRINT \"" + escaped_text(m.text) + "\"";
     case ring::message_type::variable:
       return "VR(" + std::to_string(m.vr) + ") = " + basic::format_number(trionet::q32_to_double(m.value));
     case ring::message_type::keypad_offset:

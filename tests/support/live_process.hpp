@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -187,5 +188,45 @@ class tool_process {
   int status_ = -1;
   std::string out_;
 };
+
+/// JSON event lines of the live commands with their "time" field (right after the kind, seconds since 1970
+/// with 9 decimals) taken out, so that a test can look for the fields after it. The number of lines that
+/// had no such field is added to `without`.
+inline std::string without_times(const std::string& events, std::size_t* without = nullptr) {
+  static const std::regex time_field(",\"time\":\"[0-9]+\\.[0-9]{9}\"");
+  std::string out;
+  std::size_t at = 0;
+  while (at < events.size()) {
+    std::size_t end = events.find('\n', at);
+    end = end == std::string::npos ? events.size() : end + 1;
+    const std::string line = events.substr(at, end - at);
+    const std::string cut = std::regex_replace(line, time_field, "", std::regex_constants::format_first_only);
+    if (without != nullptr && cut == line && line.rfind("{\"event\":", 0) == 0) ++*without;
+    out += cut;
+    at = end;
+  }
+  return out;
+}
+
+/// The events of the given kinds, one string each, with their positions taken out (time, line, record,
+/// interface_id, interface): what a live command printed, to compare with what `decode --pcap` prints for
+/// the capture it wrote.
+inline std::vector<std::string> events_without_positions(const std::string& events,
+                                                         const std::vector<std::string>& kinds) {
+  static const std::regex position(
+      ",\"(time|line|record|interface_id|interface)\":(\"([^\"\\\\]|\\\\.)*\"|[0-9]+)");
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  while (at < events.size()) {
+    std::size_t end = events.find('\n', at);
+    if (end == std::string::npos) end = events.size();
+    const std::string line = events.substr(at, end - at);
+    at = end + 1;
+    for (const std::string& kind : kinds) {
+      if (line.rfind("{\"event\":\"" + kind + "\"", 0) == 0) out.push_back(std::regex_replace(line, position, ""));
+    }
+  }
+  return out;
+}
 
 }  // namespace trionet::test

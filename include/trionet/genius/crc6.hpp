@@ -4,7 +4,8 @@
 // value over the ASCII bytes "123456789" is 0x06. Any other 6-bit CRC in the Rocksoft/reveng model is one
 // alias away, e.g. `crc6<0x19, 0x00, true, true, 0x00>` is CRC-6/DARC.
 //
-// A CRC policy is any type with these static members (the transmission encoder and parser use only these):
+// A CRC policy is any type with these members (the transmission encoder and parser use only these), static
+// for a compile-time policy (`crc6`), const member functions for one chosen at run time (`crc6_runtime`):
 //   register_type begin();                       the register before the first byte
 //   register_type update(register_type, byte);   the register after one more byte
 //   std::uint8_t  finish(register_type);         the 6-bit CRC (0..63) of the bytes so far
@@ -139,22 +140,40 @@ class crc6_runtime {
   /// The parameters, as masked to 6 bits.
   [[nodiscard]] constexpr const crc6_parameters& parameters() const noexcept { return parameters_; }
 
-  /// The CRC (0..63) of `bytes`: the register in non-reflected order, each byte fed most significant bit
-  /// first, or least significant first when reflected in.
-  [[nodiscard]] constexpr std::uint8_t compute(byte_view bytes) const noexcept {
-    unsigned reg = parameters_.initial;
-    for (std::uint8_t byte : bytes) {
-      for (unsigned k = 0; k < 8; ++k) {
-        const unsigned value = byte;
-        const unsigned bit = parameters_.reflect_in ? (value >> k) & 1u : (value >> (7 - k)) & 1u;
-        const unsigned top = ((reg >> 5) & 1u) ^ bit;
-        reg = (reg << 1) & 0x3fu;
-        if (top != 0) reg ^= parameters_.polynomial;
-      }
+  // The members of a CRC policy, as member functions: the transmission encoder and parser take this CRC as
+  // an object.
+
+  /// The working register: the 6 bits in non-reflected order, in bits 5..0.
+  using register_type = std::uint8_t;
+
+  /// The register before the first byte.
+  [[nodiscard]] constexpr register_type begin() const noexcept { return parameters_.initial; }
+
+  /// The register after one more byte: fed most significant bit first, or least significant first when
+  /// reflected in.
+  [[nodiscard]] constexpr register_type update(register_type reg, std::uint8_t byte) const noexcept {
+    unsigned value = reg;
+    for (unsigned k = 0; k < 8; ++k) {
+      const unsigned bit = parameters_.reflect_in ? (static_cast<unsigned>(byte) >> k) & 1u
+                                                  : (static_cast<unsigned>(byte) >> (7 - k)) & 1u;
+      const unsigned top = ((value >> 5) & 1u) ^ bit;
+      value = (value << 1) & 0x3fu;
+      if (top != 0) value ^= parameters_.polynomial;
     }
-    const auto normal = static_cast<std::uint8_t>(reg);
-    const std::uint8_t out = parameters_.reflect_out ? detail::reflect6(normal) : normal;
+    return static_cast<register_type>(value);
+  }
+
+  /// The CRC-6 (0..63) of the bytes taken into `reg`.
+  [[nodiscard]] constexpr std::uint8_t finish(register_type reg) const noexcept {
+    const std::uint8_t out = parameters_.reflect_out ? detail::reflect6(reg) : reg;
     return static_cast<std::uint8_t>(out ^ parameters_.xor_out);
+  }
+
+  /// The CRC (0..63) of `bytes`.
+  [[nodiscard]] constexpr std::uint8_t compute(byte_view bytes) const noexcept {
+    register_type reg = begin();
+    for (std::uint8_t byte : bytes) reg = update(reg, byte);
+    return finish(reg);
   }
 
  private:

@@ -34,6 +34,7 @@
 #include <cstdint>
 
 #include "trionet/genius/character.hpp"
+#include "trionet/crc_holder.hpp"
 #include "trionet/genius/crc6.hpp"
 #include "trionet/span.hpp"
 
@@ -198,51 +199,53 @@ struct [[nodiscard]] encode_result {
 namespace detail {
 
 template <class Crc, class Emit>
-constexpr void emit_transmission(const transmission& t, Emit&& emit) noexcept {
-  typename Crc::register_type stop_crc = Crc::begin();
+constexpr void emit_transmission(const Crc& crc, const transmission& t, Emit&& emit) noexcept {
+  typename Crc::register_type stop_crc = crc.begin();
   emit(start_character(t.sender, t.broadcast));
   if (!t.broadcast) {
     emit(data_character(t.destination));
-    stop_crc = Crc::update(stop_crc, t.destination);
+    stop_crc = crc.update(stop_crc, t.destination);
   }
   for (const segment& s : t.segments) {
-    typename Crc::register_type block_crc = Crc::begin();
+    typename Crc::register_type block_crc = crc.begin();
     if (s.block) emit(start_of_block_character(s.destination));
     for (std::uint8_t byte : s.data) {
       emit(data_character(byte));
-      stop_crc = Crc::update(stop_crc, byte);
-      block_crc = Crc::update(block_crc, byte);
+      stop_crc = crc.update(stop_crc, byte);
+      block_crc = crc.update(block_crc, byte);
     }
-    if (s.block) emit(end_of_block_character(Crc::finish(block_crc)));
+    if (s.block) emit(end_of_block_character(crc.finish(block_crc)));
   }
-  emit(stop_character(Crc::finish(stop_crc)));
+  emit(stop_character(crc.finish(stop_crc)));
 }
 
 }  // namespace detail
 
-/// Encodes `t` as characters into `out`. On any error nothing is written.
+/// Encodes `t` as characters into `out`, with the CRC-6 `crc` (a static policy by default, or a
+/// `crc6_runtime` chosen at run time). On any error nothing is written.
 /// Cost: O(characters); no allocation; ISR-safe.
 template <class Crc = crc6_g704>
-[[nodiscard]] constexpr encode_result encode_transmission(span<character> out,
-                                                          const transmission& t) noexcept {
+[[nodiscard]] constexpr encode_result encode_transmission(span<character> out, const transmission& t,
+                                                          const Crc& crc = Crc{}) noexcept {
   const encode_result result = encoded_length(t);
   if (!result) return result;
   if (out.size() < result.length) return {encode_status::buffer_too_small, result.length};
   std::size_t at = 0;
-  detail::emit_transmission<Crc>(t, [&](character c) { out[at++] = c; });
+  detail::emit_transmission(crc, t, [&](character c) { out[at++] = c; });
   return result;
 }
 
-/// Encodes `t` as 11-bit words (numbering in character.hpp) into `out`. On any error nothing is written.
+/// Encodes `t` as 11-bit words (numbering in character.hpp) into `out`, with the CRC-6 `crc` as above. On
+/// any error nothing is written.
 /// Cost: O(characters); no allocation; ISR-safe.
 template <class Crc = crc6_g704>
-[[nodiscard]] constexpr encode_result encode_transmission(span<std::uint16_t> out,
-                                                          const transmission& t) noexcept {
+[[nodiscard]] constexpr encode_result encode_transmission(span<std::uint16_t> out, const transmission& t,
+                                                          const Crc& crc = Crc{}) noexcept {
   const encode_result result = encoded_length(t);
   if (!result) return result;
   if (out.size() < result.length) return {encode_status::buffer_too_small, result.length};
   std::size_t at = 0;
-  detail::emit_transmission<Crc>(t, [&](character c) { out[at++] = encode_character(c); });
+  detail::emit_transmission(crc, t, [&](character c) { out[at++] = encode_character(c); });
   return result;
 }
 
@@ -327,16 +330,22 @@ constexpr const char* to_string(parse_status value) noexcept {
 ///
 /// Capacities: `DataCapacity` data bytes (destination SBA excluded) and `SegmentCapacity` segments per
 /// transmission; a longer transmission is reported as `overflow` and skipped up to the next Start, so the
-/// parser never loses sync. `Crc` is the CRC-6 policy (crc6.hpp).
+/// parser never loses sync. `Crc` is the CRC-6 policy (crc6.hpp): a static policy (`crc6<...>`, held as
+/// nothing) or `crc6_runtime` (held as its 5 bytes, passed to the constructor).
 ///
 /// Cost: DataCapacity + 2 * SegmentCapacity * (2 + 2 pointers) bytes plus counters: 744 bytes for the
 /// defaults on a 32-bit target, 1152 on 64-bit. O(1) per character, O(segments) on a Stop. No allocation.
 /// ISR-safe (one parser per line; the caller owns it).
 template <std::size_t DataCapacity = 256, std::size_t SegmentCapacity = 16, class Crc = crc6_g704>
-class transmission_parser {
+class transmission_parser : private trionet::detail::crc_holder<Crc> {
   static_assert(DataCapacity > 0 && SegmentCapacity > 0, "capacities must be at least 1");
 
  public:
+  /// A parser with the default CRC object (for a static policy, the policy itself).
+  transmission_parser() noexcept = default;
+  /// A parser that checks with `crc` (e.g. a `crc6_runtime` from a profile).
+  explicit transmission_parser(const Crc& crc) noexcept : trionet::detail::crc_holder<Crc>(crc) {}
+
   /// Feeds the next character. See `parse_status`.
   [[nodiscard]] parse_status push(character c) noexcept {
     if (c.control) return push_control(read_control(c.byte));
@@ -423,7 +432,7 @@ class transmission_parser {
       data_characters_ = 0;
       used_ = 0;
       segments_ = 0;
-      stop_crc_ = Crc::begin();
+      stop_crc_ = this->crc().begin();
       if (interrupted) return accept(parse_status::start_inside_transmission);
       return accept(parse_status::in_progress);
     }
@@ -435,18 +444,18 @@ class transmission_parser {
         if (segments_ == SegmentCapacity) return fail(parse_status::overflow);
         stored_[segments_++] = stored_segment{true, f.sba, used_, 0};
         in_block_ = true;
-        block_crc_ = Crc::begin();
+        block_crc_ = this->crc().begin();
         return accept(parse_status::in_progress);
       case control_kind::end_of_block:
         if (!in_block_) return fail(parse_status::end_of_block_outside_block);
         if (stored_[segments_ - 1].length == 0) return fail(parse_status::empty_block);
-        if (Crc::finish(block_crc_) != f.crc) return fail(parse_status::block_crc_mismatch);
+        if (this->crc().finish(block_crc_) != f.crc) return fail(parse_status::block_crc_mismatch);
         in_block_ = false;
         return accept(parse_status::in_progress);
       case control_kind::stop:
         if (in_block_) return fail(parse_status::block_not_closed);
         if (data_characters_ == 0) return fail(parse_status::empty_transmission);
-        if (Crc::finish(stop_crc_) != f.crc) return fail(parse_status::stop_crc_mismatch);
+        if (this->crc().finish(stop_crc_) != f.crc) return fail(parse_status::stop_crc_mismatch);
         complete();
         return accept(parse_status::ok);
       default:
@@ -456,7 +465,7 @@ class transmission_parser {
 
   parse_status push_data(std::uint8_t byte) noexcept {
     if (!open_) return outside(parse_status::data_outside_transmission);
-    stop_crc_ = Crc::update(stop_crc_, byte);
+    stop_crc_ = this->crc().update(stop_crc_, byte);
     ++data_characters_;
     if (need_destination_) {
       if (byte > max_sba) return fail(parse_status::destination_out_of_range);
@@ -466,7 +475,7 @@ class transmission_parser {
     }
     if (used_ == DataCapacity) return fail(parse_status::overflow);
     if (in_block_) {
-      block_crc_ = Crc::update(block_crc_, byte);
+      block_crc_ = this->crc().update(block_crc_, byte);
     } else if (segments_ == 0 || stored_[segments_ - 1].block) {
       if (segments_ == SegmentCapacity) return fail(parse_status::overflow);
       stored_[segments_++] = stored_segment{false, 0, used_, 0};
@@ -492,8 +501,8 @@ class transmission_parser {
   std::size_t used_ = 0;
   std::size_t segments_ = 0;
   std::size_t data_characters_ = 0;
-  typename Crc::register_type stop_crc_ = Crc::begin();
-  typename Crc::register_type block_crc_ = Crc::begin();
+  typename Crc::register_type stop_crc_{};   // set by each Start
+  typename Crc::register_type block_crc_{};  // set by each Start of block
   std::uint8_t sender_ = 0;
   std::uint8_t destination_ = 0;
   bool broadcast_ = true;
@@ -520,6 +529,11 @@ struct [[nodiscard]] bit_result {
 template <std::size_t DataCapacity = 256, std::size_t SegmentCapacity = 16, class Crc = crc6_g704>
 class transmission_receiver {
  public:
+  /// A receiver with the default CRC object (for a static policy, the policy itself).
+  transmission_receiver() noexcept = default;
+  /// A receiver whose parser checks with `crc` (e.g. a `crc6_runtime` from a profile).
+  explicit transmission_receiver(const Crc& crc) noexcept : parser_(crc) {}
+
   /// Takes the next bit from the line (1 = idle level); see `bit_result`.
   [[nodiscard]] bit_result push(bool bit) noexcept {
     bit_result result;

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "trionet/crc_holder.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::ring {
@@ -250,25 +251,8 @@ template <class Crc>
 struct has_update<Crc, std::void_t<decltype(Crc::update(std::uint16_t{}, std::uint8_t{}))>> : std::true_type {
 };
 
-// Holds the CRC policy of a decoder: nothing for a static policy (an empty class, so the empty base costs no
-// byte), the object itself for one chosen at run time.
-template <class Crc, bool Empty = std::is_empty<Crc>::value>
-class crc_holder {
- protected:
-  constexpr crc_holder() = default;
-  constexpr explicit crc_holder(const Crc& crc) noexcept : crc_(crc) {}
-  constexpr const Crc& crc() const noexcept { return crc_; }
-
- private:
-  Crc crc_{};
-};
-template <class Crc>
-class crc_holder<Crc, true> {
- protected:
-  constexpr crc_holder() = default;
-  constexpr explicit crc_holder(const Crc&) noexcept {}
-  static constexpr Crc crc() noexcept { return Crc{}; }
-};
+// The ring's codecs hold their CRC as every codec does (trionet/crc_holder.hpp).
+using trionet::detail::crc_holder;
 }  // namespace detail
 
 /// The CRC of exactly N bytes with any CRC policy (initial, update, finish): a fixed count the compiler can

@@ -91,6 +91,11 @@ class keypad final
   explicit keypad(const keypad_config& config = keypad_config{}) noexcept : config_(config) {
     this->link_.set_forwarding(false);
   }
+  /// The same with a CRC object (`crc16_runtime`: the CRC of a profile, chosen at run time) for the direct
+  /// variable transfers it checks.
+  keypad(const keypad_config& config, const Crc& crc) noexcept : core(crc), config_(config) {
+    this->link_.set_forwarding(false);
+  }
 
   using core::receive;
   using core::transmit;

@@ -287,7 +287,7 @@ class forwarding_switch<false> {
 /// `Switchable`: whether forwarding can be turned off (a keypad); a Motion Coordinator always forwards.
 template <std::size_t ForwardCapacity, std::size_t TransmitCapacity, std::size_t MaxCharacters,
           class Crc = crc16_ccitt_false, class Layout = default_variable_layout, bool Switchable = false>
-class link : private forwarding_switch<Switchable> {
+class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   static_assert(ForwardCapacity >= framing_length + variable_data_length && ForwardCapacity < 65535,
                 "the forward buffer must hold a whole direct variable transfer (16 bytes): while a node sends "
                 "an own frame, as many forwarded bytes arrive as the frame has, and they must not be lost");
@@ -296,6 +296,10 @@ class link : private forwarding_switch<Switchable> {
   static_assert(MaxCharacters >= 1 && MaxCharacters < 65535, "a character transfer holds 1..65534 characters");
 
  public:
+  constexpr link() noexcept = default;
+  /// With a CRC object (`crc16_runtime`, a CRC chosen at run time): own direct variable transfers get it.
+  constexpr explicit link(const Crc& crc) noexcept : crc_holder<Crc>(crc) {}
+
   /// The longest own frame the node queues: it fits in the transmit queue, and the forward buffer can absorb
   /// everything that arrives while it is sent.
   static constexpr std::size_t max_own_frame =
@@ -524,7 +528,7 @@ class link : private forwarding_switch<Switchable> {
       queue_.stage(1 + m.text.size(), make_end_of_message(m.hops));
     } else {
       std::uint8_t frame[framing_length + variable_data_length];
-      const encode_result encoded = encode<Crc, Layout>(frame, m);
+      const encode_result encoded = encode<Crc, Layout>(frame, m, this->crc());
       queue_.stage(0, frame, encoded.length);
     }
     queue_.publish(length);

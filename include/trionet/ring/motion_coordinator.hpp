@@ -201,6 +201,10 @@ class motion_coordinator final
   /// translates GET#3.
   explicit motion_coordinator(vr_store& vr, const defkey_table& defkey = default_defkey) noexcept
       : vr_(&vr), defkey_(&defkey) {}
+  /// The same with a CRC object (`crc16_runtime`: the CRC of a profile, chosen at run time) for the direct
+  /// variable transfers it checks and sends.
+  motion_coordinator(vr_store& vr, const defkey_table& defkey, const Crc& crc) noexcept
+      : core(crc), vr_(&vr), defkey_(&defkey) {}
 
   using core::receive;
   using core::transmit;

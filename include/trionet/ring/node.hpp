@@ -123,6 +123,9 @@ class node : public byte_port {
 
  protected:
   node() noexcept = default;
+  /// A node whose decoder and link use `crc` (a CRC object such as `crc16_runtime`).
+  template <class Crc>
+  explicit node(const Crc& crc) noexcept : link_(crc), decoder_(crc) {}
   /// Copies a node (both sides idle).
   node(const node&) = default;
   /// Copies a node (both sides idle).

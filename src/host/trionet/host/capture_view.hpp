@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "trionet/host/pcapng.hpp"
+#include "trionet/host/text.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::host {
@@ -58,8 +59,5 @@ capture_fields record_fields(const pcapng_reader& reader, const pcapng_record& r
 /// array of values when the name occurs more than once; a marker is "".
 std::string fields_json(const capture_fields& fields);
 
-/// The ring's text field: the characters with `\\`, `\r`, `\n`, `\t` and `\xNN` (other bytes below 32, and
-/// 127) escaped, so that every character, NUL included, is visible.
-std::string escaped_text(byte_view characters);
 
 }  // namespace trionet::host

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "trionet/span.hpp"
+
 namespace trionet::host {
 
 /// The value of one hex digit (0-9, a-f, A-F), or -1.
@@ -141,6 +143,33 @@ void append_json_string(Out& out, std::string_view text) {
 inline std::string json_string(std::string_view text) {
   std::string out;
   append_json_string(out, text);
+  return out;
+}
+
+/// Ring characters for people (the text field of a capture record, the simulator's trace): `\\`, `\r`,
+/// `\n`, `\t` and `\xNN` (other bytes below 32, and 127 and above) escaped, so that every character, NUL
+/// included, is visible. The byte after ESC 'H' is a display position (docs/protocol.md 1.9), a number:
+/// always `\xNN`.
+inline std::string escaped_text(byte_view characters) {
+  std::string out;
+  for (std::size_t i = 0; i < characters.size(); ++i) {
+    const std::uint8_t c = characters[i];
+    const bool position = i >= 2 && characters[i - 2] == 27 && characters[i - 1] == 'H';
+    if (position || c < 32 || c >= 127 || c == '\\') {
+      static constexpr char digits[] = "0123456789abcdef";
+      const char named = position ? 0 : c == '\\' ? '\\' : c == '\r' ? 'r' : c == '\n' ? 'n' : c == '\t' ? 't' : 0;
+      out += '\\';
+      if (named != 0) {
+        out += named;
+      } else {
+        out += 'x';
+        out += digits[c >> 4U];
+        out += digits[c & 0x0FU];
+      }
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
   return out;
 }
 

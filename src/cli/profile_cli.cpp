@@ -1,0 +1,183 @@
+// `--profile FILE` for every command, and `trionet profile show|header` (docs/profile.md).
+#include "profile_cli.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace trionet::cli {
+namespace {
+
+learn::profile& profile_in_effect() {
+  static learn::profile p;
+  return p;
+}
+
+bool& profile_named() {
+  static bool named = false;
+  return named;
+}
+
+constexpr const char* show_usage =
+    "usage: trionet profile show [FILE]\n"
+    "Prints a profile as JSON with every key: FILE's (checked strictly), else the one --profile names, else "
+    "the\n"
+    "default (docs/protocol.md's decisions), a start for writing one. Exit status 0, 1 when FILE cannot be\n"
+    "read, 2 when it is not a valid profile (the message names the key, its line and column).\n";
+
+constexpr const char* header_usage =
+    "usage: trionet profile header [FILE] [--namespace NS] [-o OUT]\n"
+    "Writes a C++17 header with the profile's constexpr policies (ring_crc, ring_layout, ring_decoder,\n"
+    "motion_coordinator<>, keypad<>, keypad_codes, defkey, can_node_count, genius_crc) in namespace NS\n"
+    "(default trionet_profile) for a firmware build: FILE's profile, else the one --profile names, else the\n"
+    "default. To standard output, or to OUT. Exit status 0, 1 when reading or writing failed, 2 for bad\n"
+    "arguments or a profile that is not valid.\n";
+
+// The profile a `profile` command works on: FILE if given, else the one in effect.
+int profile_argument(const arguments& args, learn::profile& out) {
+  if (args.positionals.size() > 1)
+    return fail("unexpected argument '" + host::clipped(args.positionals[1]) + "'");
+  if (args.positionals.empty()) {
+    out = active_profile();
+    return exit_ok;
+  }
+  std::string error;
+  bool io = false;
+  if (!read_profile_file(args.positionals[0], out, error, io)) return io ? fail_io(error) : fail(error);
+  return exit_ok;
+}
+
+int show_main(const words& all) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(all, {}, {}, args, error)) return fail(error);
+  learn::profile p;
+  const int status = profile_argument(args, p);
+  if (status != exit_ok) return status;
+  return write_profile_file(p, "-");
+}
+
+int header_main(const words& all) {
+  arguments args;
+  std::string error;
+  if (!parse_arguments(all, {"--namespace", "-o"}, {}, args, error)) return fail(error);
+  learn::profile p;
+  const int status = profile_argument(args, p);
+  if (status != exit_ok) return status;
+  const std::string name = args.has("--namespace") ? args.options.at("--namespace") : "trionet_profile";
+  const learn::header_result header = learn::profile_header(p, name);
+  if (!header)
+    return fail("--namespace must be a C++ namespace name (identifiers joined by ::), got '" +
+                host::clipped(name) + "'");
+  if (!args.has("-o")) {
+    std::fputs(header.text.c_str(), stdout);
+    return std::fflush(stdout) == 0 ? exit_ok : fail_io("cannot write standard output");
+  }
+  std::ofstream file(args.options.at("-o"), std::ios::binary);
+  file << header.text;
+  file.close();
+  if (!file) return fail_io("cannot write " + host::clipped(args.options.at("-o")));
+  return exit_ok;
+}
+
+const command profile_commands[] = {
+    {"show", "print a profile (a file's, the one --profile names, or the default) with every key", show_usage,
+     show_main},
+    {"header", "write a C++ header of constexpr policies for a firmware build", header_usage, header_main},
+};
+
+}  // namespace
+
+const learn::profile& active_profile() {
+  return profile_in_effect();
+}
+
+bool profile_given() {
+  return profile_named();
+}
+
+bool read_profile_file(const std::string& path, learn::profile& out, std::string& error, bool& io) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  if (file) text << file.rdbuf();
+  if (!file) {
+    io = true;
+    error = "cannot read profile " + host::clipped(path);
+    return false;
+  }
+  io = false;
+  const learn::profile_result r = learn::read_profile(text.str());
+  if (!r) {
+    error = "profile " + host::clipped(path) + ": " + learn::to_string(r.status);
+    if (r.status == learn::profile_status::not_json)
+      error += std::string(" (") + learn::to_string(r.json) + ")";
+    if (!r.key.empty()) error += " at " + r.key;
+    if (r.line != 0)
+      error += " (line " + std::to_string(r.line) + ", column " + std::to_string(r.column) + ")";
+    if (!r.message.empty()) error += ": " + r.message;
+    return false;
+  }
+  out = r.value;
+  return true;
+}
+
+int write_profile_file(const learn::profile& p, const std::string& path) {
+  const std::string text = learn::write_profile(p);
+  if (path == "-") {
+    std::fputs(text.c_str(), stdout);
+    return std::fflush(stdout) == 0 ? exit_ok : fail_io("cannot write standard output");
+  }
+  std::ofstream file(path, std::ios::binary);
+  file << text;
+  file.close();
+  if (!file) return fail_io("cannot write profile " + host::clipped(path));
+  return exit_ok;
+}
+
+int take_profile_option(words& args) {
+  std::string path;
+  bool found = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--") break;
+    if (args[i] != "--profile") continue;
+    if (found) return fail("option --profile given twice");
+    if (i + 1 >= args.size()) return fail("option --profile needs a value");
+    path = args[i + 1];
+    found = true;
+    args.erase(args.begin() + static_cast<std::ptrdiff_t>(i),
+               args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+    --i;
+  }
+  if (!found) return exit_ok;
+  std::string error;
+  bool io = false;
+  if (!read_profile_file(path, profile_in_effect(), error, io)) return io ? fail_io(error) : fail(error);
+  profile_named() = true;
+  return exit_ok;
+}
+
+profile_decoder::profile_decoder() {
+  const learn::ring_profile& p = active_profile().ring;
+  if (p.crc == ring::crc16_parameters{} && p.layout == ring::variable_layout_parameters{})
+    return;  // decoder<>
+  const ring::crc16_runtime crc(p.crc);
+  ring::with_variable_layout(p.layout, [&](auto layout) {
+    using layout_type = decltype(layout);
+    decoder_.emplace<ring::decoder<ring::default_max_characters, ring::crc16_runtime, layout_type>>(crc);
+  });
+}
+
+ring::encode_result encode_with_profile(byte_buffer out, const ring::message& m) {
+  const learn::ring_profile& p = active_profile().ring;
+  if (p.crc == ring::crc16_parameters{} && p.layout == ring::variable_layout_parameters{})
+    return ring::encode(out, m);
+  const ring::crc16_runtime crc(p.crc);
+  return ring::with_variable_layout(p.layout, [&](auto layout) {
+    return ring::encode<ring::crc16_runtime, decltype(layout)>(out, m, crc);
+  });
+}
+
+const part profile_part = {"profile", "the wire parameters in one file: show one, write its C++ header",
+                           profile_commands, sizeof profile_commands / sizeof profile_commands[0], ""};
+
+}  // namespace trionet::cli

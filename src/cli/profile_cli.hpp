@@ -1,0 +1,78 @@
+// The profile in effect (docs/profile.md): `--profile FILE`, taken by the dispatcher for every command, and
+// what the commands that encode or decode ring frames build from it; `trionet profile ...`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <variant>
+
+#include "cli.hpp"
+#include "learn/profile.hpp"
+#include "trionet/ring/decoder.hpp"
+#include "trionet/ring/encode.hpp"
+
+namespace trionet::cli {
+
+/// The profile every command uses: the one `--profile FILE` named, else the default (docs/protocol.md's
+/// decisions).
+const learn::profile& active_profile();
+
+/// True when `--profile FILE` named the active profile.
+bool profile_given();
+
+/// Takes `--profile FILE` out of `args` (anywhere before "--") and makes it the active profile. Returns
+/// exit_ok, or the exit status after printing the problem: 1 if the file cannot be read, 2 for a second
+/// --profile, a missing FILE or a profile that is not valid (the message names the key, line and column).
+int take_profile_option(words& args);
+
+/// Reads a profile file. False with `error` set; `io` says whether reading failed (else the content is bad).
+bool read_profile_file(const std::string& path, learn::profile& out, std::string& error, bool& io);
+
+/// Writes `p` as JSON to `path` ("-": standard output). Returns the exit status (1 if writing failed).
+int write_profile_file(const learn::profile& p, const std::string& path);
+
+/// A ring decoder with the active profile's CRC and variable layout (chosen at run time), for the tool's
+/// decoders: the same calls as `ring::decoder<>`.
+class profile_decoder {
+ public:
+  profile_decoder();
+
+  ring::decode_result push(std::uint8_t byte) {
+    return std::visit([byte](auto& dec) { return dec.push(byte); }, decoder_);
+  }
+  template <class Sink>
+  void push(byte_view bytes, Sink&& sink) {
+    std::visit([&](auto& dec) { dec.push(bytes, sink); }, decoder_);
+  }
+  ring::decode_result line_idle() {
+    return std::visit([](auto& dec) { return dec.line_idle(); }, decoder_);
+  }
+  [[nodiscard]] bool in_message() const {
+    return std::visit([](const auto& dec) { return dec.in_message(); }, decoder_);
+  }
+  [[nodiscard]] bool open() const {
+    return std::visit([](const auto& dec) { return dec.open(); }, decoder_);
+  }
+
+ private:
+  template <ring::group_order V, ring::group_order X, ring::crc_input C>
+  using with =
+      ring::decoder<ring::default_max_characters, ring::crc16_runtime, ring::variable_layout<V, X, C>>;
+  static constexpr ring::group_order l = ring::group_order::least_significant_first;
+  static constexpr ring::group_order m = ring::group_order::most_significant_first;
+  static constexpr ring::crc_input s = ring::crc_input::as_sent;
+  static constexpr ring::crc_input d = ring::crc_input::least_significant_first;
+  // The library's default decoder (its CRC sliced at compile time) for the default CRC and layout: the
+  // common case keeps its speed.
+  std::variant<ring::decoder<>, with<l, l, s>, with<l, m, s>, with<m, l, s>, with<m, m, s>, with<l, l, d>,
+               with<l, m, d>, with<m, l, d>, with<m, m, d>>
+      decoder_;
+};
+
+/// Encodes `m` with the active profile's CRC and variable layout.
+ring::encode_result encode_with_profile(byte_buffer out, const ring::message& m);
+
+/// `trionet profile ...`: the part's table (profile_cli.cpp).
+extern const part profile_part;
+
+}  // namespace trionet::cli
