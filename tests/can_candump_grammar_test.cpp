@@ -162,6 +162,27 @@ TEST(CanCandumpGrammar, ScreenFormatAsCandumpAndLog2longWriteIt) {
                  frame::extended_flag | 0x12345678, 2);
 }
 
+// "identifiers with the error flag are error frames" (docs/protocol.md 2.3), after `##` too: python-can's
+// CanutilsLogWriter writes an ASC error frame of a CAN FD channel as `20000080##0`, and log2long prints
+// can-utils' reading of it as an error frame with a CAN FD length.
+TEST(CanCandumpGrammar, ErrorFlagInCanFdFrameIsAnErrorFrame) {
+  const candump_record log = read("(30.806898) can4 20000080##0");
+  EXPECT_EQ(log.type, candump_frame_type::error);
+  EXPECT_EQ(log.can_id, 0x20000080U);
+  EXPECT_EQ(log.length, 0);
+  EXPECT_EQ(log.frame.id, 0x80U);
+  const candump_record screen = read("(30.806898)  can4  20000080  [00]                            ERRORFRAME");
+  EXPECT_EQ(screen.type, candump_frame_type::error);
+  EXPECT_EQ(screen.can_id, 0x20000080U);
+  EXPECT_EQ(screen.length, 0);
+  const candump_record data = read("  can0  20001111  [12]  11 22 33 44 55 66 77 88 99 AA BB CC");
+  EXPECT_EQ(data.type, candump_frame_type::error);
+  EXPECT_EQ(data.length, 12);
+  EXPECT_EQ(data.frame.dlc, 8);
+  EXPECT_EQ(read("20001111##1AABB").type, candump_frame_type::error);
+  EXPECT_EQ(read("20001111##1AABB").flags, 1);
+}
+
 TEST(CanCandumpGrammar, ScreenFormatErrors) {
   EXPECT_EQ(parse_candump_line("  can0  028   [9]  01").status, candump_status::length);
   EXPECT_EQ(parse_candump_line("  can0  028   8  01").status, candump_status::length);
@@ -170,8 +191,9 @@ TEST(CanCandumpGrammar, ScreenFormatErrors) {
   EXPECT_EQ(parse_candump_line("  can0  028   [1]  01 02").status, candump_status::trailing);
   EXPECT_EQ(parse_candump_line("  can0  28   [1]  01").status, candump_status::identifier);
   EXPECT_EQ(parse_candump_line("  can0  028   [0]  remote query").status, candump_status::trailing);
-  EXPECT_EQ(parse_candump_line("  can0  20001111  [03]  11 22 33").status, candump_status::length)
-      << "no CAN FD error frames";
+  EXPECT_EQ(parse_candump_line("  can0  20001111 [0003] (45|81:00:12345678) 11 22 33").status,
+            candump_status::length)
+      << "no CAN XL frame has an 8-digit identifier";
 }
 
 }  // namespace

@@ -117,4 +117,18 @@ TEST_F(CanUtilsTools, EveryLineTheToolsWriteIsReadAndEveryVrFrameDecoded) {
   }
 }
 
+// python-can's log writer writes an error frame of a CAN FD channel as "20000080##0"; log2long prints it as
+// an error frame with a CAN FD length ("[00] ... ERRORFRAME"). Both lines are one error frame.
+TEST_F(CanUtilsTools, ErrorFlagInCanFdFrameIsAnErrorFrameInBothForms) {
+  std::ofstream(dir_ + "/fd_error.log") << "(30.806898) can4 20000080##0\n";
+  const std::string screen = shell("log2long <" + dir_ + "/fd_error.log");
+  ASSERT_NE(screen.find("ERRORFRAME"), std::string::npos) << screen;
+  for (const std::string& text : {slurp(dir_ + "/fd_error.log"), screen}) {
+    const auto decoded = run_cli("can decode", text);
+    EXPECT_EQ(decoded.exit_code, 0);
+    EXPECT_NE(decoded.out.find("\"kind\":\"error_frame\",\"id\":128,\"length\":0"), std::string::npos)
+        << text << decoded.out;
+  }
+}
+
 }  // namespace

@@ -196,7 +196,10 @@ candump_status parse_screen(words& w, std::string_view first, candump_record& ou
   const candump_frame_type id_type = out.type;
   if (!parse_screen_length(w.next(), out)) return candump_status::length;
   if (out.type != candump_frame_type::xl && out.type != candump_frame_type::fd) out.flags = 0;
-  if (out.type != id_type && id_type == candump_frame_type::error) return candump_status::length;
+  if (id_type == candump_frame_type::error) {
+    if (out.type == candump_frame_type::xl) return candump_status::length;
+    out.type = candump_frame_type::error;  // "20000080  [00]  ...  ERRORFRAME": CAN FD length, error flag
+  }
   if (out.type == candump_frame_type::xl) {
     if (word.size() != 3) return candump_status::identifier;
     if (!parse_screen_xl_header(w.next(), out)) return candump_status::xl_header;
@@ -319,7 +322,9 @@ candump_status parse_candump_frame(std::string_view text, candump_record& out) {
     const unsigned dlc = nibble(at(idx));
     if (dlc > 8 && dlc <= 15) out.len8_dlc = static_cast<std::uint8_t>(dlc);
   }
-  if (out.type == candump_frame_type::classic && (out.can_id & can_error_flag) != 0 && digits == 8) {
+  // The error flag makes an error frame of a classic or CAN FD frame (`20000080##0`): can-utils prints both
+  // as ERRORFRAME.
+  if (out.type != candump_frame_type::xl && (out.can_id & can_error_flag) != 0 && digits == 8) {
     out.type = candump_frame_type::error;
   }
   fill_frame(out);

@@ -53,7 +53,7 @@ constexpr const char* to_string(candump_form form) noexcept {
 /// What kind of CAN frame a line holds.
 enum class candump_frame_type : std::uint8_t {
   classic,  ///< a classic (CAN 2.0) data or remote frame
-  error,    ///< an error frame (the error flag, bit 29, set in an 8-digit identifier)
+  error,    ///< an error frame: the error flag, bit 29, set in an 8-digit identifier (also after `##`)
   fd,       ///< a CAN FD frame (`##`)
   xl,       ///< a CAN XL frame
 };
