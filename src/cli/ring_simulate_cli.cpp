@@ -15,6 +15,7 @@
 #include "basic/program.hpp"
 #include "cli.hpp"
 #include "embedded_files.hpp"
+#include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_network.hpp"
 #include "trionet/host/capture.hpp"
@@ -254,6 +255,11 @@ int ring_simulate_main(const words& all) {
   }
 
   host::network_config config;
+  config.crc = active_profile().ring.crc;  // the nodes check and send direct variable transfers with them
+  config.layout = active_profile().ring.layout;
+  config.keypad_codes = active_profile().keypad.codes;
+  config.key_off_code = learn::key_off_function(active_profile().keypad.key_off);
+  config.defkey = active_profile().keypad.defkey;
   long long number = 0;
   std::uint64_t max_byte_times = 1000000;
   if (args.has("--byte-times")) {
