@@ -222,6 +222,8 @@ int ring_simulate_main(const words& all) {
                        {"--trace", "--json", "--interactive"}, args, error, {"--node"})) {
     return fail(error);
   }
+  const int capacities = check_ring_capacities("ring simulate", ring_capacity_use::receive_buffer);
+  if (capacities != exit_ok) return capacities;
   const builtin_network* builtin = nullptr;
   if (args.positionals.size() > 1) return fail("ring simulate takes one built-in network name at most");
   if (args.positionals.size() == 1) {
