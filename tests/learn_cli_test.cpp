@@ -386,6 +386,49 @@ TEST(LearnCli, GeniusEncodeAndDecodeUseTheProfileCrc) {
   std::remove(learned.c_str());
 }
 
+// The ring's character capacities are compile-time: the tool applies a smaller max_characters to the text it
+// encodes, and refuses (exit 2, naming the field, its value and what it supports) what it cannot honour.
+TEST(LearnCli, RingCharacterCapacitiesAreAppliedOrRefused) {
+  const std::string small = temp_path("max8.json"), large = temp_path("max300.json"), buffer = temp_path("rb64.json");
+  learn::profile p;
+  p.ring.max_characters = 8;
+  write_file(small, learn::write_profile(p));
+  p.ring.max_characters = 300;
+  write_file(large, learn::write_profile(p));
+  p = learn::profile{};
+  p.ring.receive_buffer = 64;
+  write_file(buffer, learn::write_profile(p));
+
+  // Applied: ring encode and ring send refuse longer text.
+  const auto eight = run_cli("ring encode print --to 10 12345678 --profile " + small);
+  EXPECT_EQ(eight.exit_code, 0) << eight.err;
+  EXPECT_EQ(eight.out, "89 31 32 33 34 35 36 37 38 88\n");
+  expect_usage_error("ring encode print --to 10 123456789 --profile " + small,
+                     "TEXT has 9 characters; a character transfer carries at most 8 (docs/protocol.md 1.4, the "
+                     "profile's ring.max_characters)");
+  expect_usage_error("ring send - print --to 10 123456789 --profile " + small, "carries at most 8");
+  // Refused: more than the tool's 256, and any other value where a decoder or node is built for 256.
+  const std::string firmware = " (a compile-time capacity; build a firmware with this profile from `trionet profile header`)";
+  expect_usage_error("ring encode print --to 10 x --profile " + large,
+                     "profile " + large + ": ring.max_characters is 300: `trionet ring encode` supports at most 256" + firmware);
+  for (const char* command : {"ring decode 00", "ring monitor /dev/null", "ring join /dev/null --as keypad",
+                              "ring simulate example1"}) {
+    const std::string name = std::string(command).substr(0, std::string(command).find(' ', 5));
+    expect_usage_error(std::string(command) + " --profile " + small,
+                       "profile " + small + ": ring.max_characters is 8: `trionet " + name + "` supports only 256" + firmware);
+  }
+  expect_usage_error("ring simulate example1 --profile " + buffer,
+                     "ring.receive_buffer is 64: `trionet ring simulate` supports only 256");
+  expect_usage_error("ring join /dev/null --as mc --profile " + buffer,
+                     "ring.receive_buffer is 64: `trionet ring join` supports only 256");
+  // A receive buffer does not concern a decoder or a keypad.
+  EXPECT_EQ(run_cli("ring decode 00 --profile " + buffer).exit_code, 0);
+  EXPECT_EQ(run_cli("ring encode print --to 10 x --profile " + buffer).exit_code, 0);
+  std::remove(small.c_str());
+  std::remove(large.c_str());
+  std::remove(buffer.c_str());
+}
+
 TEST(LearnCli, BadInputAndArgumentsNameTheProblem) {
   expect_usage_error("ring learn", "ring learn needs what to learn: crc or layout");
   expect_usage_error("ring learn crcs", "unknown ring learn kind 'crcs' (expected crc or layout)");

@@ -138,6 +138,50 @@ TEST(RingSimulateCli, AUsersOwnTwoControllerProgramsFromFiles) {
   EXPECT_TRUE(has(json, "\"vr\":{\"20\":3,\"21\":3}")) << json;
 }
 
+// With a profile, the simulated nodes send and check direct variable transfers with its CRC and layout: the
+// programs' handshake completes, the trace shows the transfers, and the capture decodes with the profile and
+// is all CRC errors without it.
+TEST(RingSimulateCli, TheNodesUseTheProfilesCrcAndLayout) {
+  const temporary_file counter("counter.bas", "FOR i=1 TO 3\n  SEND(10,1,20,i)\n  WAIT UNTIL VR(21)=i\nNEXT i\n");
+  const temporary_file echo("echo.bas",
+                            "REPEAT\n  WAIT UNTIL VR(20)<>VR(21)\n  SEND(10,1,21,VR(20))\n  VR(21)=VR(20)\n"
+                            "UNTIL VR(20)=3\n");
+  const temporary_file profile(
+      "modbus.json",
+      "{\"trionet_profile\": 1, \"ring\": {\"crc\": {\"polynomial\": \"0x8005\", \"initial\": \"0xffff\", "
+      "\"reflect_in\": true, \"reflect_out\": true, \"xor_out\": \"0x0000\"}, "
+      "\"vr_group_order\": \"most_significant_first\", \"value_group_order\": \"most_significant_first\"}}\n");
+  const temporary_file capture("profile.pcapng", "");
+  const std::string nodes = " --node mc:" + counter.path() + " --node mc:" + echo.path();
+  const auto r = run_cli("ring simulate --profile " + profile.path() + nodes + " --trace --json --pcap " +
+                         capture.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(last_line(r.out), "\"end\":\"settled\"")) << r.out;
+  EXPECT_TRUE(has(last_line(r.out), "\"vr\":{\"20\":3,\"21\":3}")) << r.out;
+  EXPECT_TRUE(has(r.out, "VR(20) = 3")) << r.out;
+  EXPECT_FALSE(has(r.out, "CRC error")) << r.out;
+  const auto with_profile = run_cli("ring decode --profile " + profile.path() + " --pcap " + capture.path());
+  EXPECT_EQ(with_profile.exit_code, 0) << with_profile.err;
+  EXPECT_TRUE(has(with_profile.out, "\"type\":\"var\",\"hops\":1,\"vr\":21,\"raw\":\"0x0000000300000000\"")) << with_profile.out;
+  EXPECT_FALSE(has(with_profile.out, "crc_error")) << with_profile.out;
+  const auto by_default = run_cli("ring decode --pcap " + capture.path());
+  EXPECT_TRUE(has(by_default.out, "{\"event\":\"crc_error\",\"record\":1,")) << by_default.out;
+  EXPECT_FALSE(has(by_default.out, "\"type\":\"var\"")) << by_default.out;
+  // And the same run without the profile: the default CRC, which the profile's decoder refuses.
+  ASSERT_EQ(run_cli("ring simulate" + nodes + " --pcap " + capture.path()).exit_code, 0);
+  EXPECT_FALSE(has(run_cli("ring decode --pcap " + capture.path()).out, "crc_error"));
+  EXPECT_TRUE(has(run_cli("ring decode --profile " + profile.path() + " --pcap " + capture.path()).out, "crc_error"));
+}
+
+// The simulated keypads send the profile's keypad codes.
+TEST(RingSimulateCli, TheKeypadsSendTheProfilesCodes) {
+  const temporary_file program("key.bas", "SEND(10,2,10)\nGET #4,c\nVR(1)=c\n");
+  const temporary_file profile("codes.json", "{\"trionet_profile\": 1, \"keypad\": {\"codes\": {\"up\": \"u\"}}}\n");
+  const std::string run = " --node mc:" + program.path() + " --node keypad --keys \"wait=2000 1:up\" --json";
+  EXPECT_TRUE(has(last_line(run_cli("ring simulate --profile " + profile.path() + run).out), "\"vr\":{\"1\":117}"));
+  EXPECT_TRUE(has(last_line(run_cli("ring simulate" + run).out), "\"vr\":{\"1\":85}"));
+}
+
 TEST(RingSimulateCli, RunsAreDeterministic) {
   const auto first = run_cli("ring simulate example2 --trace --json");
   const auto second = run_cli("ring simulate example2 --trace --json");

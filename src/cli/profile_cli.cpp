@@ -18,6 +18,11 @@ bool& profile_named() {
   return named;
 }
 
+std::string& profile_path() {
+  static std::string path;
+  return path;
+}
+
 constexpr const char* show_usage =
     "usage: trionet profile show [FILE]\n"
     "Prints a profile as JSON with every key: FILE's (checked strictly), else the one --profile names, else "
@@ -153,6 +158,23 @@ int take_profile_option(words& args) {
   bool io = false;
   if (!read_profile_file(path, profile_in_effect(), error, io)) return io ? fail_io(error) : fail(error);
   profile_named() = true;
+  profile_path() = path;
+  return exit_ok;
+}
+
+int check_ring_capacities(const std::string& command, ring_capacity_use use) {
+  const learn::ring_profile& p = active_profile().ring;
+  const auto refuse = [&](const char* key, std::size_t value) {
+    return fail("profile " + profile_path() + ": ring." + key + " is " + std::to_string(value) + ": `trionet " +
+                command + "` supports " + (use == ring_capacity_use::text_limit && key[0] == 'm' ? "at most " : "only ") +
+                std::to_string(ring::default_max_characters) +
+                " (a compile-time capacity; build a firmware with this profile from `trionet profile header`)");
+  };
+  const bool fits = use == ring_capacity_use::text_limit ? p.max_characters <= ring::default_max_characters
+                                                         : p.max_characters == ring::default_max_characters;
+  if (!fits) return refuse("max_characters", p.max_characters);
+  if (use == ring_capacity_use::receive_buffer && p.receive_buffer != ring::default_max_characters)
+    return refuse("receive_buffer", p.receive_buffer);
   return exit_ok;
 }
 

@@ -25,6 +25,18 @@ bool profile_given();
 /// --profile, a missing FILE or a profile that is not valid (the message names the key, line and column).
 int take_profile_option(words& args);
 
+/// How a command uses the ring's character capacities of the profile.
+enum class ring_capacity_use : std::uint8_t {
+  text_limit,      ///< encoders: `max_characters` up to 256 limits the text, a larger one cannot be decoded
+  decoder,         ///< decoders and keypads, built for 256: `max_characters` must be 256
+  receive_buffer,  ///< Motion Coordinators: `max_characters` and `receive_buffer` must be 256
+};
+
+/// Exit 2 with a message naming the field, its value and what the tool supports when the active profile
+/// asks for a ring character capacity the command cannot honour (its decoders and nodes are built for 256,
+/// a compile-time capacity); else exit_ok. `command` names the command for the message ("ring decode").
+int check_ring_capacities(const std::string& command, ring_capacity_use use);
+
 /// Reads a profile file. False with `error` set; `io` says whether reading failed (else the content is bad).
 bool read_profile_file(const std::string& path, learn::profile& out, std::string& error, bool& io);
 

@@ -40,6 +40,8 @@ constexpr const char* decode_usage =
 
 int encode_main(const words& all) {
   if (all.empty()) return fail("ring encode needs a message kind: print, var, offset or mode");
+  const int capacities = check_ring_capacities("ring encode", ring_capacity_use::text_limit);
+  if (capacities != exit_ok) return capacities;
   const words rest(all.begin() + 1, all.end());
   arguments args;
   std::string error;
@@ -179,6 +181,8 @@ int decode_main(const words& all) {
   arguments args;
   std::string error;
   if (!parse_arguments(all, {"--pcap"}, {"--raw", "--json"}, args, error)) return fail(error);
+  const int capacities = check_ring_capacities("ring decode", ring_capacity_use::decoder);
+  if (capacities != exit_ok) return capacities;
   const bool raw = args.flag("--raw");
   if (args.has("--pcap")) {
     if (raw || !args.positionals.empty()) return fail("--pcap reads a capture file: no --raw and no HEX with it");

@@ -14,6 +14,7 @@
 #include "cli.hpp"
 #include "keypad_terminal.hpp"
 #include "live.hpp"
+#include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "ring_message_arguments.hpp"
@@ -110,6 +111,8 @@ int monitor_main(const words& given) {
   std::string error;
   if (!parse_arguments(given, port_value_options, {"--json"}, args, error)) return fail("ring monitor: " + error);
   if (args.positionals.size() != 1) return fail("ring monitor takes one PORT");
+  const int capacities = check_ring_capacities("ring monitor", ring_capacity_use::decoder);
+  if (capacities != exit_ok) return capacities;
   port_arguments options;
   if (!port_arguments_of(args, options, error)) return fail("ring monitor: " + error);
   host::link_device port;
@@ -164,6 +167,8 @@ int send_main(const words& given) {
   if (!parse_arguments(given, with(port_value_options, ring_message_options()), {}, args, error))
     return fail("ring send: " + error);
   if (args.positionals.size() < 2) return fail("ring send needs PORT and a message kind: print, var, offset or mode");
+  const int capacities = check_ring_capacities("ring send", ring_capacity_use::text_limit);
+  if (capacities != exit_ok) return capacities;
   port_arguments options;
   if (!port_arguments_of(args, options, error)) return fail("ring send: " + error);
   arguments message_args = args;
@@ -224,6 +229,9 @@ int ring_join_main(const words& given) {
   port_arguments options;
   if (!port_arguments_of(args, options, error)) return fail("ring join: " + error);
   const std::string& as = args.options.at("--as");
+  const int capacities = check_ring_capacities(
+      "ring join", as == "keypad" ? ring_capacity_use::decoder : ring_capacity_use::receive_buffer);
+  if (capacities != exit_ok) return capacities;
   join_settings settings{args.positionals[0], options.link, options.idle_ms, options.json, options.trace,
                          options.pcap, 0, 0, ""};
   const bool learning = args.has("--learn-keypad");

@@ -1,6 +1,8 @@
 // The arguments that describe one ring message: see ring_message_arguments.hpp.
 #include "ring_message_arguments.hpp"
 
+#include <algorithm>
+
 #include "profile_cli.hpp"
 
 #include "trionet/ring.hpp"
@@ -37,9 +39,11 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
       error = "TEXT is empty: a character transfer needs at least one character";
       return false;
     }
-    if (text.size() > ring::default_max_characters) {
+    const std::size_t max_characters = std::min(active_profile().ring.max_characters, ring::default_max_characters);
+    if (text.size() > max_characters) {
       error = "TEXT has " + std::to_string(text.size()) + " characters; a character transfer carries at most " +
-              std::to_string(ring::default_max_characters) + " (docs/protocol.md 1.4)";
+              std::to_string(max_characters) + " (docs/protocol.md 1.4" +
+              (max_characters == ring::default_max_characters ? ")" : ", the profile's ring.max_characters)");
       return false;
     }
     for (std::size_t i = 0; i < text.size(); ++i) {

@@ -15,6 +15,7 @@
 #include "basic/program.hpp"
 #include "cli.hpp"
 #include "embedded_files.hpp"
+#include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_network.hpp"
 #include "trionet/host/capture.hpp"
@@ -221,6 +222,8 @@ int ring_simulate_main(const words& all) {
                        {"--trace", "--json", "--interactive"}, args, error, {"--node"})) {
     return fail(error);
   }
+  const int capacities = check_ring_capacities("ring simulate", ring_capacity_use::receive_buffer);
+  if (capacities != exit_ok) return capacities;
   const builtin_network* builtin = nullptr;
   if (args.positionals.size() > 1) return fail("ring simulate takes one built-in network name at most");
   if (args.positionals.size() == 1) {
@@ -254,6 +257,11 @@ int ring_simulate_main(const words& all) {
   }
 
   host::network_config config;
+  config.crc = active_profile().ring.crc;  // the nodes check and send direct variable transfers with them
+  config.layout = active_profile().ring.layout;
+  config.keypad_codes = active_profile().keypad.codes;
+  config.key_off_code = learn::key_off_function(active_profile().keypad.key_off);
+  config.defkey = active_profile().keypad.defkey;
   long long number = 0;
   std::uint64_t max_byte_times = 1000000;
   if (args.has("--byte-times")) {

@@ -18,11 +18,97 @@
 namespace trionet::host {
 namespace {
 
-// The simulated Motion Coordinators have 32-byte forward buffers (the firmware default is 16, for RAM): own
-// character messages carry up to 30 characters, as the example programs' traces show.
-using mc_node = ring::motion_coordinator<256, 32, 32>;
-using keypad_node = ring::keypad<>;
 using event_sink = std::function<void(const network_event&)>;
+
+// The nodes check and send direct variable transfers with the configured CRC (an object chosen at run time)
+// and layout (a template parameter of the library's nodes, one of seven). The simulation reaches them
+// through these interfaces, implemented once per layout and chosen when the ring is built.
+template <class Layout>
+using mc_node = ring::motion_coordinator<256, 32, 32, ring::crc16_runtime, ring::default_max_characters, Layout>;
+template <class Layout>
+using keypad_node = ring::keypad<16, 16, ring::default_max_characters, ring::crc16_runtime, Layout>;
+constexpr std::size_t mc_max_own_frame = mc_node<ring::default_variable_layout>::max_own_frame;
+
+class mc_api {
+ public:
+  virtual ~mc_api() = default;
+  virtual byte_port& port() = 0;
+  virtual ring::print_result print(int n, byte_view text) = 0;
+  virtual ring::send_status send_variable(int n, std::uint16_t vr, double value) = 0;
+  virtual ring::send_status send_keypad_offset(int n, int offset) = 0;
+  virtual bool key(int channel) const = 0;
+  virtual ring::get_result get(int channel) = 0;
+  virtual std::uint8_t netstat() const = 0;
+  virtual void clear_netstat() = 0;
+  virtual std::size_t transmit_free() const = 0;
+};
+
+template <class Layout>
+class mc_of final : public mc_api {
+ public:
+  mc_of(vr_store& vr, const ring::defkey_table& defkey, const ring::crc16_runtime& crc) : node_(vr, defkey, crc) {}
+  byte_port& port() override { return node_; }
+  ring::print_result print(int n, byte_view text) override { return node_.print(n, text); }
+  ring::send_status send_variable(int n, std::uint16_t vr, double value) override {
+    return node_.send_variable(n, vr, value);
+  }
+  ring::send_status send_keypad_offset(int n, int offset) override { return node_.send_keypad_offset(n, offset); }
+  bool key(int channel) const override { return node_.key(channel); }
+  ring::get_result get(int channel) override { return node_.get(channel); }
+  std::uint8_t netstat() const override { return node_.netstat(); }
+  void clear_netstat() override { node_.clear_netstat(); }
+  std::size_t transmit_free() const override { return node_.transmit_free(); }
+
+ private:
+  mc_node<Layout> node_;
+};
+
+class keypad_api {
+ public:
+  virtual ~keypad_api() = default;
+  virtual byte_port& port() = 0;
+  virtual ring::key_status press(ring::key k) = 0;
+  virtual ring::key_status release(ring::key k) = 0;
+  virtual bool network_mode() const = 0;
+  virtual std::uint8_t offset() const = 0;
+  virtual const ring::keypad_display& display() const = 0;
+  virtual ring::keypad_counters counters() const = 0;
+  virtual ring::link_counters forwarding_counters() const = 0;
+};
+
+template <class Layout>
+class keypad_of final : public keypad_api {
+ public:
+  keypad_of(const ring::keypad_config& config, const ring::crc16_runtime& crc) : node_(config, crc) {}
+  byte_port& port() override { return node_; }
+  ring::key_status press(ring::key k) override { return node_.press(k); }
+  ring::key_status release(ring::key k) override { return node_.release(k); }
+  bool network_mode() const override { return node_.network_mode(); }
+  std::uint8_t offset() const override { return node_.offset(); }
+  const ring::keypad_display& display() const override { return node_.display(); }
+  ring::keypad_counters counters() const override { return node_.counters(); }
+  ring::link_counters forwarding_counters() const override { return node_.forwarding_counters(); }
+
+ private:
+  keypad_node<Layout> node_;
+};
+
+// The trace's decoder of one link, with the same CRC and layout.
+class decoder_api {
+ public:
+  virtual ~decoder_api() = default;
+  virtual ring::decode_result push(std::uint8_t byte) = 0;
+};
+
+template <class Layout>
+class decoder_of final : public decoder_api {
+ public:
+  explicit decoder_of(const ring::crc16_runtime& crc) : decoder_(crc) {}
+  ring::decode_result push(std::uint8_t byte) override { return decoder_.push(byte); }
+
+ private:
+  ring::decoder<ring::default_max_characters, ring::crc16_runtime, Layout> decoder_;
+};
 
 constexpr std::size_t vr_table_size = 16384;  // every VR number the ring can address (14 bits)
 constexpr std::size_t max_terminal_line = 4096;
@@ -105,16 +191,21 @@ bool find_key(const std::string& name, ring::key& out) {
 // and its terminal.
 class mc_adapter final : public basic::controller {
  public:
-  mc_adapter(std::size_t vr_count, std::function<void(const std::string&)> terminal_line)
+  mc_adapter(std::size_t vr_count, const network_config& config,
+             std::function<void(const std::string&)> terminal_line)
       : vr_(&mc_adapter::network_write, this),
-        node_(vr_),
+        node_(ring::with_variable_layout(config.layout,
+                                         [&](auto layout) -> std::unique_ptr<mc_api> {
+                                           return std::make_unique<mc_of<decltype(layout)>>(
+                                               vr_, config.defkey, ring::crc16_runtime(config.crc));
+                                         })),
         vr_count_(vr_count),
         terminal_line_(std::move(terminal_line)) {}
   mc_adapter(const mc_adapter&) = delete;
   mc_adapter& operator=(const mc_adapter&) = delete;
 
-  mc_node& node() { return node_; }
-  const mc_node& node() const { return node_; }
+  byte_port& port() { return node_->port(); }
+  std::uint8_t node_netstat() const { return node_->netstat(); }
 
   // Direct variable transfers applied since the last call: (vr, value).
   std::vector<std::pair<std::uint16_t, double>> take_network_writes() { return std::exchange(network_writes_, {}); }
@@ -141,12 +232,12 @@ class mc_adapter final : public basic::controller {
     }
     // BASIC's PRINT# waits for room (docs/protocol.md 1.6, long PRINT#): the node's own split into messages,
     // each queued once there is room for it whole, so never a refused call, which would set NETSTAT bit 0.
-    const std::size_t longest = std::min(mc_node::max_own_frame - ring::framing_length, ring::default_max_characters);
+    const std::size_t longest = std::min(mc_max_own_frame - ring::framing_length, ring::default_max_characters);
     std::size_t queued = 0;
     while (queued < text.size()) {
       const std::size_t n = std::min(text.size() - queued, longest);
-      if (node_.transmit_free() < n + ring::framing_length) break;
-      const auto r = node_.print(channel, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()) + queued, n));
+      if (node_->transmit_free() < n + ring::framing_length) break;
+      const auto r = node_->print(channel, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()) + queued, n));
       if (r.status != ring::send_status::ok) {
         if (queued == 0) return {io_status_of(r.status), 0};
         break;
@@ -160,24 +251,24 @@ class mc_adapter final : public basic::controller {
     if (!ring::hops_from_basic_address(address)) return basic::io_status::bad_address;
     if (vr < 0 || vr > static_cast<int>(ring::max_vr)) return basic::io_status::vr_out_of_range;
     if (!trionet::q32_from_double(value)) return basic::io_status::value_out_of_range;
-    if (node_.transmit_free() < ring::framing_length + ring::variable_data_length) return basic::io_status::busy;
-    return io_status_of(node_.send_variable(address, static_cast<std::uint16_t>(vr), value));
+    if (node_->transmit_free() < ring::framing_length + ring::variable_data_length) return basic::io_status::busy;
+    return io_status_of(node_->send_variable(address, static_cast<std::uint16_t>(vr), value));
   }
 
   basic::io_status send_keypad_offset(int address, int offset) override {
     if (!ring::hops_from_basic_address(address)) return basic::io_status::bad_address;
     if (!ring::hops_from_basic_address(offset)) return basic::io_status::offset_out_of_range;
-    if (node_.transmit_free() < ring::framing_length + 1) return basic::io_status::busy;
-    return io_status_of(node_.send_keypad_offset(address, offset));
+    if (node_->transmit_free() < ring::framing_length + 1) return basic::io_status::busy;
+    return io_status_of(node_->send_keypad_offset(address, offset));
   }
 
   basic::key_result key(int channel) override {
     if (channel != 3 && channel != 4) return {basic::io_status::bad_channel, false};
-    return {basic::io_status::ok, node_.key(channel)};
+    return {basic::io_status::ok, node_->key(channel)};
   }
 
   basic::get_result get(int channel) override {
-    const ring::get_result r = node_.get(channel);
+    const ring::get_result r = node_->get(channel);
     switch (r.status) {
       case ring::get_status::ok:
         return {basic::io_status::ok, r.value};
@@ -189,8 +280,8 @@ class mc_adapter final : public basic::controller {
     return {basic::io_status::bad_channel, 0};
   }
 
-  std::uint32_t netstat() override { return node_.netstat(); }
-  void clear_netstat() override { node_.clear_netstat(); }
+  std::uint32_t netstat() override { return node_->netstat(); }
+  void clear_netstat() override { node_->clear_netstat(); }
 
   std::size_t vr_count() const override { return vr_count_; }
   double vr(std::size_t index) const override { return vr_[index]; }
@@ -210,7 +301,7 @@ class mc_adapter final : public basic::controller {
   }
 
   vr_table<vr_table_size> vr_;
-  mc_node node_;
+  std::unique_ptr<mc_api> node_;
   std::size_t vr_count_;
   double parameters_[basic::axis_parameter_count] = {};
   std::function<void(const std::string&)> terminal_line_;
@@ -242,7 +333,7 @@ struct ring_network::state {
     std::unique_ptr<basic::program> program;
     std::unique_ptr<basic::task> task;
     std::uint32_t netstat_seen = 0;
-    std::unique_ptr<keypad_node> keypad;
+    std::unique_ptr<keypad_api> keypad;
     std::size_t keypad_number = 0;
     std::uint32_t drops_seen = 0;
     std::uint32_t displays_seen = 0;
@@ -254,7 +345,7 @@ struct ring_network::state {
   std::vector<node_slot> nodes;
   std::size_t keypad_count = 0;
   ring::simulator<15> sim;
-  std::vector<ring::decoder<>> decoders;  // one per link, for the trace and the drop reports
+  std::vector<std::unique_ptr<decoder_api>> decoders;  // one per link, for the trace and the drop reports
   std::vector<script_step> script;
   std::size_t script_next = 0;
   std::uint64_t script_due = 0;
@@ -312,7 +403,7 @@ struct ring_network::state {
       receiver.drops_pending += drops - receiver.drops_seen;
       receiver.drops_seen = drops;
     }
-    const ring::decode_result r = decoders[b.link].push(b.received);
+    const ring::decode_result r = decoders[b.link]->push(b.received);
     if (r.status != ring::decode_status::incomplete) on_message(b, r);
     if (receiver.keypad && receiver.keypad->counters().display_messages != receiver.displays_seen) {
       receiver.displays_seen = receiver.keypad->counters().display_messages;
@@ -402,15 +493,18 @@ std::unique_ptr<ring_network> ring_network::build(const std::vector<node_spec>& 
     state* owner = s.get();
     slot.what = nodes[i].what;
     if (nodes[i].what == node_spec::kind::keypad) {
-      slot.keypad = std::make_unique<keypad_node>();
+      slot.keypad = ring::with_variable_layout(config.layout, [&](auto layout) -> std::unique_ptr<keypad_api> {
+        return std::make_unique<keypad_of<decltype(layout)>>(
+            ring::keypad_config{&s->config.keypad_codes, config.key_off_code}, ring::crc16_runtime(config.crc));
+      });
       slot.keypad_number = ++s->keypad_count;
-      (void)s->sim.add(*slot.keypad);
+      (void)s->sim.add(slot.keypad->port());
       continue;
     }
-    slot.mc = std::make_unique<mc_adapter>(config.vr_count, [owner, i](const std::string& line) {
+    slot.mc = std::make_unique<mc_adapter>(config.vr_count, s->config, [owner, i](const std::string& line) {
       owner->emit(event_kind::output, owner->clock, i, "prints: " + line);
     });
-    (void)s->sim.add(slot.mc->node());
+    (void)s->sim.add(slot.mc->port());
     if (nodes[i].program_name.empty() && nodes[i].program_text.empty()) continue;
     basic::compile_result compiled = basic::compile(nodes[i].program_name, nodes[i].program_text);
     if (!compiled) {
@@ -421,7 +515,11 @@ std::unique_ptr<ring_network> ring_network::build(const std::vector<node_spec>& 
     slot.program = std::make_unique<basic::program>(std::move(compiled.compiled));
     slot.task = std::make_unique<basic::task>(*slot.program, *slot.mc, task_config);
   }
-  s->decoders.resize(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    s->decoders.push_back(ring::with_variable_layout(config.layout, [&](auto layout) -> std::unique_ptr<decoder_api> {
+      return std::make_unique<decoder_of<decltype(layout)>>(ring::crc16_runtime(config.crc));
+    }));
+  }
   return std::unique_ptr<ring_network>(new ring_network(std::move(s)));
 }
 
@@ -526,7 +624,7 @@ void ring_network::step() {
       s.emit(event_kind::vr_from_ring, s.clock, i,
              "VR(" + std::to_string(vr) + ") is now " + basic::format_number(value) + " (from the ring)");
     }
-    const std::uint32_t netstat = n.mc->node().netstat();
+    const std::uint32_t netstat = n.mc->node_netstat();
     if ((netstat & ~n.netstat_seen) != 0) {
       s.emit(event_kind::netstat, s.clock, i,
              "NETSTAT " + std::to_string(netstat) + " (" + netstat_bits(netstat & ~n.netstat_seen) + ")");
@@ -592,7 +690,7 @@ node_report ring_network::report(std::size_t node) const {
   const state::node_slot& n = s_->nodes[node - 1];
   r.what = n.what;
   if (n.keypad) {
-    const keypad_node& k = *n.keypad;
+    const keypad_api& k = *n.keypad;
     r.keypad_number = n.keypad_number;
     r.network_mode = k.network_mode();
     r.offset = k.offset();
@@ -604,7 +702,7 @@ node_report ring_network::report(std::size_t node) const {
     return r;
   }
   const mc_adapter& mc = *n.mc;
-  r.netstat = mc.node().netstat();
+  r.netstat = mc.node_netstat();
   for (std::size_t i = 0; i < mc.vr_count(); ++i) {
     if (mc.vr(i) != 0) r.vrs.emplace_back(i, mc.vr(i));
   }

@@ -7,7 +7,7 @@
 // The run ends after a number of byte-times, or as soon as every program has ended, failed or waits for ever
 // (GET# or WAIT UNTIL with nothing left to come, or a loop that changes nothing), the script is done and the
 // ring is quiet. Host side (heap, std::function). The ring's nodes are those of the library; everything that
-// touches their API is in ring_network.cpp, so this header has no ring types.
+// touches their API is in ring_network.cpp, so this header has no ring node types.
 #pragma once
 
 #include <cstddef>
@@ -17,6 +17,10 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "trionet/ring/crc.hpp"
+#include "trionet/ring/keypad_codes.hpp"
+#include "trionet/ring/variable_layout.hpp"
 
 namespace trionet::host {
 
@@ -34,6 +38,11 @@ struct network_config {
   unsigned bits_per_byte = 10;                 ///< start bit, 8 data bits, stop bit
   std::uint64_t key_gap = 1000;                ///< byte-times a key press takes before the script goes on
   std::size_t vr_count = 1024;                 ///< VR(0) .. VR(vr_count - 1) on every Motion Coordinator
+  ring::crc16_parameters crc{};                ///< the CRC of direct variable transfers (a profile's)
+  ring::variable_layout_parameters layout{};   ///< their layout (a profile's)
+  ring::keypad_codes keypad_codes = ring::default_keypad_codes;  ///< what every keypad sends for each key
+  std::uint8_t (*key_off_code)(std::uint8_t) noexcept = ring::default_key_off_code;  ///< the key OFF rule
+  ring::defkey_table defkey = ring::default_defkey;  ///< every MC's GET#3 translation
 };
 
 enum class event_kind : std::uint8_t {
