@@ -406,6 +406,17 @@ TEST(RingDecodeErrors, ZeroHopsSkipsToThatMessagesEnd) {
   EXPECT_EQ(again[1].text, "A");
 }
 
+TEST(RingDecodeErrors, ZeroHopsInsideAMessageIsOneReportForBoth) {
+  // An A = 0 header while a message is open: one report (the open message was interrupted), the A = 0
+  // message is skipped to its end, then the next message decodes. One error for two messages: the ring soak
+  // counts the A = 0 message as merged.
+  const auto events = decode_all(bytes_of({0x89, 'A', 0x81, 'X', 'Y', 0x80, 0x89, 'B', 0x88}));
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].error, ring::frame_error::interrupted);
+  EXPECT_EQ(events[1].status, ring::decode_status::ok);
+  EXPECT_EQ(events[1].text, "B");
+}
+
 TEST(RingDecodeErrors, CrcErrorReportsHopsAndVrAndChecksLengthFirst) {
   std::vector<std::uint8_t> frame(golden);
   frame[7] ^= 0x01;  // corrupt X4

@@ -423,6 +423,7 @@ TEST(RingSoak, SeededRunsHaveNoWedgeNoLivelockNoWrongVrWrite) {
     EXPECT_EQ(r.livelocked, 0u) << r.first_problem;
     EXPECT_EQ(r.wrong_vr_writes, 0u) << r.first_problem;
     EXPECT_EQ(r.lost_unexplained, 0u) << r.first_problem;
+    EXPECT_EQ(r.untracked_headers, 0u) << r.first_problem;
     EXPECT_EQ(r.probes_delivered, r.probes) << r.first_problem;
     EXPECT_GT(r.sent, 0u);
     EXPECT_EQ(r.sent, r.delivered_intact + r.delivered_corrupted + r.misdelivered + r.lost());

@@ -92,7 +92,8 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(soak::maximum(r.probes_done)),
                   static_cast<unsigned long long>(soak::recovery_bound(shape.nodes)));
       std::fflush(stdout);
-      if (r.wedged + r.livelocked + r.wrong_vr_writes + r.lost_unexplained != 0 || r.probes_delivered != r.probes) {
+      if (r.wedged + r.livelocked + r.wrong_vr_writes + r.lost_unexplained + r.untracked_headers != 0 ||
+          r.probes_delivered != r.probes) {
         ok = false;
         std::fprintf(stderr, "trionet_ring_soak: %s\n", r.first_problem.c_str());
       }

@@ -8,7 +8,8 @@
 //   misdelivered          at another node, or read as another type (the header is not covered by the CRC)
 //   lost, counted         some node counted it (frame error, CRC error, forwarded message lost, ...)
 //   lost, uncounted       no node could see it: every byte of it vanished on a link, or its header was lost
-//                         and its data merged into a neighbouring damaged message (no boundary left to see)
+//                         (or arrived with A = 0) and the one error counted went to a neighbouring damaged
+//                         message
 //   lost, unexplained     none of the above: a defect
 //
 // How a message is followed: each link's transmitted bytes are cut into segments at headers (a node only
@@ -16,6 +17,8 @@
 // transmit queue: the forward buffer was empty) or the next forwarded one (headers are forwarded in the
 // order they arrived). Each counter a node increments while it takes a byte is the doing of the message
 // that byte belongs to, or of the message the node had open before it (an interrupted, idle or bad message).
+// In a simulator step every node transmits before any receives: a loss a node counts on the byte it takes
+// finds the header it sent in that step already gone out.
 //
 // Episodes are wedged when the probes are not all delivered (and the ring quiet) within `recovery_limit`
 // byte-times of the last fault; livelocked if the links were still busy then.
@@ -70,6 +73,8 @@ struct report {
   std::uint64_t wrong_vr_writes = 0, wedged = 0, livelocked = 0, episodes = 0;
   std::uint64_t probes = 0, probes_delivered = 0;
   std::uint64_t faults = 0;  ///< bytes flipped, dropped or cut
+  /// Headers that left a node while the bookkeeping had no message for them: a defect of the soak itself.
+  std::uint64_t untracked_headers = 0;
   /// Per episode, byte-times from the last fault until every node that had a message open then was out of
   /// it (0: none had).
   std::vector<std::uint64_t> open_closed;
@@ -79,7 +84,8 @@ struct report {
   /// Per episode, byte-times from the end of the fault phase (when the probes are sent) until every probe was
   /// delivered and the ring was quiet.
   std::vector<std::uint64_t> probes_done;
-  std::string first_problem;  ///< what the first wedge, livelock, wrong write or unexplained loss was
+  std::string first_problem;  ///< what the first wedge, livelock, wrong write, unexplained loss or untracked
+                              ///< header was
 
   std::uint64_t lost() const { return lost_counted + lost_vanished + lost_merged + lost_unexplained; }
 };
@@ -100,9 +106,10 @@ inline std::uint64_t recovery_bound(std::size_t nodes) {
 
 namespace detail {
 
-// 32-byte forward buffers: every PRINT# of the soak (up to 24 characters) is one message, which the
-// bookkeeping below follows as one.
-using mc_type = ring::motion_coordinator<256, 32, 32>;
+// The library's default Motion Coordinator. Every PRINT# of the soak is at most `max_text` characters, so it
+// is one message, which the bookkeeping below follows as one.
+using mc_type = ring::motion_coordinator<>;
+constexpr std::size_t max_text = mc_type::max_own_frame - ring::framing_length;
 using keypad_type = ring::keypad<>;
 constexpr std::size_t no_id = static_cast<std::size_t>(-1);
 
@@ -130,7 +137,7 @@ struct message_record {
   bool delivered = false, corrupted = false, misdelivered = false;
   bool counted = false;      // some node counted an error or a loss for it
   bool vanished = false;     // on some link none of its bytes arrived
-  bool header_lost = false;  // on some link its header did not arrive as a header
+  bool header_lost = false;  // on some link its header did not arrive as a header (or arrived with A = 0)
 };
 
 /// What the harness reads off a node between steps.
@@ -280,7 +287,7 @@ class harness {
       const std::size_t destination = (i + static_cast<std::size_t>(hops)) % cfg_.nodes;
       const std::size_t id = new_message(i, destination, kind::character);
       std::string text = "#" + std::to_string(id) + ":";
-      const std::size_t length = 4 + rng_() % 21;
+      const std::size_t length = 4 + rng_() % (max_text - 3);  // 4 .. max_text
       while (text.size() < length) text += static_cast<char>('A' + rng_() % 26);
       if (n.mc->transmit_free() < text.size() + ring::framing_length) {
         records_.pop_back();
@@ -366,7 +373,16 @@ class harness {
   void step() {
     for (auto& n : nodes_) n.before = n.take();
     const std::uint64_t faults = report_.faults;
+    step_bytes_.clear();
     sim_.step(tracer{this});
+    // Every node transmitted before any received (simulator.hpp), but the trace reports link by link: a node's
+    // own transmitted byte is reported after the byte it received. So first what left every node, then what
+    // every node took: a loss that a node counts on the byte it takes then finds a header sent in the same
+    // step already gone out (the link cuts that message short, it does not remove it).
+    for (const ring::link_byte& b : step_bytes_) sent(b);
+    for (const ring::link_byte& b : step_bytes_) {
+      if (b.delivered) received(nodes_[(b.link + 1) % cfg_.nodes], b.received, nodes_[b.link].tx_id, b.time);
+    }
     if (report_.faults != faults) {  // a fault in this step: which nodes does it find inside a message?
       open_at_fault_.assign(nodes_.size(), false);
       for (std::size_t i = 0; i < nodes_.size(); ++i) open_at_fault_[i] = nodes_[i].port().in_message();
@@ -383,11 +399,12 @@ class harness {
 
   struct tracer {
     harness* h;
-    void operator()(const ring::link_byte& b) const { h->on_byte(b); }
+    void operator()(const ring::link_byte& b) const { h->step_bytes_.push_back(b); }
     void operator()(const ring::line_idle_event& e) const { h->on_idle(e); }
   };
 
-  void on_byte(const ring::link_byte& b) {
+  // A byte left node `b.link`: a header starts the next segment on its link.
+  void sent(const ring::link_byte& b) {
     node_state& tx = nodes_[b.link];
     if (ring::classify(b.sent) == ring::byte_class::header) {
       close_segment(tx);
@@ -402,19 +419,22 @@ class harness {
         tx.tx_id = tx.own.front();
         tx.own.pop_front();
       }
-      if (tx.tx_id == no_id) problem("a header left node " + std::to_string(b.link) + " with no message");
+      if (tx.tx_id == no_id) {
+        ++report_.untracked_headers;
+        problem("a header left node " + std::to_string(b.link) + " with no message");
+      }
       tx.tx_sent = tx.tx_delivered = 0;
+      // A header that arrives with A = 0 is no message's header either: the next node skips that message, and
+      // if it had a message open it counts one error (`interrupted`) for the two.
       tx.tx_header_ok = b.delivered && ring::classify(b.received) == ring::byte_class::header &&
-                        ring::type_of(b.received) == ring::type_of(b.sent);
+                        ring::type_of(b.received) == ring::type_of(b.sent) && ring::hops_of(b.received) != 0;
     }
-    const std::size_t id = tx.tx_id;
     ++tx.tx_sent;
     if (b.delivered) ++tx.tx_delivered;
     if (!b.delivered || b.sent != b.received) {
       last_fault_ = b.time;
       if (cfg_.kind == fault_kind::cut) ++report_.faults;
     }
-    if (b.delivered) received(nodes_[(b.link + 1) % cfg_.nodes], b.received, id, b.time);
   }
 
   void close_segment(node_state& tx) {
@@ -632,6 +652,7 @@ class harness {
   std::vector<bool> open_at_fault_;   // nodes inside a message at the last fault, not yet out of it
   std::uint64_t open_closed_at_ = 0;  // when the last of them got out
   std::vector<message_record> records_;
+  std::vector<ring::link_byte> step_bytes_;  // the bytes of the step being run, as traced
   std::size_t first_of_episode_ = 0;
   bool faulting_ = false;
   std::uint64_t last_fault_ = 0, last_error_ = 0, idle_events_ = 0;
