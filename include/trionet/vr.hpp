@@ -210,7 +210,7 @@ class vr_table final : public vr_store {
 
    private:
     friend class vr_table;
-    reference(vr_table* table, std::size_t vr) noexcept : table_(table), vr_(vr) {}
+    reference(vr_table* table, std::size_t index) noexcept : table_(table), vr_(index) {}
     vr_table* table_;
     std::size_t vr_;
   };
