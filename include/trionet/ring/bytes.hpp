@@ -92,22 +92,27 @@ TRIONET_ALWAYS_INLINE inline const std::uint8_t* find_control(const std::uint8_t
                                                               const std::uint8_t* last) noexcept {
 #if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
   if constexpr (sizeof(void*) >= 8) {
-    if (last - first >= 8) {
-      const auto controls_at = [](const std::uint8_t* at) {
-        std::uint64_t word;
-        std::memcpy(&word, at, sizeof word);
-        return word & 0x8080808080808080ull;
-      };
-      for (; last - first >= 8; first += 8) {
+    const auto controls_at = [](const std::uint8_t* at) {
+      std::uint64_t word;
+      std::memcpy(&word, at, sizeof word);
+      return word & 0x8080808080808080ull;
+    };
+    if (last - first > 16) {
+      do {
         const std::uint64_t controls = controls_at(first);
         if (controls != 0) return first + (__builtin_ctzll(controls) >> 3);  // the lowest address first
-      }
-      if (first == last) return last;
-      // The last 8 bytes, overlapping what is known to be data: the first control in them is at or after
-      // `first`.
-      const std::uint64_t controls = controls_at(last - 8);
-      return controls == 0 ? last : last - 8 + (__builtin_ctzll(controls) >> 3);
+        first += 8;
+      } while (last - first > 16);
+    } else if (last - first < 8) {
+      while (first != last && is_data(*first)) ++first;
+      return first;
     }
+    // 8..16 bytes left (a direct variable transfer's whole frame): their first 8, then their last 8,
+    // overlapping what is known to be data, so the first control in them is at or after `first`.
+    std::uint64_t controls = controls_at(first);
+    if (controls != 0) return first + (__builtin_ctzll(controls) >> 3);
+    controls = controls_at(last - 8);
+    return controls == 0 ? last : last - 8 + (__builtin_ctzll(controls) >> 3);
   }
 #endif
   while (first != last && is_data(*first)) ++first;

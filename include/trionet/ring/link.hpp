@@ -462,7 +462,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     const std::size_t n = straight.size();
     // The forward buffer is empty too: nothing more while a forwarded message is open or no own one waits.
     if (forwarding_message() || queue_.empty()) return n;
-    return n + transmit(out + n, capacity - n);
+    return n + transmit_own(out + n, capacity - n);
   }
 
   // ---- link side: transmit ----
@@ -635,6 +635,12 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     if (forwarding_message() || !queue_.pop(byte)) return -1;
     forward_.park();
     return byte;
+  }
+
+  // `transmit` after a straight-through relay, when an own message waits (out of line: the relay's common
+  // path stays small).
+  TRIONET_NOINLINE std::size_t transmit_own(std::uint8_t* out, std::size_t capacity) noexcept {
+    return transmit(out, capacity);
   }
 
   // The receive side, forwarding `into` the forward buffer or a `straight_out`.

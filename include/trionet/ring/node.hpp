@@ -202,7 +202,7 @@ class node : public byte_port {
       const auto passed = link_.receive_passing(p, end, straight...);
       if (passed.header) passed_header();
       p = passed.stop;
-      if (p == end) return;
+      if (TRIONET_LIKELY(p == end)) return;
       p = receive_local(p, end);
     }
   }
