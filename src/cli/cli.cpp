@@ -211,23 +211,24 @@ char* put_decimal(char* to, std::uint64_t value) {
       "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
       "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
       "8081828384858687888990919293949596979899";
-  char digits[20];
-  std::size_t n = sizeof digits;  // filled from the end, two digits a step
+  std::size_t digits = 1;
+  for (std::uint64_t v = value; v >= 10U; v /= 10U) ++digits;
+  char* end = to + digits;  // written from the end, two digits a step
+  char* at = end;
   while (value >= 100U) {
     const auto pair = static_cast<std::size_t>(value % 100U) * 2U;
     value /= 100U;
-    digits[--n] = pairs[pair + 1U];
-    digits[--n] = pairs[pair];
+    *--at = pairs[pair + 1U];
+    *--at = pairs[pair];
   }
   if (value >= 10U) {
     const auto pair = static_cast<std::size_t>(value) * 2U;
-    digits[--n] = pairs[pair + 1U];
-    digits[--n] = pairs[pair];
+    *--at = pairs[pair + 1U];
+    *--at = pairs[pair];
   } else {
-    digits[--n] = static_cast<char>('0' + value);
+    *--at = static_cast<char>('0' + value);
   }
-  for (; n != sizeof digits; ++n) *to++ = digits[n];
-  return to;
+  return end;
 }
 
 }  // namespace
@@ -294,6 +295,17 @@ event& event::boolean(std::string_view name, bool value) {
 event& event::text(std::string_view name, std::string_view value) {
   key(name);
   host::append_json_string(*this, value);
+  return *this;
+}
+
+event& event::name(std::string_view name, std::string_view value) {
+  char text[144];
+  std::size_t at = put_key(text, name.substr(0, 64));
+  value = value.substr(0, 64);
+  text[at++] = '"';
+  for (const char c : value) text[at++] = c;
+  text[at++] = '"';
+  put(text, at);
   return *this;
 }
 

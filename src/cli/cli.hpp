@@ -182,6 +182,9 @@ class event {
   event& boolean(std::string_view name, bool value);
   /// A string field; the text is escaped (host::append_json_string).
   event& text(std::string_view name, std::string_view value);
+  /// A string field whose value is one of the program's own names (letters, digits, '_'), never input:
+  /// written without the escaping scan (the decoders' "type" fields).
+  event& name(std::string_view name, std::string_view value);
   /// A field whose value is already JSON.
   event& json(std::string_view name, std::string_view value);
   /// "time": nanoseconds since 1970 (or since the start of a simulation) as a string of decimal seconds with

@@ -258,7 +258,7 @@ void append_ring_event_body(event& e, const ring::decode_result& result) {
   }
   switch (m.type) {
     case ring::message_type::character:
-      e.text("type", "char").number("hops", m.hops);
+      e.name("type", "char").number("hops", m.hops);
       e.text("text", std::string_view(reinterpret_cast<const char*>(m.text.data()), m.text.size()));
       return;
     case ring::message_type::variable: {
@@ -268,15 +268,15 @@ void append_ring_event_body(event& e, const ring::decode_result& result) {
       for (unsigned i = 0; i < 16; ++i) raw[3 + i] = digits[bits >> (60U - 4U * i) & 0xFU];
       raw[19] = '"';
       raw[20] = 0;
-      e.text("type", "var").number("hops", m.hops).number("vr", m.vr).json("raw", std::string_view(raw, 20));
+      e.name("type", "var").number("hops", m.hops).number("vr", m.vr).json("raw", std::string_view(raw, 20));
       e.real("value", trionet::q32_to_double(m.value));
       return;
     }
     case ring::message_type::keypad_offset:
-      e.text("type", "offset").number("hops", m.hops).number("offset", m.offset);
+      e.name("type", "offset").number("hops", m.hops).number("offset", m.offset);
       return;
     case ring::message_type::keypad_mode:
-      e.text("type", "mode").number("hops", m.hops).number("mode", m.mode);
+      e.name("type", "mode").number("hops", m.hops).number("mode", m.mode);
       return;
   }
 }
