@@ -49,11 +49,14 @@ class profile_decoder {
  public:
   profile_decoder();
 
+  // The default decoder is called directly (inlined), the others through the variant.
   ring::decode_result push(std::uint8_t byte) {
+    if (auto* const fixed = std::get_if<0>(&decoder_)) return fixed->push(byte);
     return std::visit([byte](auto& dec) { return dec.push(byte); }, decoder_);
   }
   template <class Sink>
   void push(byte_view bytes, Sink&& sink) {
+    if (auto* const fixed = std::get_if<0>(&decoder_)) return fixed->push(bytes, sink);
     std::visit([&](auto& dec) { dec.push(bytes, sink); }, decoder_);
   }
   ring::decode_result line_idle() {
