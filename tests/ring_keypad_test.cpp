@@ -37,3 +37,12 @@ TEST(RingKeypad, ASecondKeypadOffsetMovesWhereKeysGo) {
   EXPECT_EQ(drain(keypad), (std::vector<std::uint8_t>{ring::make_header(5, 1), 'Y', ring::make_end_of_message(5)}));
   EXPECT_EQ(keypad.counters().frame_errors, 0u);
 }
+
+// Every key_status has its enumerator's spelling (the CLI and the traces print it).
+TEST(RingKeypad, KeyStatusNamesAreTheEnumeratorsSpelling) {
+  EXPECT_STREQ(trionet::ring::to_string(trionet::ring::key_status::ok), "ok");
+  EXPECT_STREQ(trionet::ring::to_string(trionet::ring::key_status::nothing_to_send), "nothing_to_send");
+  EXPECT_STREQ(trionet::ring::to_string(trionet::ring::key_status::local_mode), "local_mode");
+  EXPECT_STREQ(trionet::ring::to_string(trionet::ring::key_status::queue_full), "queue_full");
+  EXPECT_STREQ(trionet::ring::to_string(static_cast<trionet::ring::key_status>(99)), "unknown");
+}
