@@ -121,6 +121,28 @@ TEST(CanNode, ReceivedFrameOnOwnIdentifierWritesTheVr) {
   EXPECT_EQ(node4.counters().written, 2U);
 }
 
+// The byte order is configurable (docs/protocol.md 2.2): a little-endian node sends and reads little-endian
+// numbers, and a big-endian node reads the same bytes as another value.
+TEST(CanNode, LittleEndianNodesSendAndReceiveLittleEndianNumbers) {
+  recording_port wire;
+  vr_table<256> vrs1;
+  vr_table<256> vrs4;
+  vr_table<256> big_endian_vrs;
+  vr_exchange_node node1(address(5, 1), wire, vrs1, byte_order::little_endian);
+  vr_exchange_node node4(address(5, 4), wire, vrs4, byte_order::little_endian);
+  vr_exchange_node big4(address(5, 4), wire, big_endian_vrs);
+  EXPECT_EQ(node1.order(), byte_order::little_endian);
+  EXPECT_EQ(big4.order(), byte_order::big_endian);
+  ASSERT_EQ(node1.send_to_node(4, 1, 2.345), send_status::ok);
+  ASSERT_EQ(wire.frames.size(), 1U);
+  EXPECT_EQ(wire.frames[0], make_frame(40, {0x01, 0x00, 0x02, 0x00, 0x00, 0x00, 0x7A, 0x0D}));
+  EXPECT_EQ(node4.receive(wire.frames[0]).status, receive_status::ok);
+  EXPECT_EQ(vrs4[1], 2.345);
+  // Read big-endian, 7A 0D is 31245 ten-thousandths: not a fraction, so nothing is written.
+  EXPECT_EQ(big4.receive(wire.frames[0]).status, receive_status::bad_fraction);
+  EXPECT_EQ(big_endian_vrs[1], 0.0);
+}
+
 TEST(CanNode, ForeignAndMalformedFramesAreDroppedAndCountedByReason) {
   recording_port wire;
   vr_table<256> vrs;

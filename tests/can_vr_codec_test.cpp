@@ -39,6 +39,47 @@ TEST(CanVrCodec, ProtocolExampleVrOneIsTwoPointThreeFourFive) {
   EXPECT_EQ(to_double(back.message.value), 2.345);
 }
 
+// The byte order of the integer part and the fraction is configurable (docs/protocol.md 2.2).
+TEST(CanVrCodec, LittleEndianReversesEachNumberOnly) {
+  std::uint8_t data[8] = {};
+  ASSERT_EQ(encode_vr(1, 2.345, data, byte_order::little_endian), encode_status::ok);
+  EXPECT_EQ(hex(data), "0100020000007A0D");
+  const decode_result back = decode_vr_message(byte_view(data), byte_order::little_endian);
+  ASSERT_EQ(back.status, decode_status::ok);
+  EXPECT_EQ(back.message.value.integer_part, 2U);
+  EXPECT_EQ(back.message.value.fraction, 3450);
+  // Read in the other order, 7A 0D is 31245: not a fraction.
+  EXPECT_EQ(decode_vr_message(byte_view(data)).status, decode_status::bad_fraction);
+  const vr_message parts{9, vr_value{true, 0x01020304U, 0x0506}};
+  ASSERT_EQ(encode_vr_message(parts, data, byte_order::little_endian), encode_status::ok);
+  EXPECT_EQ(hex(data), "0901040302010605");
+  ASSERT_EQ(encode_vr_message(parts, data, byte_order::big_endian), encode_status::ok);
+  EXPECT_EQ(hex(data), "0901010203040506");
+  EXPECT_STREQ(to_string(byte_order::little_endian), "little_endian");
+  EXPECT_STREQ(to_string(byte_order::big_endian), "big_endian");
+}
+
+TEST(CanVrCodec, BothByteOrdersRoundTripRandomParts) {
+  std::mt19937 random(31);
+  for (byte_order order : {byte_order::big_endian, byte_order::little_endian}) {
+    for (int i = 0; i < 2000; ++i) {
+      vr_message m;
+      m.vr = static_cast<std::uint8_t>(random());
+      m.value.integer_part = static_cast<std::uint32_t>(random());
+      m.value.fraction = static_cast<std::uint16_t>(random() % 10000);
+      m.value.negative = (random() & 1) != 0 && (m.value.integer_part != 0 || m.value.fraction != 0);
+      std::uint8_t data[8] = {};
+      ASSERT_EQ(encode_vr_message(m, data, order), encode_status::ok);
+      const decode_result back = decode_vr_message(byte_view(data), order);
+      ASSERT_EQ(back.status, decode_status::ok);
+      EXPECT_EQ(back.message.vr, m.vr);
+      EXPECT_EQ(back.message.value.negative, m.value.negative);
+      EXPECT_EQ(back.message.value.integer_part, m.value.integer_part);
+      EXPECT_EQ(back.message.value.fraction, m.value.fraction);
+    }
+  }
+}
+
 struct rounding_case {
   double input;
   bool negative;

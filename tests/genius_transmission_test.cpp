@@ -2,6 +2,7 @@
 // receiver.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <type_traits>
 #include <vector>
@@ -555,3 +556,118 @@ TEST(GeniusTransmissionReceiver, StopBitErrorInsideATransmission) {
 }
 
 }  // namespace
+
+// ---- control layouts (docs/protocol.md 3.2: configurable) ----
+
+// Every layout: the four tags as a permutation of 0..3, in bits 7..6 or 1..0.
+std::vector<control_layout> every_layout() {
+  std::vector<control_layout> layouts;
+  std::uint8_t tags[4] = {0, 1, 2, 3};
+  do {
+    for (tag_position position : {tag_position::high, tag_position::low}) {
+      layouts.push_back(control_layout{tags[0], tags[1], tags[2], tags[3], position});
+    }
+  } while (std::next_permutation(tags, tags + 4));
+  return layouts;
+}
+
+TEST(GeniusControlLayout, TheDefaultIsTheDrawnLayout) {
+  constexpr control_layout drawn{};
+  static_assert(drawn.valid(), "the default layout is valid");
+  EXPECT_EQ(start_character(4, false, drawn), start_character(4, false));
+  EXPECT_EQ(stop_character(0x2a, drawn), control_character(0x6a));
+  EXPECT_EQ(unknown_control_character(), control_character(0xa0));
+  EXPECT_EQ(read_control(0xa0).kind, control_kind::unknown);
+}
+
+TEST(GeniusControlLayout, TagInTheLowBitsMovesTheFieldsUp) {
+  // Stop = 0, Start = 1, End of block = 2, Start of block = 3, tag in bits 1..0.
+  const control_layout low{1, 0, 3, 2, tag_position::low};
+  ASSERT_TRUE(low.valid());
+  EXPECT_EQ(start_character(31, true, low), control_character(0xfd));        // 1 11111 01
+  EXPECT_EQ(stop_character(0x2a, low), control_character(0xa8));             // 101010 00
+  EXPECT_EQ(start_of_block_character(9, low), control_character(0x27));      // 0 01001 11
+  EXPECT_EQ(end_of_block_character(0x3f, low), control_character(0xfe));     // 111111 10
+  EXPECT_EQ(unknown_control_character(low), control_character(0x83));        // 1 00000 11
+  const control_fields start = read_control(0xfd, low);
+  EXPECT_EQ(start.kind, control_kind::start);
+  EXPECT_TRUE(start.broadcast);
+  EXPECT_EQ(start.sba, 31u);
+  EXPECT_EQ(read_control(0xa8, low).crc, 0x2au);
+  EXPECT_EQ(read_control(0x83, low).kind, control_kind::unknown);
+}
+
+TEST(GeniusControlLayout, ValidOnlyForFourDifferentTagsBelowFour) {
+  EXPECT_FALSE((control_layout{0, 0, 2, 3, tag_position::high}.valid()));
+  EXPECT_FALSE((control_layout{0, 1, 2, 4, tag_position::high}.valid()));
+  EXPECT_EQ(every_layout().size(), 48u);
+  for (const control_layout& l : every_layout()) EXPECT_TRUE(l.valid());
+}
+
+bool same(const transmission& got, const transmission& sent) {
+  if (got.sender != sent.sender || got.broadcast != sent.broadcast) return false;
+  if (!sent.broadcast && got.destination != sent.destination) return false;
+  if (got.segments.size() != sent.segments.size()) return false;
+  for (std::size_t i = 0; i < sent.segments.size(); ++i) {
+    const segment& a = got.segments[i];
+    const segment& b = sent.segments[i];
+    if (a.block != b.block || (b.block && a.destination != b.destination)) return false;
+    if (!std::equal(a.data.begin(), a.data.end(), b.data.begin(), b.data.end())) return false;
+  }
+  return true;
+}
+
+TEST(GeniusControlLayout, EveryLayoutRoundTripsAndEveryByteReadsAsItWasWritten) {
+  rng random(77);
+  unsigned differing = 0;
+  for (const control_layout& layout : every_layout()) {
+    // Each control byte reads back as the character that wrote it.
+    for (unsigned fields = 0; fields < 64; ++fields) {
+      const auto f = static_cast<std::uint8_t>(fields);
+      const control_fields start = read_control(start_character(f & 0x1f, (f & 0x20) != 0, layout).byte, layout);
+      EXPECT_EQ(start.kind, control_kind::start);
+      EXPECT_EQ(start.sba, f & 0x1f);
+      EXPECT_EQ(start.broadcast, (f & 0x20) != 0);
+      EXPECT_EQ(read_control(stop_character(f, layout).byte, layout).crc, f);
+      EXPECT_EQ(read_control(stop_character(f, layout).byte, layout).kind, control_kind::stop);
+      EXPECT_EQ(read_control(end_of_block_character(f, layout).byte, layout).kind, control_kind::end_of_block);
+      EXPECT_EQ(read_control(start_of_block_character(f & 0x1f, layout).byte, layout).sba, f & 0x1f);
+    }
+    // Transmissions encoded in the layout parse back in it. Read in the default layout, a transmission whose
+    // characters differ from its default encoding is never the transmission that was sent.
+    transmission_parser<128, 8> parser(crc6_g704{}, layout);
+    transmission_parser<128, 8> default_parser;
+    for (int round = 0; round < 20; ++round) {
+      random_transmission r;
+      make_random(random, r);
+      std::vector<character> out(600);
+      const encode_result e = encode_transmission(span<character>(out.data(), out.size()), r.t, crc6_g704{}, layout);
+      ASSERT_TRUE(e);
+      out.resize(e.length);
+      ASSERT_EQ(push_all(parser, out).back(), parse_status::ok);
+      expect_same(parser.received(), r.t);
+      const std::vector<character> in_default = encode(r.t);
+      if (in_default != out) {
+        ++differing;
+        const bool read_as_sent = push_all(default_parser, out).back() == parse_status::ok &&
+                                  same(default_parser.received(), r.t);
+        EXPECT_FALSE(read_as_sent);
+      }
+    }
+  }
+  EXPECT_GT(differing, 47u * 10u);  // most transmissions of the 47 other layouts differ
+}
+
+TEST(GeniusControlLayout, TheReceiverTakesALayout) {
+  const control_layout swapped{1, 0, 2, 3, tag_position::high};
+  std::vector<character> characters(600);
+  const encode_result e =
+      encode_transmission(span<character>(characters.data(), characters.size()), example, crc6_g704{}, swapped);
+  ASSERT_TRUE(e);
+  characters.resize(e.length);
+  transmission_receiver<256, 16> with_layout(crc6_g704{}, swapped);
+  EXPECT_EQ(push_bits(with_layout, bits_of(characters)).back().parse, parse_status::ok);
+  transmission_receiver<> with_default;
+  push_bits(with_default, bits_of(characters));
+  EXPECT_EQ(with_default.parser().count(parse_status::ok), 0u);
+}

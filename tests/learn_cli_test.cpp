@@ -19,6 +19,7 @@
 #include "support/run_cli.hpp"
 #include "trionet/host/pcapng.hpp"
 #include "trionet/host/text.hpp"
+#include "trionet/genius/crc6.hpp"
 #include "trionet/ring/keypad.hpp"
 
 namespace {
@@ -504,6 +505,59 @@ TEST(LearnCli, EncodeAndDecodeUseTheProfile) {
             std::string::npos)
       << decoded.out;
   EXPECT_NE(run_cli("ring decode", encoded.out).out.find("crc_error"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+// The CAN byte order and the Genius control layout of a profile reach the encoders and decoders.
+TEST(LearnCli, CanByteOrderAndGeniusControlLayoutComeFromTheProfile) {
+  learn::profile p;
+  p.can.byte_order = trionet::can::byte_order::little_endian;
+  p.genius.control = {1, 0, 3, 2, trionet::genius::tag_position::low};
+  const std::string path = temp_path("orders.json");
+  write_file(path, learn::write_profile(p));
+
+  const auto frame = run_cli("can encode --from 1 --to 4 --vr 1 --value 2.345 --profile " + path);
+  EXPECT_EQ(frame.exit_code, 0) << frame.err;
+  EXPECT_EQ(frame.out, "028#0100020000007A0D\n");  // docs/protocol.md 2.2's example, numbers reversed
+  const auto read = run_cli("can decode --profile " + path, frame.out);
+  EXPECT_NE(read.out.find("\"vr\":1,\"negative\":false,\"int\":2,\"frac\":3450,\"value\":2.345"),
+            std::string::npos)
+      << read.out;
+  const auto read_by_default = run_cli("can decode", frame.out);
+  EXPECT_NE(read_by_default.out.find("\"reason\":\"bad_fraction\""), std::string::npos) << read_by_default.out;
+
+  const std::uint8_t data[] = {0x11};
+  const unsigned crc = trionet::genius::crc6_g704::compute(trionet::byte_view(data, 1));
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "c:91 11 c:%02x\n", crc << 2);  // Start: 1 00100 01; Stop: tag 0
+  const auto encoded = run_cli("genius encode --from 4 --broadcast 11 --profile " + path);
+  EXPECT_EQ(encoded.exit_code, 0) << encoded.err;
+  EXPECT_EQ(encoded.out, expected);
+  const auto decoded = run_cli("genius decode --profile " + path, encoded.out);
+  EXPECT_NE(decoded.out.find("transmission from SBA 4, broadcast"), std::string::npos) << decoded.out;
+  EXPECT_NE(decoded.out.find("1 transmission, 0 errors"), std::string::npos) << decoded.out;
+  const auto decoded_by_default = run_cli("genius decode", encoded.out);
+  EXPECT_EQ(decoded_by_default.out.find("transmission from"), std::string::npos) << decoded_by_default.out;
+  EXPECT_NE(decoded_by_default.out.find("0 transmissions, 1 error"), std::string::npos) << decoded_by_default.out;
+  std::remove(path.c_str());
+}
+
+// The keypad display model of a profile reaches the simulated keypads (the manual's Example 1 prints
+// "SPEED:" and "LENGTH:" each with CR LF).
+TEST(LearnCli, DisplayModelComesFromTheProfile) {
+  learn::profile p;
+  p.keypad.display.carriage_return = ring::carriage_return_rule::ignored;
+  const std::string path = temp_path("display.json");
+  write_file(path, learn::write_profile(p));
+  const auto by_default = run_cli("ring simulate example1 --json");
+  const auto ignored = run_cli("ring simulate example1 --json --profile " + path);
+  EXPECT_EQ(by_default.exit_code, 0) << by_default.err;
+  EXPECT_EQ(ignored.exit_code, 0) << ignored.err;
+  EXPECT_NE(by_default.out.find("\"display\":[\"SPEED:"), std::string::npos) << by_default.out;
+  EXPECT_NE(by_default.out.find("\"LENGTH:"), std::string::npos) << by_default.out;
+  // With CR ignored, LENGTH: follows SPEED: on the first line (and CURSOR(7) then writes over most of it).
+  EXPECT_NE(ignored.out.find("\"display\":[\"SPEED:L "), std::string::npos) << ignored.out;
+  EXPECT_EQ(ignored.out.find("LENGTH:"), std::string::npos) << ignored.out;
   std::remove(path.c_str());
 }
 

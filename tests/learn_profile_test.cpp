@@ -37,8 +37,11 @@ learn::profile custom_profile() {
   p.keypad.defkey = ring::make_default_defkey(p.keypad.codes);
   p.keypad.defkey.value[5] = 200;  // not derived from the codes: written as an array
   p.keypad.key_off = learn::key_off_rule::same;
+  p.keypad.display = {ring::carriage_return_rule::line_start, ring::line_feed_rule::next_line, 32};
   p.can.node_count = 11;
+  p.can.byte_order = trionet::can::byte_order::little_endian;
   p.genius.crc = {0x19, 0x00, true, true, 0x00};  // CRC-6/DARC
+  p.genius.control = {3, 2, 1, 0, genius::tag_position::low};
   return p;
 }
 
@@ -70,6 +73,15 @@ TEST(LearnProfile, TheDefaultIsTheProtocolReferencesDecisions) {
   EXPECT_EQ(learn::key_off_function(p.keypad.key_off)('5'), '5' + 64);
   EXPECT_EQ(p.can.node_count, 5);
   EXPECT_EQ(p.genius.crc, (genius::crc6_parameters{0x03, 0x00, true, true, 0x00}));  // CRC-6/G-704
+  EXPECT_EQ(p.keypad.display.carriage_return, ring::carriage_return_rule::other_line_unless_at_line_start);
+  EXPECT_EQ(p.keypad.display.line_feed, ring::line_feed_rule::ignored);
+  EXPECT_EQ(p.keypad.display.position_base, 0);
+  EXPECT_EQ(p.can.byte_order, trionet::can::byte_order::big_endian);
+  EXPECT_EQ(p.genius.control.start, 0);
+  EXPECT_EQ(p.genius.control.stop, 1);
+  EXPECT_EQ(p.genius.control.start_of_block, 2);
+  EXPECT_EQ(p.genius.control.end_of_block, 3);
+  EXPECT_EQ(p.genius.control.position, genius::tag_position::high);
   // The smallest profile file is the default profile.
   const auto minimal = learn::read_profile("{\"trionet_profile\": 1}");
   ASSERT_TRUE(minimal) << minimal.message;
@@ -91,6 +103,25 @@ TEST(LearnProfile, WhatIsWrittenReadsBack) {
   const std::string custom = learn::write_profile(custom_profile());
   EXPECT_NE(custom.find("\"stop\": 3"), std::string::npos) << custom;
   EXPECT_NE(custom.find("\"defkey\": ["), std::string::npos) << custom;
+  EXPECT_NE(custom.find("\"display\": {\"carriage_return\": \"line_start\", \"line_feed\": \"next_line\", "
+                        "\"position_base\": 32}"),
+            std::string::npos)
+      << custom;
+  EXPECT_NE(custom.find("\"byte_order\": \"little_endian\""), std::string::npos) << custom;
+  EXPECT_NE(custom.find("\"control\": {\"start\": 3, \"stop\": 2, \"start_of_block\": 1, \"end_of_block\": 0, "
+                        "\"tag_position\": \"low\"}"),
+            std::string::npos)
+      << custom;
+  // Each new key on its own differs from the default, so == looks at it.
+  learn::profile one;
+  one.keypad.display.position_base = 1;
+  EXPECT_NE(one, learn::profile{});
+  one = {};
+  one.can.byte_order = trionet::can::byte_order::little_endian;
+  EXPECT_NE(one, learn::profile{});
+  one = {};
+  one.genius.control.position = genius::tag_position::low;
+  EXPECT_NE(one, learn::profile{});
 }
 
 TEST(LearnProfile, AcceptsIntegersOrHexStringsAndOneCharacterStrings) {
@@ -162,8 +193,24 @@ TEST(LearnProfile, EveryErrorNamesTheKey) {
                "keypad.key_off");
   expect_error("{\"trionet_profile\": 1, \"can\": {\"node_count\": 12}}", s::out_of_range, "can.node_count");
   expect_error("{\"trionet_profile\": 1, \"can\": {\"node_count\": 1}}", s::out_of_range, "can.node_count");
-  expect_error("{\"trionet_profile\": 1, \"can\": {\"byte_order\": \"little\"}}", s::unknown_key,
+  expect_error("{\"trionet_profile\": 1, \"can\": {\"byte_order\": \"little\"}}", s::out_of_range,
                "can.byte_order");
+  expect_error("{\"trionet_profile\": 1, \"can\": {\"byte_order\": true}}", s::wrong_type, "can.byte_order");
+  expect_error("{\"trionet_profile\": 1, \"can\": {\"endian\": \"big_endian\"}}", s::unknown_key, "can.endian");
+  expect_error("{\"trionet_profile\": 1, \"keypad\": {\"display\": {\"carriage_return\": \"newline\"}}}",
+               s::out_of_range, "keypad.display.carriage_return");
+  expect_error("{\"trionet_profile\": 1, \"keypad\": {\"display\": {\"line_feed\": 10}}}", s::wrong_type,
+               "keypad.display.line_feed");
+  expect_error("{\"trionet_profile\": 1, \"keypad\": {\"display\": {\"position_base\": 89}}}", s::out_of_range,
+               "keypad.display.position_base");
+  expect_error("{\"trionet_profile\": 1, \"keypad\": {\"display\": {\"rows\": 4}}}", s::unknown_key,
+               "keypad.display.rows");
+  expect_error("{\"trionet_profile\": 1, \"genius\": {\"control\": {\"stop\": 0}}}", s::duplicate_code,
+               "genius.control.stop");  // 0 is Start's default tag
+  expect_error("{\"trionet_profile\": 1, \"genius\": {\"control\": {\"start\": 4}}}", s::out_of_range,
+               "genius.control.start");
+  expect_error("{\"trionet_profile\": 1, \"genius\": {\"control\": {\"tag_position\": \"middle\"}}}",
+               s::out_of_range, "genius.control.tag_position");
   expect_error("{\"trionet_profile\": 1, \"genius\": {\"crc6\": {\"polynomial\": \"0x40\"}}}",
                s::out_of_range, "genius.crc6.polynomial");
   expect_error("{\"trionet_profile\": 1, \"genius\": {\"crc6\": {\"xor_out\": 64}}}", s::out_of_range,
@@ -300,6 +347,18 @@ static_assert(plain::can_node_count == 5 && custom::net::can_node_count == 11, "
 static_assert(custom::net::ring_max_characters == 80 && custom::net::ring_receive_buffer == 512, "");
 static_assert(custom::net::keypad_config.key_off_code == ring::same_key_off_code, "");
 static_assert(plain::keypad_config.key_off_code == ring::default_key_off_code, "");
+static_assert(plain::can_byte_order == trionet::can::byte_order::big_endian, "");
+static_assert(custom::net::can_byte_order == trionet::can::byte_order::little_endian, "");
+static_assert(plain::keypad_config.display.carriage_return ==
+                  ring::carriage_return_rule::other_line_unless_at_line_start, "");
+static_assert(custom::net::keypad_config.display.carriage_return == ring::carriage_return_rule::line_start &&
+                  custom::net::keypad_config.display.line_feed == ring::line_feed_rule::next_line &&
+                  custom::net::keypad_config.display.position_base == 32, "");
+static_assert(plain::genius_control.start == 0 && plain::genius_control.end_of_block == 3 &&
+                  plain::genius_control.position == trionet::genius::tag_position::high, "");
+static_assert(custom::net::genius_control.start == 3 && custom::net::genius_control.stop == 2 &&
+                  custom::net::genius_control.start_of_block == 1 && custom::net::genius_control.end_of_block == 0 &&
+                  custom::net::genius_control.position == trionet::genius::tag_position::low, "");
 
 int main() {
   int failures = 0;
@@ -329,7 +388,12 @@ int main() {
   custom::net::motion_coordinator<> mc(vr, custom::net::defkey);
   custom::net::keypad<> keypad(custom::net::keypad_config);
   (void)mc;
-  (void)keypad;
+  failures += keypad.display().model().position_base != 32;
+  const trionet::genius::character stop = trionet::genius::stop_character(5, custom::net::genius_control);
+  failures += stop.byte != (5 << 2 | 2);  // Stop's tag 2, in bits 1..0
+  std::uint8_t can_data[8] = {};
+  failures += trionet::can::encode_vr(1, 2.345, can_data, custom::net::can_byte_order) != trionet::can::encode_status::ok;
+  failures += can_data[2] != 2 || can_data[6] != 0x7A;
   return failures;
 }
 )";

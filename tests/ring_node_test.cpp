@@ -494,6 +494,57 @@ TEST(RingKeypadDisplay, CarriageReturnAtTheStartOfALineDoesNothing) {
   EXPECT_EQ(std::string(d.line(1)), "XYNGTH:             ");
 }
 
+// The display model is configurable (protocol 1.9): what 13 and 10 do, and how CURSOR's position is sent.
+TEST(RingKeypadDisplay, TheModelChoosesWhatCarriageReturnAndLineFeedDo) {
+  const auto shown = [](ring::display_model model, const char* text) {
+    ring::keypad_display d(model);
+    d.write(byte_view(reinterpret_cast<const std::uint8_t*>(text), std::strlen(text)));
+    return std::string(d.line(0)) + "|" + std::string(d.line(1)) + "|" + std::to_string(d.cursor());
+  };
+  ring::display_model m;
+  EXPECT_EQ(shown(m, "\rA\r\nB\r\n"), "A                   |B                   |0");
+  m.carriage_return = ring::carriage_return_rule::other_line;  // 13 at the start of a line still moves
+  EXPECT_EQ(shown(m, "\rA\r\nB\r\n"), "B                   |A                   |20");
+  m.carriage_return = ring::carriage_return_rule::line_start;  // 13 returns on the same line
+  EXPECT_EQ(shown(m, "AB\rC"), "CB                  |                    |1");
+  m.line_feed = ring::line_feed_rule::next_line;  // CR LF: start of the line, then down (and back up)
+  EXPECT_EQ(shown(m, "AB\r\nC\r\nD"), "DB                  |C                   |1");
+  m.carriage_return = ring::carriage_return_rule::ignored;
+  m.line_feed = ring::line_feed_rule::ignored;
+  EXPECT_EQ(shown(m, "A\r\nB"), "AB                  |                    |2");
+  EXPECT_EQ(ring::keypad_display(m).model().carriage_return, ring::carriage_return_rule::ignored);
+  EXPECT_STREQ(ring::to_string(ring::carriage_return_rule::other_line_unless_at_line_start),
+               "other_line_unless_at_line_start");
+  EXPECT_STREQ(ring::to_string(ring::line_feed_rule::next_line), "next_line");
+}
+
+TEST(RingKeypadDisplay, ThePositionBaseIsTakenFromTheCursorCharacter) {
+  ring::display_model m;
+  m.position_base = 32;  // CURSOR(p) sent as the character p + 32
+  ring::keypad_display d(m);
+  const std::uint8_t to_28[] = {27, 'H', 28 + 32, 'X'};
+  d.write(byte_view(to_28, sizeof to_28));
+  EXPECT_EQ(std::string(d.line(1)), "        X           ");
+  const std::uint8_t below_base[] = {27, 'H', 31, 'Y'};  // below the base: no position, ignored
+  d.write(byte_view(below_base, sizeof below_base));
+  EXPECT_EQ(d.cursor(), 30u);
+  const std::uint8_t last[] = {27, 'H', 39 + 32, 'Z'};
+  d.write(byte_view(last, sizeof last));
+  EXPECT_EQ(d.line(1)[19], 'Z');
+  static_assert(ring::max_position_base + 39 == 127, "the last position must stay a 7-bit character");
+}
+
+// A keypad's display follows the model of its configuration.
+TEST(RingKeypadDisplay, TheKeypadTakesTheModelFromItsConfiguration) {
+  ring::keypad_config config;
+  config.display.carriage_return = ring::carriage_return_rule::line_start;
+  ring::keypad<> keypad(config);
+  feed(keypad, frame_of(ring::message::keypad_offset(1, 2)));
+  feed(keypad, chars(1, "AB\rC"));
+  EXPECT_EQ(std::string(keypad.display().line(0)), "CB                  ");
+  EXPECT_EQ(keypad.display().model().carriage_return, ring::carriage_return_rule::line_start);
+}
+
 // ---- simulator ----
 
 TEST(RingSimulator, IsDeterministicAndCountsByteTimes) {

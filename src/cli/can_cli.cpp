@@ -307,13 +307,13 @@ bool can_message_frame(const arguments& parsed, can::frame& out, std::string& er
   out = can::frame{};
   out.id = id.identifier;
   out.dlc = can::vr_message_size;
-  const can::encode_status encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data);
+  const can::encode_status encoded = can::encode_vr(static_cast<std::uint16_t>(vr), value, out.data, active_profile().can.byte_order);
   if (encoded == can::encode_status::too_large) {
     error = "--value magnitude must round to less than 4294967296, got " + given("--value");
     return false;
   }
   // Every input was checked above; and what is written must be what `can decode` accepts.
-  if (encoded != can::encode_status::ok || id.status != can::scheme_status::ok || !can::decode_vr_frame(out) ||
+  if (encoded != can::encode_status::ok || id.status != can::scheme_status::ok || !can::decode_vr_frame(out, active_profile().can.byte_order) ||
       !can::route_of(nodes, out.identifier())) {
     error = "cannot encode this message";
     return false;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli.hpp"
+#include "profile_cli.hpp"
 #include "trionet/can.hpp"
 #include "trionet/host/candump.hpp"
 
@@ -24,7 +25,8 @@ bool can_message_frame(const arguments& parsed, can::frame& out, std::string& er
 /// The event of one CAN frame, as `can decode` prints it: "vr" (id, from, to, vr, negative, int, frac, value)
 /// for a TN20-17 VR message of an exchange of `nodes` controllers; "frame" with its `kind` for a valid frame
 /// that is no VR message; "error" with the `reason` for a frame on an exchange identifier that is no VR
-/// message. `where(event&)` adds the position. True for a VR message.
+/// message. The numbers are read in the active profile's byte order. `where(event&)` adds the position. True
+/// for a VR message.
 template <class Where>
 bool append_can_frame_event(std::string& out, std::uint8_t nodes, const host::candump_record& r, Where&& where) {
   const auto other = [&](const char* kind, std::uint32_t id) {
@@ -51,7 +53,7 @@ bool append_can_frame_event(std::string& out, std::uint8_t nodes, const host::ca
   if (frame.remote()) return other("remote", frame.identifier());
   const can::route_result route = can::route_of(nodes, frame.identifier());
   if (!route) return other("foreign_id", frame.identifier());
-  const can::decode_result decoded = can::decode_vr_frame(frame);
+  const can::decode_result decoded = can::decode_vr_frame(frame, active_profile().can.byte_order);
   if (!decoded) {
     event e(out, "error");
     where(e);

@@ -279,7 +279,8 @@ int node_main(const words& given) {
   }
   auto vrs = std::make_unique<node_vrs>();
   node_port port(can_bus, capture, interface);
-  can::vr_exchange_node node(can::make_node_address(nodes, static_cast<std::uint8_t>(own)).address, port, *vrs);
+  can::vr_exchange_node node(can::make_node_address(nodes, static_cast<std::uint8_t>(own)).address, port, *vrs,
+                            active_profile().can.byte_order);
   live::event_log log(args.flag("--json"), events);
   bus_counters counters;
 

@@ -97,6 +97,10 @@ genius::crc6_runtime profile_crc() {
   return genius::crc6_runtime(active_profile().genius.crc);
 }
 
+const genius::control_layout& profile_control() {
+  return active_profile().genius.control;
+}
+
 // ---------------------------------------------------------------------------------------------------
 // encode
 
@@ -142,10 +146,10 @@ int encode_main(const std::vector<std::string>& words) {
   if (!length) return fail("cannot encode this transmission");
   std::vector<genius::character> out(length.length);
   const genius::encode_result written =
-      genius::encode_transmission(span<genius::character>(out.data(), out.size()), t, profile_crc());
+      genius::encode_transmission(span<genius::character>(out.data(), out.size()), t, profile_crc(), profile_control());
   if (!written) return fail("cannot encode this transmission");
   // What is printed must be what `genius decode` accepts: parse it with the same parser.
-  decode_parser check(profile_crc());
+  decode_parser check(profile_crc(), profile_control());
   genius::parse_status parsed = genius::parse_status::in_progress;
   for (const genius::character& c : out) {
     parsed = check.push(c);
@@ -201,7 +205,10 @@ std::string shown(std::string_view token) {
 // character also goes to a capture.
 class genius_stream {
  public:
-  explicit genius_stream(std::string& out) : out_(out), parser_(profile_crc()) {}
+  explicit genius_stream(std::string& out)
+      : out_(out),
+        parser_(profile_crc(), profile_control()),
+        splitter_(host::genius_record_splitter::default_max_characters, profile_control()) {}
 
   void capture_to(host::pcapng_writer* writer, std::uint32_t interface, double character_ns) {
     writer_ = writer;
@@ -216,7 +223,7 @@ class genius_stream {
     genius::parse_status status;
     std::string detail;
     if (decoded) {
-      if (decoded.value.control && genius::read_control(decoded.value.byte).kind == genius::control_kind::start) {
+      if (decoded.value.control && genius::read_control(decoded.value.byte, profile_control()).kind == genius::control_kind::start) {
         start_ = where;
       }
       status = parser_.push(decoded.value);

@@ -283,9 +283,9 @@ int genius_input(const arguments& args, std::vector<genius::character>& characte
   }
   for (std::uint16_t w : words) {
     const genius::character_result c = genius::decode_character(w);
-    // A damaged character ends the sample it is in: it stands in as control character 0xA0, which the
+    // A damaged character ends the sample it is in: it stands in as a control character the profile's
     // control layout leaves unused (genius::control_kind::unknown abandons the open transmission).
-    characters.push_back(c ? c.value : genius::control_character(0xA0));
+    characters.push_back(c ? c.value : genius::unknown_control_character(active_profile().genius.control));
   }
   return exit_ok;
 }
@@ -296,7 +296,8 @@ int genius_learn_crc(const arguments& args) {
   const int status = genius_input(args, characters);
   if (status != exit_ok) return status;
   const learn::sample_extraction found =
-      learn::genius_crc_samples(span<const genius::character>(characters.data(), characters.size()));
+      learn::genius_crc_samples(span<const genius::character>(characters.data(), characters.size()),
+                                active_profile().genius.control);
   std::vector<learn::crc6_sample> samples = found.blocks;
   samples.insert(samples.end(), found.stops.begin(), found.stops.end());
   learn::crc6_learn_options options;

@@ -549,7 +549,7 @@ int join_keypad_with(const join_settings& settings) {
   if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
   const learn::keypad_profile& codes = active_profile().keypad;
   auto keypad = std::make_unique<host_keypad<Layout>>(
-      ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off)},
+      ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off), codes.display},
       ring::crc16_runtime(active_profile().ring.crc));
   raw_terminal terminal;
   const bool interactive = terminal.enter(STDIN_FILENO);

@@ -262,6 +262,7 @@ int ring_simulate_main(const words& all) {
   config.keypad_codes = active_profile().keypad.codes;
   config.key_off_code = learn::key_off_function(active_profile().keypad.key_off);
   config.defkey = active_profile().keypad.defkey;
+  config.display = active_profile().keypad.display;
   long long number = 0;
   std::uint64_t max_byte_times = 1000000;
   if (args.has("--byte-times")) {

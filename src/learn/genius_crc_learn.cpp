@@ -61,7 +61,7 @@ std::vector<std::uint16_t> signature_of(const genius::crc6_parameters& p, std::s
 
 }  // namespace
 
-sample_extraction genius_crc_samples(span<const genius::character> characters) {
+sample_extraction genius_crc_samples(span<const genius::character> characters, const genius::control_layout& layout) {
   sample_extraction out;
   bool open = false, in_block = false;
   std::size_t pending = 0;  // characters of the open transmission, skipped if it breaks
@@ -82,7 +82,7 @@ sample_extraction genius_crc_samples(span<const genius::character> characters) {
       if (in_block) block.data.push_back(c.byte);
       continue;
     }
-    const genius::control_fields f = genius::read_control(c.byte);
+    const genius::control_fields f = genius::read_control(c.byte, layout);
     switch (f.kind) {
       case genius::control_kind::start:
         abandon();

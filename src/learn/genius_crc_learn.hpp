@@ -22,6 +22,7 @@
 #include "learn/ring_crc_learn.hpp"
 #include "trionet/genius/character.hpp"
 #include "trionet/genius/crc6.hpp"
+#include "trionet/genius/transmission.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::learn {
@@ -32,16 +33,16 @@ struct crc6_sample {
   std::uint8_t crc = 0;  ///< 0..63
 };
 
-/// The CRC samples of a stream of Genius characters, with the default control characters (bits 7..6 of a
-/// control character: 00 Start, 01 Stop, 10 Start of block, 11 End of block): one per Stop (the data since
-/// the Start) and one per End of block (the data since its Start of block). Characters outside a
-/// well-formed transmission are skipped and counted.
+/// The CRC samples of a stream of Genius characters, the control characters read in `layout` (the default:
+/// docs/protocol.md 3.2): one per Stop (the data since the Start) and one per End of block (the data since
+/// its Start of block). Characters outside a well-formed transmission are skipped and counted.
 struct sample_extraction {
   std::vector<crc6_sample> stops;
   std::vector<crc6_sample> blocks;
   std::size_t skipped_characters = 0;
 };
-[[nodiscard]] sample_extraction genius_crc_samples(span<const genius::character> characters);
+[[nodiscard]] sample_extraction genius_crc_samples(span<const genius::character> characters,
+                                                   const genius::control_layout& layout = genius::control_layout{});
 
 struct crc6_member {
   genius::crc6_parameters parameters;

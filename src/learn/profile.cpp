@@ -11,6 +11,12 @@ namespace {
 constexpr const char* order_names[] = {"least_significant_first", "most_significant_first"};
 constexpr const char* crc_input_names[] = {"as_sent", "least_significant_first"};
 constexpr const char* key_off_names[] = {"plus_64", "same"};
+constexpr const char* carriage_return_names[] = {"other_line_unless_at_line_start", "other_line",
+                                                 "line_start", "ignored"};
+constexpr const char* line_feed_names[] = {"ignored", "next_line"};
+constexpr const char* byte_order_names[] = {"big_endian", "little_endian"};
+constexpr const char* tag_position_names[] = {"high", "low"};
+constexpr const char* control_names[] = {"start", "stop", "start_of_block", "end_of_block"};
 constexpr const char* from_codes = "from_codes";
 
 std::string join(const std::string& path, std::string_view key) {
@@ -201,7 +207,7 @@ class reader {
 
   bool keypad_part(const json_value& v, keypad_profile& out) {
     const std::string path = "keypad";
-    if (!object(v, path, {"codes", "defkey", "key_off"})) return false;
+    if (!object(v, path, {"codes", "defkey", "key_off", "display"})) return false;
     if (auto m = find(v, "codes")) {
       const std::string codes_path = join(path, "codes");
       if (!object(*m, codes_path,
@@ -251,6 +257,54 @@ class reader {
       if (!choice(*m, join(path, "key_off"), key_off_names, index)) return false;
       out.key_off = static_cast<key_off_rule>(index);
     }
+    if (auto m = find(v, "display"); m && !display(*m, join(path, "display"), out.display)) return false;
+    return true;
+  }
+
+  bool display(const json_value& v, const std::string& path, ring::display_model& out) {
+    if (!object(v, path, {"carriage_return", "line_feed", "position_base"})) return false;
+    std::size_t index = 0;
+    if (auto m = find(v, "carriage_return")) {
+      if (!choice(*m, join(path, "carriage_return"), carriage_return_names, index)) return false;
+      out.carriage_return = static_cast<ring::carriage_return_rule>(index);
+    }
+    if (auto m = find(v, "line_feed")) {
+      if (!choice(*m, join(path, "line_feed"), line_feed_names, index)) return false;
+      out.line_feed = static_cast<ring::line_feed_rule>(index);
+    }
+    if (auto m = find(v, "position_base")) {
+      long long n = 0;
+      if (!integer(*m, join(path, "position_base"), 0, ring::max_position_base, n)) return false;
+      out.position_base = static_cast<std::uint8_t>(n);
+    }
+    return true;
+  }
+
+  bool control(const json_value& v, const std::string& path, genius::control_layout& out) {
+    if (!object(v, path, {"start", "stop", "start_of_block", "end_of_block", "tag_position"})) return false;
+    std::uint8_t* const tags[] = {&out.start, &out.stop, &out.start_of_block, &out.end_of_block};
+    for (std::size_t i = 0; i < 4; ++i) {
+      long long n = 0;
+      if (auto m = find(v, control_names[i])) {
+        if (!integer(*m, join(path, control_names[i]), 0, 3, n)) return false;
+        *tags[i] = static_cast<std::uint8_t>(n);
+      }
+    }
+    for (std::size_t i = 0; i < 4; ++i) {
+      for (std::size_t other = 0; other < i; ++other) {
+        if (*tags[i] == *tags[other]) {
+          const json_value* at = find(v, control_names[i]);
+          if (at == nullptr) at = find(v, control_names[other]);
+          return fail(profile_status::duplicate_code, join(path, control_names[i]),
+                      std::string("has the same tag as \"") + control_names[other] + "\"", at ? *at : v);
+        }
+      }
+    }
+    if (auto m = find(v, "tag_position")) {
+      std::size_t index = 0;
+      if (!choice(*m, join(path, "tag_position"), tag_position_names, index)) return false;
+      out.position = static_cast<genius::tag_position>(index);
+    }
     return true;
   }
 
@@ -274,16 +328,24 @@ class reader {
     if (auto m = find(root, "ring"); m && !ring_part(*m, out.ring)) return false;
     if (auto m = find(root, "keypad"); m && !keypad_part(*m, out.keypad)) return false;
     if (auto m = find(root, "can")) {
-      if (!object(*m, "can", {"node_count"})) return false;
+      if (!object(*m, "can", {"node_count", "byte_order"})) return false;
       if (auto count = find(*m, "node_count")) {
         long long n = 0;
         if (!integer(*count, "can.node_count", 2, 11, n)) return false;
         out.can.node_count = static_cast<std::uint8_t>(n);
       }
+      if (auto order = find(*m, "byte_order")) {
+        std::size_t index = 0;
+        if (!choice(*order, "can.byte_order", byte_order_names, index)) return false;
+        out.can.byte_order = static_cast<can::byte_order>(index);
+      }
     }
     if (auto m = find(root, "genius")) {
-      if (!object(*m, "genius", {"crc6"})) return false;
+      if (!object(*m, "genius", {"crc6", "control"})) return false;
       if (auto crc = find(*m, "crc6"); crc && !crc6(*crc, "genius.crc6", out.genius.crc)) return false;
+      if (auto layout = find(*m, "control");
+          layout && !control(*layout, "genius.control", out.genius.control))
+        return false;
     }
     return true;
   }
@@ -311,6 +373,16 @@ bool same_defkey(const ring::defkey_table& a, const ring::defkey_table& b) {
   return std::memcmp(a.value, b.value, sizeof a.value) == 0;
 }
 
+bool same_display(const ring::display_model& a, const ring::display_model& b) {
+  return a.carriage_return == b.carriage_return && a.line_feed == b.line_feed &&
+         a.position_base == b.position_base;
+}
+
+bool same_control(const genius::control_layout& a, const genius::control_layout& b) {
+  return a.start == b.start && a.stop == b.stop && a.start_of_block == b.start_of_block &&
+         a.end_of_block == b.end_of_block && a.position == b.position;
+}
+
 bool is_identifier(std::string_view word) {
   if (word.empty()) return false;
   const auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
@@ -328,7 +400,9 @@ bool operator==(const profile& a, const profile& b) noexcept {
          a.ring.max_characters == b.ring.max_characters && a.ring.receive_buffer == b.ring.receive_buffer &&
          std::memcmp(a.keypad.codes.raw, b.keypad.codes.raw, sizeof a.keypad.codes.raw) == 0 &&
          same_defkey(a.keypad.defkey, b.keypad.defkey) && a.keypad.key_off == b.keypad.key_off &&
-         a.can.node_count == b.can.node_count && a.genius.crc == b.genius.crc;
+         same_display(a.keypad.display, b.keypad.display) && a.can.node_count == b.can.node_count &&
+         a.can.byte_order == b.can.byte_order && a.genius.crc == b.genius.crc &&
+         same_control(a.genius.control, b.genius.control);
 }
 
 profile_result read_profile(std::string_view json) {
@@ -383,14 +457,26 @@ std::string write_profile(const profile& p) {
     }
     out += "],\n";
   }
-  out += "    \"key_off\": \"" + std::string(to_string(p.keypad.key_off)) + "\"\n";
+  out += "    \"key_off\": \"" + std::string(to_string(p.keypad.key_off)) + "\",\n";
+  const ring::display_model& d = p.keypad.display;
+  out += "    \"display\": {\"carriage_return\": \"" + std::string(to_string(d.carriage_return)) +
+         "\", \"line_feed\": \"" + to_string(d.line_feed) +
+         "\", \"position_base\": " + std::to_string(d.position_base) + "}\n";
   out += "  },\n";
-  out += "  \"can\": {\"node_count\": " + std::to_string(p.can.node_count) + "},\n";
+  out += "  \"can\": {\"node_count\": " + std::to_string(p.can.node_count) + ", \"byte_order\": \"" +
+         to_string(p.can.byte_order) + "\"},\n";
   const genius::crc6_parameters& g = p.genius.crc;
-  out += "  \"genius\": {\"crc6\": {\"polynomial\": \"" + hex(g.polynomial, 2) + "\", \"initial\": \"" +
+  const genius::control_layout& l = p.genius.control;
+  out += "  \"genius\": {\n";
+  out += "    \"crc6\": {\"polynomial\": \"" + hex(g.polynomial, 2) + "\", \"initial\": \"" +
          hex(g.initial, 2) + "\", \"reflect_in\": " + boolean_text(g.reflect_in) +
          ", \"reflect_out\": " + boolean_text(g.reflect_out) + ", \"xor_out\": \"" + hex(g.xor_out, 2) +
-         "\"}}\n";
+         "\"},\n";
+  out += "    \"control\": {\"start\": " + std::to_string(l.start) + ", \"stop\": " + std::to_string(l.stop) +
+         ", \"start_of_block\": " + std::to_string(l.start_of_block) +
+         ", \"end_of_block\": " + std::to_string(l.end_of_block) + ", \"tag_position\": \"" +
+         to_string(l.position) + "\"}\n";
+  out += "  }\n";
   out += "}\n";
   return out;
 }
@@ -417,7 +503,9 @@ header_result profile_header(const profile& p, std::string_view namespace_name) 
   h += "// constexpr policies for a firmware build. Profile name: " + json_quote(p.name) + "\n";
   h += "#pragma once\n\n";
   h += "#include <cstddef>\n#include <cstdint>\n\n";
+  h += "#include \"trionet/can/vr_codec.hpp\"\n";
   h += "#include \"trionet/genius/crc6.hpp\"\n";
+  h += "#include \"trionet/genius/transmission.hpp\"\n";
   h += "#include \"trionet/ring/crc.hpp\"\n";
   h += "#include \"trionet/ring/decoder.hpp\"\n";
   h += "#include \"trionet/ring/keypad.hpp\"\n";
@@ -460,14 +548,27 @@ header_result profile_header(const profile& p, std::string_view namespace_name) 
     h += (i == 0 ? "" : (i % 16 == 0 ? ",\n    " : ", ")) + std::to_string(p.keypad.defkey.value[i]);
   }
   h += "}};\n";
+  const ring::display_model& d = p.keypad.display;
+  h += "inline constexpr trionet::ring::display_model keypad_display_model = {\n";
+  h += "    trionet::ring::carriage_return_rule::" + std::string(to_string(d.carriage_return)) +
+       ", trionet::ring::line_feed_rule::" + to_string(d.line_feed) + ", " + std::to_string(d.position_base) +
+       "};\n";
   h += "inline constexpr trionet::ring::keypad_config keypad_config = {&keypad_codes, trionet::ring::" +
        std::string(p.keypad.key_off == key_off_rule::same ? "same_key_off_code" : "default_key_off_code") +
-       "};\n\n";
-  h += "// ---- CAN (docs/protocol.md 2.1) ----\n";
-  h += "inline constexpr std::uint8_t can_node_count = " + std::to_string(p.can.node_count) + ";\n\n";
+       ", keypad_display_model};\n\n";
+  h += "// ---- CAN (docs/protocol.md 2.1, 2.2): pass can_byte_order to a vr_exchange_node ----\n";
+  h += "inline constexpr std::uint8_t can_node_count = " + std::to_string(p.can.node_count) + ";\n";
+  h += "inline constexpr trionet::can::byte_order can_byte_order = trionet::can::byte_order::" +
+       std::string(to_string(p.can.byte_order)) + ";\n\n";
   h += "// ---- Genius (docs/protocol.md 3.2) ----\n";
   h += "using genius_crc = trionet::genius::crc6<" + hex(g.polynomial, 2) + ", " + hex(g.initial, 2) + ", " +
-       boolean_text(g.reflect_in) + ", " + boolean_text(g.reflect_out) + ", " + hex(g.xor_out, 2) + ">;\n\n";
+       boolean_text(g.reflect_in) + ", " + boolean_text(g.reflect_out) + ", " + hex(g.xor_out, 2) + ">;\n";
+  const genius::control_layout& l = p.genius.control;
+  h += "/// Pass to encode_transmission and to a transmission_parser or transmission_receiver.\n";
+  h += "inline constexpr trionet::genius::control_layout genius_control = {" + std::to_string(l.start) +
+       ", " + std::to_string(l.stop) + ", " + std::to_string(l.start_of_block) + ", " +
+       std::to_string(l.end_of_block) + ", trionet::genius::tag_position::" + to_string(l.position) +
+       "};\n\n";
   h += "}  // namespace " + ns + "\n";
   result.text = std::move(h);
   return result;

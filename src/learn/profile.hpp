@@ -9,9 +9,12 @@
 #include <string_view>
 
 #include "learn/json.hpp"
+#include "trionet/can/vr_codec.hpp"
 #include "trionet/genius/crc6.hpp"
+#include "trionet/genius/transmission.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/keypad_codes.hpp"
+#include "trionet/ring/keypad_display.hpp"
 #include "trionet/ring/variable_layout.hpp"
 
 namespace trionet::learn {
@@ -50,20 +53,24 @@ struct ring_profile {
 
 /// The profile's name of each key (`keypad.codes.<name>`), in the order of `ring::key`.
 inline constexpr const char* keypad_key_names[ring::key_count] = {
-    "0", "1", "2", "3", "4", "5", "6", "7", "8", "9", "up", "down", "clear", "yes", "no", "point", "start", "stop"};
+    "0", "1",  "2",    "3",     "4",   "5",  "6",     "7",     "8",
+    "9", "up", "down", "clear", "yes", "no", "point", "start", "stop"};
 
 struct keypad_profile {
   ring::keypad_codes codes = ring::default_keypad_codes;  ///< 1.8
   ring::defkey_table defkey = ring::default_defkey;       ///< 1.6 / 1.8
   key_off_rule key_off = key_off_rule::plus_64;           ///< 1.7
+  ring::display_model display{};                          ///< 1.9
 };
 
 struct can_profile {
-  std::uint8_t node_count = 5;  ///< 2..11 (2.1)
+  std::uint8_t node_count = 5;                               ///< 2..11 (2.1)
+  can::byte_order byte_order = can::byte_order::big_endian;  ///< of the numbers in a message (2.2)
 };
 
 struct genius_profile {
-  genius::crc6_parameters crc{};  ///< 3.2: CRC-6/G-704
+  genius::crc6_parameters crc{};     ///< 3.2: CRC-6/G-704
+  genius::control_layout control{};  ///< 3.2: the control characters' bit layout
 };
 
 struct profile {
@@ -90,7 +97,7 @@ enum class profile_status : std::uint8_t {
   unknown_key,          ///< a key the schema does not have
   wrong_type,           ///< e.g. a string where a boolean belongs
   out_of_range,         ///< a number or name outside what the key allows
-  duplicate_code,       ///< two keys of the keypad send the same raw character
+  duplicate_code,  ///< two keypad keys send one raw character, or two Genius control characters share a tag
 };
 
 constexpr const char* to_string(profile_status status) noexcept {

@@ -495,7 +495,8 @@ std::unique_ptr<ring_network> ring_network::build(const std::vector<node_spec>& 
     if (nodes[i].what == node_spec::kind::keypad) {
       slot.keypad = ring::with_variable_layout(config.layout, [&](auto layout) -> std::unique_ptr<keypad_api> {
         return std::make_unique<keypad_of<decltype(layout)>>(
-            ring::keypad_config{&s->config.keypad_codes, config.key_off_code}, ring::crc16_runtime(config.crc));
+            ring::keypad_config{&s->config.keypad_codes, config.key_off_code, config.display},
+            ring::crc16_runtime(config.crc));
       });
       slot.keypad_number = ++s->keypad_count;
       (void)s->sim.add(slot.keypad->port());

@@ -20,6 +20,7 @@
 
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/keypad_codes.hpp"
+#include "trionet/ring/keypad_display.hpp"
 #include "trionet/ring/variable_layout.hpp"
 
 namespace trionet::host {
@@ -43,6 +44,7 @@ struct network_config {
   ring::keypad_codes keypad_codes = ring::default_keypad_codes;  ///< what every keypad sends for each key
   std::uint8_t (*key_off_code)(std::uint8_t) noexcept = ring::default_key_off_code;  ///< the key OFF rule
   ring::defkey_table defkey = ring::default_defkey;  ///< every MC's GET#3 translation
+  ring::display_model display{};                     ///< what every keypad's display does with 13, 10, 27 'H'
 };
 
 enum class event_kind : std::uint8_t {

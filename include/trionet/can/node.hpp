@@ -184,9 +184,14 @@ class vr_exchange_node {
   /// code).
   constexpr vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
       : address_(address), port_(&port), store_(&store) {}
+  /// The same with the byte order of the messages' numbers (vr_codec.hpp; the default is big-endian).
+  constexpr vr_exchange_node(node_address address, port& port, vr_store& store, byte_order order) noexcept
+      : address_(address), port_(&port), store_(&store), order_(order) {}
 
   /// Which node of how many this is.
   [[nodiscard]] node_address address() const noexcept { return address_; }
+  /// The byte order of the numbers in the messages it sends and receives.
+  [[nodiscard]] byte_order order() const noexcept { return order_; }
   /// Program side: the counts since construction or `clear_counters` (each read whole; not all at one
   /// instant).
   [[nodiscard]] node_counters counters() const noexcept {
@@ -225,7 +230,7 @@ class vr_exchange_node {
     const identifier_result id = identifier_to(destination);
     if (!id) return scheme_to_send(id.status);
     frame out;
-    const encode_status encoded = encode_vr(vr, value, out.data);
+    const encode_status encoded = encode_vr(vr, value, out.data, order_);
     if (encoded != encode_status::ok) return encode_to_send(encoded);
     return transmit(id.identifier, out);
   }
@@ -235,7 +240,7 @@ class vr_exchange_node {
     const identifier_result id = identifier_to(destination);
     if (!id) return scheme_to_send(id.status);
     frame out;
-    const encode_status encoded = encode_vr_message(message, out.data);
+    const encode_status encoded = encode_vr_message(message, out.data, order_);
     if (encoded != encode_status::ok) return encode_to_send(encoded);
     return transmit(id.identifier, out);
   }
@@ -272,7 +277,7 @@ class vr_exchange_node {
     }
     result.receive_channel = static_cast<std::uint8_t>(offset + 1U);
     result.sender = static_cast<std::uint8_t>(result.receive_channel < k ? offset + 1U : offset + 2U);
-    const decode_result decoded = decode_vr_frame(received);
+    const decode_result decoded = decode_vr_frame(received, order_);
     switch (decoded.status) {
       case decode_status::ok:
         break;
@@ -361,6 +366,7 @@ class vr_exchange_node {
   node_address address_;
   port* port_;
   vr_store* store_;
+  byte_order order_ = byte_order::big_endian;
   // Written by the program side:
   single_writer<std::uint32_t> sent_;
   single_writer<std::uint32_t> send_busy_;

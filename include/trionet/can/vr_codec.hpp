@@ -8,6 +8,8 @@
 //   sign: 0 = zero or positive, 1 = negative; any other value is an error.
 //   fraction: ten-thousandths of the magnitude (the note's "4 decimal places"); 10000..65535 is an error.
 //   Example, VR(1) = 2.345:   01 | 00 | 00 00 00 02 | 0D 7A      (2 and 3450/10000)
+//   The byte order of the two numbers is a decision (configurable, `byte_order`): big-endian by default;
+//   little-endian gives 01 | 00 | 02 00 00 00 | 7A 0D for the same value.
 //
 // Two ways in: from a double (`encode_vr`, rounding to 4 decimals) or from the parts directly
 // (`encode_vr_message` with a `vr_message`), for firmware that keeps fixed-point values and wants no double
@@ -44,6 +46,23 @@ namespace trionet::can {
 constexpr std::uint8_t vr_message_size = 8;
 /// Largest VR number a message carries (one byte).
 constexpr std::uint16_t max_message_vr = 255;
+
+/// The order of the bytes of the integer part (bytes 2..5) and of the fraction (bytes 6..7).
+enum class byte_order : std::uint8_t {
+  big_endian,     ///< most significant byte first (the default, docs/protocol.md 2.2)
+  little_endian,  ///< least significant byte first
+};
+
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
+constexpr const char* to_string(byte_order order) noexcept {
+  switch (order) {
+    case byte_order::big_endian:
+      return "big_endian";
+    case byte_order::little_endian:
+      return "little_endian";
+  }
+  return "unknown";
+}
 
 /// A value as the message carries it: sign, integer part of the magnitude, fraction in ten-thousandths
 /// (0..9999). The same decimal that trionet/q32.hpp converts to and from Q32.32.
@@ -147,54 +166,75 @@ struct [[nodiscard]] decode_result {
   return {encode_status::ok, out};
 }
 
-/// Writes `message` into the 8 data bytes `out`. A negative zero is sent with sign 0. Nothing is written on
-/// error (fraction > 9999).
+namespace detail {
+
+// Byte i (0 = first on the wire) of an n-byte number in `order`.
+constexpr std::uint8_t number_byte(std::uint32_t number, unsigned n, unsigned i, byte_order order) noexcept {
+  const unsigned shift = 8U * (order == byte_order::big_endian ? n - 1U - i : i);
+  return static_cast<std::uint8_t>(number >> shift);
+}
+
+// The n-byte number at `at` in `order`.
+constexpr std::uint32_t read_number(const std::uint8_t* at, unsigned n, byte_order order) noexcept {
+  std::uint32_t number = 0;
+  for (unsigned i = 0; i < n; ++i) {
+    const unsigned shift = 8U * (order == byte_order::big_endian ? n - 1U - i : i);
+    number |= std::uint32_t{at[i]} << shift;
+  }
+  return number;
+}
+
+}  // namespace detail
+
+/// Writes `message` into the 8 data bytes `out`, its numbers in `order`. A negative zero is sent with sign 0.
+/// Nothing is written on error (fraction > 9999).
 [[nodiscard]] constexpr encode_status encode_vr_message(const vr_message& message,
-                                                        std::uint8_t (&out)[vr_message_size]) noexcept {
+                                                        std::uint8_t (&out)[vr_message_size],
+                                                        byte_order order = byte_order::big_endian) noexcept {
   const vr_value& value = message.value;
   if (value.fraction > vr_value::max_fraction) return encode_status::fraction_out_of_range;
   const bool negative = value.negative && (value.integer_part != 0 || value.fraction != 0);
   out[0] = message.vr;
   out[1] = negative ? 1 : 0;
-  out[2] = static_cast<std::uint8_t>(value.integer_part >> 24U);
-  out[3] = static_cast<std::uint8_t>(value.integer_part >> 16U);
-  out[4] = static_cast<std::uint8_t>(value.integer_part >> 8U);
-  out[5] = static_cast<std::uint8_t>(value.integer_part);
-  out[6] = static_cast<std::uint8_t>(value.fraction >> 8U);
-  out[7] = static_cast<std::uint8_t>(value.fraction);
+  for (unsigned i = 0; i < 4; ++i) out[2 + i] = detail::number_byte(value.integer_part, 4, i, order);
+  for (unsigned i = 0; i < 2; ++i) out[6 + i] = detail::number_byte(value.fraction, 2, i, order);
   return encode_status::ok;
 }
 
-/// Encodes VR(vr) = value, rounded to 4 decimals, into the 8 data bytes `out`. Nothing is written on error.
+/// Encodes VR(vr) = value, rounded to 4 decimals, into the 8 data bytes `out`, its numbers in `order`.
+/// Nothing is written on error.
 [[nodiscard]] constexpr encode_status encode_vr(std::uint16_t vr, double value,
-                                                std::uint8_t (&out)[vr_message_size]) noexcept {
+                                                std::uint8_t (&out)[vr_message_size],
+                                                byte_order order = byte_order::big_endian) noexcept {
   if (vr > max_message_vr) return encode_status::vr_out_of_range;
   const value_result rounded = to_vr_value(value);
   if (!rounded) return rounded.status;
-  return encode_vr_message(vr_message{static_cast<std::uint8_t>(vr), rounded.value}, out);
+  return encode_vr_message(vr_message{static_cast<std::uint8_t>(vr), rounded.value}, out, order);
 }
 
-/// Decodes the data bytes of a frame; `payload.size()` is the frame's data length (DLC), which must be 8.
-/// Checks in wire order: length, sign, fraction.
-[[nodiscard]] constexpr decode_result decode_vr_message(byte_view payload) noexcept {
+/// Decodes the data bytes of a frame, its numbers in `order`; `payload.size()` is the frame's data length
+/// (DLC), which must be 8. Checks in wire order: length, sign, fraction.
+[[nodiscard]] constexpr decode_result decode_vr_message(byte_view payload,
+                                                        byte_order order = byte_order::big_endian) noexcept {
   if (payload.size() != vr_message_size) return {decode_status::bad_dlc, {}};
   if (payload[1] > 1) return {decode_status::bad_sign, {}};
-  const auto fraction = static_cast<std::uint16_t>(payload[6] << 8U | payload[7]);
+  const auto fraction = static_cast<std::uint16_t>(detail::read_number(payload.data() + 6, 2, order));
   if (fraction > vr_value::max_fraction) return {decode_status::bad_fraction, {}};
   vr_message message;
   message.vr = payload[0];
   message.value.negative = payload[1] == 1;
-  message.value.integer_part = std::uint32_t{payload[2]} << 24U | std::uint32_t{payload[3]} << 16U |
-                               std::uint32_t{payload[4]} << 8U | std::uint32_t{payload[5]};
+  message.value.integer_part = detail::read_number(payload.data() + 2, 4, order);
   message.value.fraction = fraction;
   return {decode_status::ok, message};
 }
 
-/// Decodes a frame's data as a VR message. A remote frame carries no data (`bad_dlc`); a DLC of 9..15 is not
-/// exactly 8 and is also `bad_dlc`. The identifier is not looked at (see `route_of`).
-[[nodiscard]] constexpr decode_result decode_vr_frame(const frame& received) noexcept {
+/// Decodes a frame's data as a VR message, its numbers in `order`. A remote frame carries no data
+/// (`bad_dlc`); a DLC of 9..15 is not exactly 8 and is also `bad_dlc`. The identifier is not looked at (see
+/// `route_of`).
+[[nodiscard]] constexpr decode_result decode_vr_frame(const frame& received,
+                                                      byte_order order = byte_order::big_endian) noexcept {
   if (received.remote() || received.dlc != vr_message_size) return {decode_status::bad_dlc, {}};
-  return decode_vr_message(received.payload());
+  return decode_vr_message(received.payload(), order);
 }
 
 }  // namespace trionet::can

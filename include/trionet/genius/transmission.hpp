@@ -14,6 +14,10 @@
 //   End of block     | 1 | 1 |  CRC-6 of the block   |
 //                    +---+---+-----------------------+
 //
+// That layout is the default `control_layout` (configurable): which 2-bit tag marks each control character
+// and whether the tag is in bits 7..6 (the fields in bits 5..0, as drawn) or in bits 1..0 (the same fields
+// in bits 7..2). Any other layout of these four characters is one of these 24 x 2.
+//
 // A transmission, characters back to back (c: = control character):
 //
 //   c:Start | [destination SBA] | data ... | { c:Start of block | data ... | c:End of block | data ... } |
@@ -33,8 +37,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "trionet/genius/character.hpp"
 #include "trionet/crc_holder.hpp"
+#include "trionet/genius/character.hpp"
 #include "trionet/genius/crc6.hpp"
 #include "trionet/span.hpp"
 
@@ -43,13 +47,14 @@ namespace trionet::genius {
 /// The highest Serial Bus Address.
 constexpr std::uint8_t max_sba = 31;
 
-/// The four control characters (bits 7..6 of the byte), plus `unknown` for a Start of block with bit 5 set.
+/// The four control characters (by their tag, see `control_layout`), plus `unknown` for a Start of block with
+/// the top field bit set.
 enum class control_kind : std::uint8_t {
-  start,           ///< bits 7..6 = 00: starts a transmission
-  stop,            ///< bits 7..6 = 01: ends a transmission
-  start_of_block,  ///< bits 7..6 = 10, bit 5 = 0: starts a block
-  end_of_block,    ///< bits 7..6 = 11: ends a block
-  unknown,         ///< a Start of block with bit 5 set
+  start,           ///< starts a transmission (default tag 00)
+  stop,            ///< ends a transmission (default tag 01)
+  start_of_block,  ///< starts a block (default tag 10, top field bit 0)
+  end_of_block,    ///< ends a block (default tag 11)
+  unknown,         ///< a Start of block with the top field bit set
 };
 
 /// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
@@ -69,55 +74,113 @@ constexpr const char* to_string(control_kind value) noexcept {
   return "unknown";
 }
 
+/// Where a control character's 2-bit tag sits in its byte.
+enum class tag_position : std::uint8_t {
+  high,  ///< bits 7..6, the fields in bits 5..0 (the default)
+  low,   ///< bits 1..0, the fields in bits 7..2
+};
+
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
+constexpr const char* to_string(tag_position value) noexcept {
+  switch (value) {
+    case tag_position::high:
+      return "high";
+    case tag_position::low:
+      return "low";
+  }
+  return "unknown";
+}
+
+/// The bit layout of the control characters (docs/protocol.md 3.2: a decision, configurable). The 6 field
+/// bits are the same in every layout: Start = B (bit 5) and the sender SBA (bits 4..0); Stop and End of
+/// block = the CRC-6; Start of block = 0 (bit 5) and the destination SBA.
+struct control_layout {
+  std::uint8_t start = 0;                      ///< the tag of Start, 0..3
+  std::uint8_t stop = 1;                       ///< the tag of Stop
+  std::uint8_t start_of_block = 2;             ///< the tag of Start of block
+  std::uint8_t end_of_block = 3;               ///< the tag of End of block
+  tag_position position = tag_position::high;  ///< where the tag sits
+
+  /// True when the four tags are 0..3 and all different. An invalid layout encodes and decodes
+  /// consistently but cannot tell some characters apart (a tag shared by two kinds reads as the first of
+  /// start, stop, start of block, end of block).
+  [[nodiscard]] constexpr bool valid() const noexcept {
+    const unsigned seen =
+        1U << (start & 7U) | 1U << (stop & 7U) | 1U << (start_of_block & 7U) | 1U << (end_of_block & 7U);
+    return seen == 0xFU;
+  }
+};
+
 /// The fields of a control character's byte. Only the fields of its `kind` are meaningful.
 struct control_fields {
   control_kind kind = control_kind::unknown;  ///< which control character
-  std::uint8_t sba = 0;    ///< Start: sender; Start of block: destination
-  bool broadcast = false;  ///< Start only
-  std::uint8_t crc = 0;    ///< Stop and End of block
+  std::uint8_t sba = 0;                       ///< Start: sender; Start of block: destination
+  bool broadcast = false;                     ///< Start only
+  std::uint8_t crc = 0;                       ///< Stop and End of block
 };
 
-/// Reads a control character's byte. Total. Cost: a few instructions; ISR-safe.
-[[nodiscard]] constexpr control_fields read_control(std::uint8_t byte) noexcept {
+namespace detail {
+
+constexpr std::uint8_t control_byte(const control_layout& layout, std::uint8_t tag,
+                                    unsigned fields) noexcept {
+  fields &= 0x3fU;
+  tag &= 3U;
+  return static_cast<std::uint8_t>(layout.position == tag_position::high ? (tag << 6U) | fields
+                                                                         : (fields << 2U) | tag);
+}
+
+}  // namespace detail
+
+/// Reads a control character's byte in `layout`. Total. Cost: a few instructions; ISR-safe.
+[[nodiscard]] constexpr control_fields read_control(
+    std::uint8_t byte, const control_layout& layout = control_layout{}) noexcept {
+  const bool high = layout.position == tag_position::high;
+  const auto tag = static_cast<std::uint8_t>(high ? byte >> 6U : byte & 3U);
+  const auto field_bits = static_cast<std::uint8_t>(high ? byte & 0x3fU : byte >> 2U);
   control_fields fields;
-  switch (byte >> 6) {
-    case 0:
-      fields.kind = control_kind::start;
-      fields.broadcast = (byte & 0x20u) != 0;
-      fields.sba = static_cast<std::uint8_t>(byte & 0x1fu);
-      break;
-    case 1:
-      fields.kind = control_kind::stop;
-      fields.crc = static_cast<std::uint8_t>(byte & 0x3fu);
-      break;
-    case 2:
-      fields.kind = (byte & 0x20u) != 0 ? control_kind::unknown : control_kind::start_of_block;
-      fields.sba = static_cast<std::uint8_t>(byte & 0x1fu);
-      break;
-    default:
-      fields.kind = control_kind::end_of_block;
-      fields.crc = static_cast<std::uint8_t>(byte & 0x3fu);
-      break;
+  if (tag == layout.start) {
+    fields.kind = control_kind::start;
+    fields.broadcast = (field_bits & 0x20u) != 0;
+    fields.sba = static_cast<std::uint8_t>(field_bits & 0x1fu);
+  } else if (tag == layout.stop) {
+    fields.kind = control_kind::stop;
+    fields.crc = field_bits;
+  } else if (tag == layout.start_of_block) {
+    fields.kind = (field_bits & 0x20u) != 0 ? control_kind::unknown : control_kind::start_of_block;
+    fields.sba = static_cast<std::uint8_t>(field_bits & 0x1fu);
+  } else if (tag == layout.end_of_block) {
+    fields.kind = control_kind::end_of_block;
+    fields.crc = field_bits;
   }
   return fields;
 }
 
-/// Control character constructors. Out-of-range arguments are masked to their field (the encoder checks
-/// ranges before it gets here).
-[[nodiscard]] constexpr character start_character(std::uint8_t sender, bool broadcast) noexcept {
-  return control_character(static_cast<std::uint8_t>((broadcast ? 0x20u : 0u) | (sender & 0x1fu)));
+/// Control character constructors, in `layout`. Out-of-range arguments are masked to their field (the
+/// encoder checks ranges before it gets here).
+[[nodiscard]] constexpr character start_character(std::uint8_t sender, bool broadcast,
+                                                  const control_layout& layout = control_layout{}) noexcept {
+  return control_character(
+      detail::control_byte(layout, layout.start, (broadcast ? 0x20u : 0u) | (sender & 0x1fu)));
 }
 /// Stop carrying the transmission's CRC-6.
-[[nodiscard]] constexpr character stop_character(std::uint8_t crc) noexcept {
-  return control_character(static_cast<std::uint8_t>(0x40u | (crc & 0x3fu)));
+[[nodiscard]] constexpr character stop_character(std::uint8_t crc,
+                                                 const control_layout& layout = control_layout{}) noexcept {
+  return control_character(detail::control_byte(layout, layout.stop, crc));
 }
 /// Start of block to SBA `destination`.
-[[nodiscard]] constexpr character start_of_block_character(std::uint8_t destination) noexcept {
-  return control_character(static_cast<std::uint8_t>(0x80u | (destination & 0x1fu)));
+[[nodiscard]] constexpr character start_of_block_character(
+    std::uint8_t destination, const control_layout& layout = control_layout{}) noexcept {
+  return control_character(detail::control_byte(layout, layout.start_of_block, destination & 0x1fu));
 }
 /// End of block carrying the block's CRC-6.
-[[nodiscard]] constexpr character end_of_block_character(std::uint8_t crc) noexcept {
-  return control_character(static_cast<std::uint8_t>(0xc0u | (crc & 0x3fu)));
+[[nodiscard]] constexpr character end_of_block_character(
+    std::uint8_t crc, const control_layout& layout = control_layout{}) noexcept {
+  return control_character(detail::control_byte(layout, layout.end_of_block, crc));
+}
+/// A control character of no known kind in `layout` (a Start of block with the top field bit set). A parser
+/// abandons an open transmission on it (`unknown_control`): e.g. what to put where a character was lost.
+[[nodiscard]] constexpr character unknown_control_character(const control_layout& layout = control_layout{}) noexcept {
+  return control_character(detail::control_byte(layout, layout.start_of_block, 0x20u));
 }
 
 /// A run of data characters: plain data (`block` false) or a block to `destination`.
@@ -199,53 +262,56 @@ struct [[nodiscard]] encode_result {
 namespace detail {
 
 template <class Crc, class Emit>
-constexpr void emit_transmission(const Crc& crc, const transmission& t, Emit&& emit) noexcept {
+constexpr void emit_transmission(const Crc& crc, const control_layout& layout, const transmission& t,
+                                 Emit&& emit) noexcept {
   typename Crc::register_type stop_crc = crc.begin();
-  emit(start_character(t.sender, t.broadcast));
+  emit(start_character(t.sender, t.broadcast, layout));
   if (!t.broadcast) {
     emit(data_character(t.destination));
     stop_crc = crc.update(stop_crc, t.destination);
   }
   for (const segment& s : t.segments) {
     typename Crc::register_type block_crc = crc.begin();
-    if (s.block) emit(start_of_block_character(s.destination));
+    if (s.block) emit(start_of_block_character(s.destination, layout));
     for (std::uint8_t byte : s.data) {
       emit(data_character(byte));
       stop_crc = crc.update(stop_crc, byte);
       block_crc = crc.update(block_crc, byte);
     }
-    if (s.block) emit(end_of_block_character(crc.finish(block_crc)));
+    if (s.block) emit(end_of_block_character(crc.finish(block_crc), layout));
   }
-  emit(stop_character(crc.finish(stop_crc)));
+  emit(stop_character(crc.finish(stop_crc), layout));
 }
 
 }  // namespace detail
 
 /// Encodes `t` as characters into `out`, with the CRC-6 `crc` (a static policy by default, or a
-/// `crc6_runtime` chosen at run time). On any error nothing is written.
-/// Cost: O(characters); no allocation; ISR-safe.
+/// `crc6_runtime` chosen at run time) and the control characters in `layout`. On any error nothing is
+/// written. Cost: O(characters); no allocation; ISR-safe.
 template <class Crc = crc6_g704>
-[[nodiscard]] constexpr encode_result encode_transmission(span<character> out, const transmission& t,
-                                                          const Crc& crc = Crc{}) noexcept {
+[[nodiscard]] constexpr encode_result encode_transmission(
+    span<character> out, const transmission& t, const Crc& crc = Crc{},
+    const control_layout& layout = control_layout{}) noexcept {
   const encode_result result = encoded_length(t);
   if (!result) return result;
   if (out.size() < result.length) return {encode_status::buffer_too_small, result.length};
   std::size_t at = 0;
-  detail::emit_transmission(crc, t, [&](character c) { out[at++] = c; });
+  detail::emit_transmission(crc, layout, t, [&](character c) { out[at++] = c; });
   return result;
 }
 
-/// Encodes `t` as 11-bit words (numbering in character.hpp) into `out`, with the CRC-6 `crc` as above. On
-/// any error nothing is written.
+/// Encodes `t` as 11-bit words (numbering in character.hpp) into `out`, with the CRC-6 `crc` and the
+/// control layout `layout` as above. On any error nothing is written.
 /// Cost: O(characters); no allocation; ISR-safe.
 template <class Crc = crc6_g704>
-[[nodiscard]] constexpr encode_result encode_transmission(span<std::uint16_t> out, const transmission& t,
-                                                          const Crc& crc = Crc{}) noexcept {
+[[nodiscard]] constexpr encode_result encode_transmission(
+    span<std::uint16_t> out, const transmission& t, const Crc& crc = Crc{},
+    const control_layout& layout = control_layout{}) noexcept {
   const encode_result result = encoded_length(t);
   if (!result) return result;
   if (out.size() < result.length) return {encode_status::buffer_too_small, result.length};
   std::size_t at = 0;
-  detail::emit_transmission(crc, t, [&](character c) { out[at++] = encode_character(c); });
+  detail::emit_transmission(crc, layout, t, [&](character c) { out[at++] = encode_character(c); });
   return result;
 }
 
@@ -333,8 +399,8 @@ constexpr const char* to_string(parse_status value) noexcept {
 /// parser never loses sync. `Crc` is the CRC-6 policy (crc6.hpp): a static policy (`crc6<...>`, held as
 /// nothing) or `crc6_runtime` (held as its 5 bytes, passed to the constructor).
 ///
-/// Cost: DataCapacity + 2 * SegmentCapacity * (2 + 2 pointers) bytes plus counters: 744 bytes for the
-/// defaults on a 32-bit target, 1152 on 64-bit. O(1) per character, O(segments) on a Stop. No allocation.
+/// Cost: DataCapacity + 2 * SegmentCapacity * (2 + 2 pointers) bytes plus counters: 752 bytes for the
+/// defaults on a 32-bit target, 1160 on 64-bit. O(1) per character, O(segments) on a Stop. No allocation.
 /// ISR-safe (one parser per line; the caller owns it).
 template <std::size_t DataCapacity = 256, std::size_t SegmentCapacity = 16, class Crc = crc6_g704>
 class transmission_parser : private trionet::detail::crc_holder<Crc> {
@@ -343,12 +409,14 @@ class transmission_parser : private trionet::detail::crc_holder<Crc> {
  public:
   /// A parser with the default CRC object (for a static policy, the policy itself).
   transmission_parser() noexcept = default;
-  /// A parser that checks with `crc` (e.g. a `crc6_runtime` from a profile).
-  explicit transmission_parser(const Crc& crc) noexcept : trionet::detail::crc_holder<Crc>(crc) {}
+  /// A parser that checks with `crc` (e.g. a `crc6_runtime` from a profile) and reads control characters in
+  /// `layout`.
+  explicit transmission_parser(const Crc& crc, const control_layout& layout = control_layout{}) noexcept
+      : trionet::detail::crc_holder<Crc>(crc), layout_(layout) {}
 
   /// Feeds the next character. See `parse_status`.
   [[nodiscard]] parse_status push(character c) noexcept {
-    if (c.control) return push_control(read_control(c.byte));
+    if (c.control) return push_control(read_control(c.byte, layout_));
     return push_data(c.byte);
   }
 
@@ -511,6 +579,7 @@ class transmission_parser : private trionet::detail::crc_holder<Crc> {
   bool in_block_ = false;
   bool need_destination_ = false;
   std::uint32_t counts_[parse_status_count] = {};
+  control_layout layout_{};
 };
 
 /// What one bit did in a `transmission_receiver`: the character layer's status and, when that completed a
@@ -531,8 +600,10 @@ class transmission_receiver {
  public:
   /// A receiver with the default CRC object (for a static policy, the policy itself).
   transmission_receiver() noexcept = default;
-  /// A receiver whose parser checks with `crc` (e.g. a `crc6_runtime` from a profile).
-  explicit transmission_receiver(const Crc& crc) noexcept : parser_(crc) {}
+  /// A receiver whose parser checks with `crc` (e.g. a `crc6_runtime` from a profile) and reads control
+  /// characters in `layout`.
+  explicit transmission_receiver(const Crc& crc, const control_layout& layout = control_layout{}) noexcept
+      : parser_(crc, layout) {}
 
   /// Takes the next bit from the line (1 = idle level); see `bit_result`.
   [[nodiscard]] bit_result push(bool bit) noexcept {

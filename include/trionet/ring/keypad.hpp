@@ -59,6 +59,8 @@ struct keypad_config {
   const keypad_codes* codes = &default_keypad_codes;
   /// The code sent when a key is released, from the code it sent when pressed.
   std::uint8_t (*key_off_code)(std::uint8_t on) noexcept = default_key_off_code;
+  /// What the display does with control characters (docs/protocol.md 1.9).
+  display_model display{};
 };
 
 /// Counters of a keypad, as read at one moment; they only ever grow (and wrap at 2^32).
@@ -88,12 +90,14 @@ class keypad final
 
  public:
   /// A keypad in local mode (not forwarding) until its keypad offset arrives (docs/protocol.md 1.7).
-  explicit keypad(const keypad_config& config = keypad_config{}) noexcept : config_(config) {
+  explicit keypad(const keypad_config& config = keypad_config{}) noexcept
+      : config_(config), display_(config.display) {
     this->link_.set_forwarding(false);
   }
   /// The same with a CRC object (`crc16_runtime`: the CRC of a profile, chosen at run time) for the direct
   /// variable transfers it checks.
-  keypad(const keypad_config& config, const Crc& crc) noexcept : core(crc), config_(config) {
+  keypad(const keypad_config& config, const Crc& crc) noexcept
+      : core(crc), config_(config), display_(config.display) {
     this->link_.set_forwarding(false);
   }
 

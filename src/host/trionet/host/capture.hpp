@@ -179,8 +179,10 @@ class genius_record_splitter {
  public:
   static constexpr std::size_t default_max_characters = 4096;
 
-  explicit genius_record_splitter(std::size_t max_characters = default_max_characters)
-      : max_(max_characters < 1 ? 1 : max_characters) {}
+  /// A splitter that finds Start and Stop in the control layout `layout` (genius/transmission.hpp).
+  explicit genius_record_splitter(std::size_t max_characters = default_max_characters,
+                                  const genius::control_layout& layout = genius::control_layout{})
+      : max_(max_characters < 1 ? 1 : max_characters), layout_(layout) {}
 
   /// One received word; a framing error is a word whose start or stop bit is wrong (genius/character.hpp).
   template <class Sink>
@@ -193,7 +195,7 @@ class genius_record_splitter {
       return;
     }
     const bool control = (word & genius::control_bit_mask) != 0;
-    const genius::control_kind kind = genius::read_control(static_cast<std::uint8_t>(word >> 2)).kind;
+    const genius::control_kind kind = genius::read_control(static_cast<std::uint8_t>(word >> 2), layout_).kind;
     if (control && kind == genius::control_kind::start) {
       flush(sink);
       begin(unit::transmission, time_ns);
@@ -234,6 +236,7 @@ class genius_record_splitter {
   }
 
   std::size_t max_;
+  genius::control_layout layout_;
   unit kind_ = unit::stray;
   detail::open_record record_;
 };
