@@ -711,9 +711,10 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     }
     if (type_of(byte) == 0) {  // end of message
       if (forwarding_message()) {
-        if (!into.push(decrement_hops(byte))) return lose(into);
-        receiving_ = receiving::local;
-        return byte_route::forwarded;
+        const bool pushed = into.push(decrement_hops(byte));
+        const byte_route r = pushed ? byte_route::forwarded : lose(into);
+        receiving_ = receiving::local;  // it has ended, lost or not: nothing of it is left to drop
+        return r;
       }
       const bool dropping = receiving_ == receiving::discard;
       receiving_ = receiving::local;
