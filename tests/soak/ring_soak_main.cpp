@@ -57,7 +57,6 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|\n");
   bool ok = true;
   soak::report total;
-  std::uint64_t worst_cleared = 0, worst_probes = 0, worst_open = 0;
   for (const ring_shape& shape : shapes) {
     for (const fault& f : faults) {
       soak::config cfg;
@@ -129,19 +128,21 @@ int main(int argc, char** argv) {
       total.wedged += r.wedged;
       total.livelocked += r.livelocked;
       total.episodes += r.episodes;
+      total.probes += r.probes;
+      total.probes_delivered += r.probes_delivered;
       total.faults += r.faults;
-      worst_cleared = std::max(worst_cleared, soak::maximum(r.damage_cleared));
-      worst_open = std::max(worst_open, soak::maximum(r.open_closed));
-      worst_probes = std::max(worst_probes, soak::maximum(r.probes_done));
+      total.open_closed.insert(total.open_closed.end(), r.open_closed.begin(), r.open_closed.end());
+      total.damage_cleared.insert(total.damage_cleared.end(), r.damage_cleared.begin(), r.damage_cleared.end());
+      total.probes_done.insert(total.probes_done.end(), r.probes_done.begin(), r.probes_done.end());
     }
   }
   std::printf("\nall (VR write policy: %s): %llu episodes, %llu faults, %llu messages sent: %llu intact, "
               "%llu corrupted (no CRC), %llu misdelivered, %llu misaddressed and refused by the write policy, "
               "lost %llu counted + %llu vanished + %llu merged + %llu unexplained; %llu wrong VR writes "
               "(%llu misaddressed, %llu CRC missed, %llu from no message), %llu refused writes whose CRC missed "
-              "a corruption, %llu refused to their own destination; %llu wedged, %llu livelocked; messages open "
-              "at the last fault ended within %llu byte-times, damage cleared within %llu, probes done within "
-              "%llu\n",
+              "a corruption, %llu refused to their own destination; %llu wedged, %llu livelocked; %llu of %llu "
+              "probes delivered intact; byte-times (median / max over the episodes): messages open at the last "
+              "fault ended %llu / %llu, damage cleared %llu / %llu, probes done %llu / %llu\n",
               accept_all_vrs ? "every VR" : "owned VRs only", static_cast<unsigned long long>(total.episodes),
               static_cast<unsigned long long>(total.faults), static_cast<unsigned long long>(total.sent),
               static_cast<unsigned long long>(total.delivered_intact),
@@ -156,8 +157,13 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(total.wrong_vr_no_message),
               static_cast<unsigned long long>(total.corrupted_refused),
               static_cast<unsigned long long>(total.owned_refused), static_cast<unsigned long long>(total.wedged),
-              static_cast<unsigned long long>(total.livelocked), static_cast<unsigned long long>(worst_open),
-              static_cast<unsigned long long>(worst_cleared),
-              static_cast<unsigned long long>(worst_probes));
+              static_cast<unsigned long long>(total.livelocked), static_cast<unsigned long long>(total.probes_delivered),
+              static_cast<unsigned long long>(total.probes),
+              static_cast<unsigned long long>(soak::median(total.open_closed)),
+              static_cast<unsigned long long>(soak::maximum(total.open_closed)),
+              static_cast<unsigned long long>(soak::median(total.damage_cleared)),
+              static_cast<unsigned long long>(soak::maximum(total.damage_cleared)),
+              static_cast<unsigned long long>(soak::median(total.probes_done)),
+              static_cast<unsigned long long>(soak::maximum(total.probes_done)));
   return ok ? 0 : 1;
 }
