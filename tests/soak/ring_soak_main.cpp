@@ -101,7 +101,10 @@ int main(int argc, char** argv) {
               0 ||
           r.probes_delivered != r.probes || r.fates() != r.sent) {
         ok = false;
-        std::fprintf(stderr, "trionet_ring_soak: %s\n", r.first_problem.c_str());
+        // Every wrong VR write, and the first problem if it is another.
+        for (const std::string& w : r.wrong_writes) std::fprintf(stderr, "trionet_ring_soak: %s\n", w.c_str());
+        if (r.wrong_writes.empty() || r.first_problem.find("wrong VR write") == std::string::npos)
+          std::fprintf(stderr, "trionet_ring_soak: %s\n", r.first_problem.c_str());
       }
       if (std::max(soak::maximum(r.damage_cleared), soak::maximum(r.open_closed)) >
           soak::recovery_bound(shape.nodes)) {

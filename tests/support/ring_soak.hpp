@@ -110,6 +110,7 @@ struct report {
   std::vector<std::uint64_t> probes_done;
   std::string first_problem;  ///< what the first wedge, livelock, wrong write, unexplained loss or untracked
                               ///< header was
+  std::vector<std::string> wrong_writes;  ///< every wrong VR write: where, what, and how its message changed
 
   std::uint64_t lost() const { return lost_counted + lost_vanished + lost_merged + lost_unexplained; }
   /// Every message has exactly one fate.
@@ -597,6 +598,8 @@ class harness {
       } else {
         ++report_.wrong_vr_crc_missed;
       }
+      report_.wrong_writes.push_back("seed " + std::to_string(cfg_.seed) + ", episode " +
+                                     std::to_string(report_.episodes) + ": wrong VR write " + describe_write(n, id));
       problem("wrong VR write " + describe_write(n, id));
     }
     if (id == no_id) return;
