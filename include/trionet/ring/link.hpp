@@ -277,7 +277,6 @@ template <>
 class forwarding_switch<false> {
  protected:
   static constexpr bool forwarding() noexcept { return true; }
-  static void count_drop() noexcept {}
   static constexpr std::uint16_t drops() noexcept { return 0; }
 };
 
@@ -723,10 +722,12 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     receiving_ = receiving::local;  // any header ends the message being forwarded
     const std::uint8_t hops = hops_of(byte);
     if (hops <= 1) return byte_route::local;
-    if (!this->forwarding()) {
-      receiving_ = receiving::discard;
-      this->count_drop();
-      return byte_route::dropped;
+    if constexpr (Switchable) {
+      if (!this->forwarding()) {  // a keypad in local mode
+        receiving_ = receiving::discard;
+        this->count_drop();
+        return byte_route::dropped;
+      }
     }
     messages_forwarded_.increment();
     if (!into.push(decrement_hops(byte))) {  // nothing of it is in the buffer: nothing to remove
