@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <trionet/can.hpp>
@@ -286,6 +287,39 @@ TEST(CanNode, IdentifiersAgreeWithTheSchemeForEveryNodeAndIdentifier) {
       }
     }
   }
+}
+
+// Every send_status, receive_status and transmit_status has its enumerator's spelling (the CLI prints them);
+// a value outside the enum is "unknown".
+TEST(CanNode, StatusNamesAreTheEnumeratorsSpelling) {
+  const std::pair<send_status, const char*> sends[] = {
+      {send_status::ok, "ok"},
+      {send_status::no_such_node, "no_such_node"},
+      {send_status::own_node, "own_node"},
+      {send_status::no_such_channel, "no_such_channel"},
+      {send_status::vr_out_of_range, "vr_out_of_range"},
+      {send_status::not_a_number, "not_a_number"},
+      {send_status::too_large, "too_large"},
+      {send_status::fraction_out_of_range, "fraction_out_of_range"},
+      {send_status::port_busy, "port_busy"},
+      {send_status::port_failed, "port_failed"}};
+  for (const auto& [status, name] : sends) EXPECT_STREQ(to_string(status), name);
+  EXPECT_STREQ(to_string(static_cast<send_status>(99)), "unknown");
+  const std::pair<receive_status, const char*> receives[] = {
+      {receive_status::ok, "ok"},
+      {receive_status::refused, "refused"},
+      {receive_status::out_of_range, "out_of_range"},
+      {receive_status::value_out_of_range, "value_out_of_range"},
+      {receive_status::foreign, "foreign"},
+      {receive_status::bad_dlc, "bad_dlc"},
+      {receive_status::bad_sign, "bad_sign"},
+      {receive_status::bad_fraction, "bad_fraction"}};
+  for (const auto& [status, name] : receives) EXPECT_STREQ(to_string(status), name);
+  EXPECT_STREQ(to_string(static_cast<receive_status>(99)), "unknown");
+  EXPECT_STREQ(to_string(transmit_status::ok), "ok");
+  EXPECT_STREQ(to_string(transmit_status::busy), "busy");
+  EXPECT_STREQ(to_string(transmit_status::failed), "failed");
+  EXPECT_STREQ(to_string(static_cast<transmit_status>(99)), "unknown");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <random>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "trionet/ring.hpp"
@@ -654,4 +655,39 @@ TEST(RingCrc, HandWrittenPolicyWithTheMinimalInterface) {
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].status, ring::decode_status::ok);
   EXPECT_EQ(frame[13], 2);  // V0 + X0 = 1 + 1
+}
+
+// Every encode_status, decode_status and frame_error has its enumerator's spelling (the CLI, the traces and
+// the decoder's JSON print them), and a value outside the enum is "unknown".
+TEST(RingCodec, StatusNamesAreTheEnumeratorsSpelling) {
+  using ring::decode_status;
+  using ring::encode_status;
+  using ring::frame_error;
+  const std::pair<encode_status, const char*> encodes[] = {
+      {encode_status::ok, "ok"},
+      {encode_status::buffer_too_small, "buffer_too_small"},
+      {encode_status::hops_out_of_range, "hops_out_of_range"},
+      {encode_status::empty_text, "empty_text"},
+      {encode_status::character_out_of_range, "character_out_of_range"},
+      {encode_status::vr_out_of_range, "vr_out_of_range"},
+      {encode_status::offset_out_of_range, "offset_out_of_range"},
+      {encode_status::mode_out_of_range, "mode_out_of_range"},
+      {encode_status::unknown_type, "unknown_type"}};
+  for (const auto& [status, name] : encodes) EXPECT_STREQ(ring::to_string(status), name);
+  EXPECT_STREQ(ring::to_string(static_cast<encode_status>(99)), "unknown");
+  const std::pair<decode_status, const char*> decodes[] = {{decode_status::incomplete, "incomplete"},
+                                                           {decode_status::ok, "ok"},
+                                                           {decode_status::frame_error, "frame_error"},
+                                                           {decode_status::crc_error, "crc_error"},
+                                                           {decode_status::no_room, "no_room"}};
+  for (const auto& [status, name] : decodes) EXPECT_STREQ(ring::to_string(status), name);
+  EXPECT_STREQ(ring::to_string(static_cast<decode_status>(99)), "unknown");
+  const std::pair<frame_error, const char*> errors[] = {
+      {frame_error::none, "none"},           {frame_error::stray_data, "stray_data"},
+      {frame_error::stray_eom, "stray_eom"}, {frame_error::interrupted, "interrupted"},
+      {frame_error::eom_mismatch, "eom_mismatch"}, {frame_error::bad_length, "bad_length"},
+      {frame_error::bad_field, "bad_field"}, {frame_error::unknown_type, "unknown_type"},
+      {frame_error::zero_hops, "zero_hops"}, {frame_error::idle_line, "idle_line"}};
+  for (const auto& [error, name] : errors) EXPECT_STREQ(ring::to_string(error), name);
+  EXPECT_STREQ(ring::to_string(static_cast<frame_error>(99)), "unknown");
 }

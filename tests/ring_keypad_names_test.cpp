@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "trionet/ring/keypad_codes.hpp"
 
@@ -42,6 +43,20 @@ TEST(RingKeypadNames, OtherWordsAreNoKeys) {
   EXPECT_EQ(k, ring::key::digit_7);  // untouched
   EXPECT_FALSE(ring::key_named("stopped", 4 + 3, k));
   EXPECT_TRUE(ring::key_named("stopped", 4, k));  // the length given is what counts
+}
+
+// Every key's to_string is its enumerator's spelling (the traces print it); a value outside the enum is
+// "unknown".
+TEST(RingKeypadNames, ToStringIsTheEnumeratorsSpelling) {
+  const char* const digits[] = {"digit_0", "digit_1", "digit_2", "digit_3", "digit_4",
+                                "digit_5", "digit_6", "digit_7", "digit_8", "digit_9"};
+  for (unsigned d = 0; d < 10; ++d) EXPECT_STREQ(ring::to_string(ring::digit_key(d)), digits[d]);
+  const std::pair<ring::key, const char*> others[] = {
+      {ring::key::up, "up"},       {ring::key::down, "down"},   {ring::key::clear, "clear"},
+      {ring::key::yes, "yes"},     {ring::key::no, "no"},       {ring::key::point, "point"},
+      {ring::key::start, "start"}, {ring::key::stop, "stop"}};
+  for (const auto& [key, name] : others) EXPECT_STREQ(ring::to_string(key), name);
+  EXPECT_STREQ(ring::to_string(static_cast<ring::key>(99)), "unknown");
 }
 
 }  // namespace

@@ -2,10 +2,12 @@
 // its display, and the simulator's fault injection.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "trionet/ring.hpp"
@@ -154,6 +156,99 @@ TEST(RingForwarding, AForwardedMessageCutShortUpstreamDoesNotBlockTheNode) {
   expected.insert(expected.end(), own.begin(), own.end());
   EXPECT_EQ(drain(mc), expected);
   EXPECT_EQ(read_all(mc, 4), "ME");
+}
+
+// The ways bytes reach a node: one at a time (a UART interrupt), all in one bulk call (a DMA buffer), or in
+// bulk pieces of 5.
+enum class arrival { byte_by_byte, bulk, bulk_in_pieces };
+
+template <class Node>
+void arrive(Node& node, const std::vector<std::uint8_t>& bytes, arrival how) {
+  if (how == arrival::byte_by_byte) return feed(node, bytes);
+  const std::size_t piece = how == arrival::bulk ? bytes.size() : 5;
+  for (std::size_t at = 0; at < bytes.size(); at += piece)
+    node.receive(byte_view(bytes.data() + at, std::min(piece, bytes.size() - at)));
+}
+
+// While a node sends its own message, forwarded bytes wait in the forward buffer. Bytes can come faster than
+// the node sends (a host that reads a burst, a transmitter held up): a forwarded message that overruns the
+// forward buffer then is lost whole (none of it has gone out), counted, NETSTAT bit 1; the rest of it,
+// its end of message included, is dropped, and the next message is forwarded as usual.
+TEST(RingForwarding, AMessageThatOverrunsTheForwardBufferDuringAnOwnMessageIsLostWhole) {
+  for (const arrival how : {arrival::byte_by_byte, arrival::bulk, arrival::bulk_in_pieces}) {
+    SCOPED_TRACE(static_cast<int>(how));
+    trionet::vr_table<16> vr;
+    mc_node mc(vr);  // forward buffer of 16 bytes
+    ASSERT_EQ(mc.print(10, "OWN MESSAGE 14").status, ring::send_status::ok);
+    std::uint8_t b = 0;
+    ASSERT_TRUE(mc.transmit(b));  // the own message has begun
+    std::vector<std::uint8_t> burst = chars(3, "SEVENTEEN LETTERS");  // header + 15 fit, the 16th does not
+    const auto next = chars(3, "NEXT");
+    burst.insert(burst.end(), next.begin(), next.end());
+    arrive(mc, burst, how);
+    EXPECT_EQ(mc.forwarding_counters().forwards_lost, 1u);
+    EXPECT_EQ(mc.forwarding_counters().forwards_cut, 0u);
+    EXPECT_EQ(mc.forwarding_counters().messages_forwarded, 2u);
+    EXPECT_EQ(mc.netstat(), ring::netstat_tx_buffer_error);
+    EXPECT_EQ(mc.counters().frame_errors, 0u);  // its dropped end of message is no stray end of message
+    std::vector<std::uint8_t> expected = chars(1, "OWN MESSAGE 14");
+    expected.erase(expected.begin());  // the header already went out
+    const auto next_on = chars(2, "NEXT");
+    expected.insert(expected.end(), next_on.begin(), next_on.end());
+    EXPECT_EQ(drain(mc), expected);
+  }
+}
+
+// The same when the message's data just fit and its end of message is the byte that finds the forward buffer
+// full: the message is lost whole, not sent on without its end. That end of message ends it: the node is
+// between messages again (it used to stay inside the lost message up to the next control byte, reporting
+// `in_message()` and dropping the stray data after it uncounted).
+TEST(RingForwarding, AnEndOfMessageThatFindsTheForwardBufferFullLosesTheMessageWhole) {
+  for (const arrival how : {arrival::byte_by_byte, arrival::bulk, arrival::bulk_in_pieces}) {
+    SCOPED_TRACE(static_cast<int>(how));
+    trionet::vr_table<16> vr;
+    mc_node mc(vr);
+    ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
+    std::uint8_t b = 0;
+    ASSERT_TRUE(mc.transmit(b));
+    arrive(mc, chars(4, "FIFTEEN LETTERS"), how);  // header + 15 data: exactly 16, then its end of message
+    EXPECT_EQ(mc.forwarding_counters().forwards_lost, 1u);
+    EXPECT_EQ(mc.netstat(), ring::netstat_tx_buffer_error);
+    EXPECT_FALSE(mc.in_message());
+    arrive(mc, {'X'}, how);  // a stray data byte after it: outside any message, a frame error
+    EXPECT_EQ(mc.counters().frame_errors, 1u);
+    arrive(mc, chars(2, "ON"), how);
+    std::vector<std::uint8_t> expected = chars(1, "OWN");
+    expected.erase(expected.begin());
+    const auto next_on = chars(1, "ON");
+    expected.insert(expected.end(), next_on.begin(), next_on.end());
+    EXPECT_EQ(drain(mc), expected);
+    EXPECT_EQ(mc.forwarding_counters().messages_forwarded, 2u);
+  }
+}
+
+// A forwarded message that has partly gone out when the forward buffer overflows is cut short: what went out
+// stays out, the rest is dropped (its destination sees a frame error).
+TEST(RingForwarding, AMessagePartlySentWhenTheForwardBufferOverflowsIsCutShort) {
+  for (const arrival how : {arrival::byte_by_byte, arrival::bulk, arrival::bulk_in_pieces}) {
+    SCOPED_TRACE(static_cast<int>(how));
+    trionet::vr_table<16> vr;
+    mc_node mc(vr);
+    arrive(mc, {ring::make_header(3, 1), 'A', 'B'}, how);
+    std::vector<std::uint8_t> sent = drain(mc);  // cut-through: its header and data so far are out
+    ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);  // waits for the forwarded message
+    std::vector<std::uint8_t> rest(20, 'C');  // 20 more data bytes at once: 16 fit
+    rest.push_back(ring::make_end_of_message(3));
+    arrive(mc, rest, how);
+    EXPECT_EQ(mc.forwarding_counters().forwards_lost, 1u);
+    const auto more = drain(mc);
+    sent.insert(sent.end(), more.begin(), more.end());
+    std::vector<std::uint8_t> expected = {ring::make_header(2, 1), 'A', 'B'};
+    expected.insert(expected.end(), 16, 'C');  // what fitted went on; no end of message
+    const auto own = chars(1, "OWN");
+    expected.insert(expected.end(), own.begin(), own.end());
+    EXPECT_EQ(sent, expected);
+  }
 }
 
 // ---- delivery at a Motion Coordinator ----
@@ -362,6 +457,27 @@ TEST(RingMotionCoordinator, SendsWithItsOwnCrcPolicy) {
   ring::motion_coordinator<256, 48, 48, ring::crc16_ccitt_false_bitwise> c(vr_a);
   ASSERT_EQ(c.send_variable(10, 200, 99), ring::send_status::ok);
   EXPECT_EQ(drain(c), frame_of(ring::message::variable(1, 200, trionet::q32_from_integer(99))));
+}
+
+// Every send_status and get_status has its enumerator's spelling (the CLI and the traces print them).
+TEST(RingMotionCoordinator, StatusNamesAreTheEnumeratorsSpelling) {
+  using ring::send_status;
+  const std::pair<send_status, const char*> sends[] = {
+      {send_status::ok, "ok"},
+      {send_status::bad_address, "bad_address"},
+      {send_status::empty_text, "empty_text"},
+      {send_status::character_out_of_range, "character_out_of_range"},
+      {send_status::vr_out_of_range, "vr_out_of_range"},
+      {send_status::value_out_of_range, "value_out_of_range"},
+      {send_status::offset_out_of_range, "offset_out_of_range"},
+      {send_status::mode_out_of_range, "mode_out_of_range"},
+      {send_status::queue_full, "queue_full"}};
+  for (const auto& [status, name] : sends) EXPECT_STREQ(ring::to_string(status), name);
+  EXPECT_STREQ(ring::to_string(static_cast<send_status>(99)), "unknown");
+  EXPECT_STREQ(ring::to_string(ring::get_status::ok), "ok");
+  EXPECT_STREQ(ring::to_string(ring::get_status::nothing_yet), "nothing_yet");
+  EXPECT_STREQ(ring::to_string(ring::get_status::bad_channel), "bad_channel");
+  EXPECT_STREQ(ring::to_string(static_cast<ring::get_status>(99)), "unknown");
 }
 
 TEST(RingMotionCoordinator, FullTransmitQueueRefusesWholeAndSetsNetstatBit0) {

@@ -96,3 +96,12 @@ TEST(VrNetworkValue, DecimalFractionToQ32IsExactlyRoundedForEveryTenThousandth) 
   EXPECT_EQ(network_value::from_decimal(false, 2147483648u, 0).to_q32().status,
             trionet::q32_status::out_of_range);
 }
+
+// Every vr_write_status has its enumerator's spelling; a value outside the enum is "unknown".
+TEST(VrTable, WriteStatusNamesAreTheEnumeratorsSpelling) {
+  EXPECT_STREQ(trionet::to_string(vr_write_status::ok), "ok");
+  EXPECT_STREQ(trionet::to_string(vr_write_status::refused), "refused");
+  EXPECT_STREQ(trionet::to_string(vr_write_status::out_of_range), "out_of_range");
+  EXPECT_STREQ(trionet::to_string(vr_write_status::value_out_of_range), "value_out_of_range");
+  EXPECT_STREQ(trionet::to_string(static_cast<vr_write_status>(99)), "unknown");
+}

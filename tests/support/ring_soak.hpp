@@ -6,6 +6,9 @@
 //   delivered intact      at its destination, exactly as sent
 //   delivered corrupted   at its destination, changed on the way (a character transfer has no CRC)
 //   misdelivered          at another node, or read as another type (the header is not covered by the CRC)
+//   misaddressed, refused a direct variable transfer taken whole at another node, whose VR write policy
+//                         refused it: each MC accepts only the VRs it owns (disjoint ranges), as a careful
+//                         user configures a faulty ring (docs/liveness.md)
 //   lost, counted         some node counted it (frame error, CRC error, forwarded message lost, ...)
 //   lost, uncounted       no node could see it: every byte of it vanished on a link, or its header was lost
 //                         (or arrived with A = 0) and the one error counted went to a neighbouring damaged
@@ -64,13 +67,34 @@ struct config {
   std::uint32_t recovery_limit = 200000;  ///< byte-times after the last fault before an episode is wedged
   double load = 1.0 / 150;                ///< chance per byte-time that an MC sends a message
   double key_rate = 1.0 / 400;            ///< chance per byte-time that a keypad key is pressed
+  /// Each MC's VR write policy: false (the soak's default), it accepts only the VRs it owns (16 per MC,
+  /// disjoint); true, every VR in its table (the library's default policy), so that a misaddressed transfer
+  /// is written.
+  bool accept_all_vrs = false;
   std::uint64_t seed = 1;
 };
+
+/// The VRs MC `node` owns: every SEND to it writes one of these (16 * node + the sender).
+constexpr std::uint16_t owned_vrs_per_node = 16;
+/// The soak's VR tables: room for the VRs of 15 nodes.
+constexpr std::size_t vr_table_size = 256;
 
 struct report {
   std::uint64_t sent = 0, delivered_intact = 0, delivered_corrupted = 0, misdelivered = 0;
   std::uint64_t lost_counted = 0, lost_vanished = 0, lost_merged = 0, lost_unexplained = 0;
-  std::uint64_t wrong_vr_writes = 0, wedged = 0, livelocked = 0, episodes = 0;
+  /// Direct variable transfers written to a VR wrongly, by class (`wrong_vr_writes` is their sum):
+  /// misaddressed (intact, at a node that is not its destination, and its write policy accepted it), its
+  /// payload changed and the CRC missed it (2^-14 of corruptions), or from no message the soak sent.
+  std::uint64_t wrong_vr_writes = 0, wrong_vr_misaddressed = 0, wrong_vr_crc_missed = 0, wrong_vr_no_message = 0;
+  /// Direct variable transfers taken whole at a node that is not their destination and refused by its write
+  /// policy: counted there (`variables_refused`), undetectable to the protocol (docs/protocol.md 1.3: the
+  /// header and end of message are outside the CRC).
+  std::uint64_t misaddressed_refused = 0;
+  /// Writes the policy refused whose payload was not the one sent (the CRC missed a corruption): counted.
+  std::uint64_t corrupted_refused = 0;
+  /// Writes refused to their own destination: a defect of the soak's policy.
+  std::uint64_t owned_refused = 0;
+  std::uint64_t wedged = 0, livelocked = 0, episodes = 0;
   std::uint64_t probes = 0, probes_delivered = 0;
   std::uint64_t faults = 0;  ///< bytes flipped, dropped or cut
   /// Headers that left a node while the bookkeeping had no message for them: a defect of the soak itself.
@@ -86,8 +110,13 @@ struct report {
   std::vector<std::uint64_t> probes_done;
   std::string first_problem;  ///< what the first wedge, livelock, wrong write, unexplained loss or untracked
                               ///< header was
+  std::vector<std::string> wrong_writes;  ///< every wrong VR write: where, what, and how its message changed
 
   std::uint64_t lost() const { return lost_counted + lost_vanished + lost_merged + lost_unexplained; }
+  /// Every message has exactly one fate.
+  std::uint64_t fates() const {
+    return delivered_intact + delivered_corrupted + misdelivered + misaddressed_refused + lost();
+  }
 };
 
 inline std::uint64_t median(std::vector<std::uint64_t> v) {
@@ -113,17 +142,22 @@ constexpr std::size_t max_text = mc_type::max_own_frame - ring::framing_length;
 using keypad_type = ring::keypad<>;
 constexpr std::size_t no_id = static_cast<std::size_t>(-1);
 
-/// VR() of a soak node: accepts every write and remembers the last one.
-class recording_store final : public vr_store {
- public:
-  vr_write_status write(std::uint16_t vr, const network_value& value) noexcept override {
-    last_vr = vr;
-    last_value = value.q32;
-    return vr_write_status::ok;
-  }
+/// The VR write policy of a soak MC (`vr_table`'s hook): accepts the VRs the node owns, or every one; and
+/// remembers the last write it was asked about, so that the harness sees what was written or refused.
+struct vr_owner {
+  std::uint16_t first = 0, count = 0;
+  bool accept_all = false;
   std::uint16_t last_vr = 0;
   std::int64_t last_value = 0;
+
+  static bool policy(void* context, std::uint16_t vr, std::int64_t value) noexcept {
+    auto* self = static_cast<vr_owner*>(context);
+    self->last_vr = vr;
+    self->last_value = value;
+    return self->accept_all || (vr >= self->first && vr - self->first < self->count);
+  }
 };
+using vr_table_type = vr_table<vr_table_size, std::int64_t>;
 
 enum class kind { character, variable, key };
 
@@ -138,19 +172,26 @@ struct message_record {
   bool counted = false;      // some node counted an error or a loss for it
   bool vanished = false;     // on some link none of its bytes arrived
   bool header_lost = false;  // on some link its header did not arrive as a header (or arrived with A = 0)
+  bool refused = false;      // taken whole at another node and refused by its VR write policy
+  // The first change of its header and of its end of message on a link (for the report of a wrong write).
+  struct change {
+    std::size_t link = no_id;
+    std::uint8_t sent = 0, received = 0;
+  } header_changed, end_changed;
 };
 
 /// What the harness reads off a node between steps.
 struct snapshot {
   ring::link_counters link{};
   std::uint32_t frame_errors = 0, crc_errors = 0, overflows = 0, ignored = 0, characters = 0, variables = 0,
-                displayed = 0;
+                refused = 0, displayed = 0;
   std::size_t backlog = 0;
 };
 
 struct node_state {
   bool keypad = false;
-  std::unique_ptr<recording_store> store;
+  std::unique_ptr<vr_owner> owner;
+  std::unique_ptr<vr_table_type> vr;
   std::unique_ptr<mc_type> mc;
   std::unique_ptr<keypad_type> pad;
   std::deque<std::size_t> own;                                 // own wire messages, in queue order
@@ -183,9 +224,10 @@ struct node_state {
       s.frame_errors = c.frame_errors;
       s.crc_errors = c.crc_errors;
       s.overflows = c.receive_overflows;
-      s.ignored = c.keypad_messages_ignored + c.variables_refused + c.variables_out_of_range;
+      s.ignored = c.keypad_messages_ignored + c.variables_out_of_range + c.variables_value_out_of_range;
       s.characters = c.character_messages;
       s.variables = c.variables_written;
+      s.refused = c.variables_refused;
       s.backlog = mc->forward_backlog();
     }
     return s;
@@ -224,8 +266,12 @@ class harness {
       if (n.keypad) {
         n.pad = std::make_unique<keypad_type>();
       } else {
-        n.store = std::make_unique<recording_store>();
-        n.mc = std::make_unique<mc_type>(*n.store);
+        n.owner = std::make_unique<vr_owner>();
+        n.owner->first = static_cast<std::uint16_t>(owned_vrs_per_node * i);
+        n.owner->count = owned_vrs_per_node;
+        n.owner->accept_all = cfg_.accept_all_vrs;
+        n.vr = std::make_unique<vr_table_type>(&vr_owner::policy, n.owner.get());
+        n.mc = std::make_unique<mc_type>(*n.vr);
         mcs_.push_back(i);
       }
       (void)sim_.add(n.port());
@@ -303,13 +349,14 @@ class harness {
       n.own.push_back(id);
       return true;
     }
-    // SEND(n,1,vr,value) to an MC: vr = the sender, value = the message number.
+    // SEND(n,1,vr,value) to an MC: vr = one the destination owns (16 * destination + the sender), value = the
+    // message number.
     const std::size_t destination = mcs_[rng_() % mcs_.size()];
     std::size_t hops = (destination + cfg_.nodes - i) % cfg_.nodes;
     if (hops == 0) hops = cfg_.nodes;
     if (rng_() % 4 == 0 && hops + cfg_.nodes <= 15) hops += cfg_.nodes;  // once round the ring first
     const std::size_t id = new_message(i, destination, kind::variable);
-    records_[id].vr = static_cast<std::uint16_t>(i);
+    records_[id].vr = static_cast<std::uint16_t>(owned_vrs_per_node * destination + i);
     records_[id].value = trionet::q32_from_integer(static_cast<std::int32_t>(id));
     if (n.mc->send_variable_q32(static_cast<int>(hops) + 9, records_[id].vr, records_[id].value) !=
         ring::send_status::ok) {
@@ -431,6 +478,14 @@ class harness {
     }
     ++tx.tx_sent;
     if (b.delivered) ++tx.tx_delivered;
+    if (tx.tx_id != no_id && b.delivered && b.sent != b.received) {
+      message_record& m = records_[tx.tx_id];
+      const ring::byte_class c = ring::classify(b.sent);
+      message_record::change* changed = c == ring::byte_class::header           ? &m.header_changed
+                                        : c == ring::byte_class::end_of_message ? &m.end_changed
+                                                                                : nullptr;
+      if (changed != nullptr && changed->link == no_id) *changed = {b.link, b.sent, b.received};
+    }
     if (!b.delivered || b.sent != b.received) {
       last_fault_ = b.time;
       if (cfg_.kind == fault_kind::cut) ++report_.faults;
@@ -482,6 +537,7 @@ class harness {
     }
     if (now.characters != was.characters) deliver_characters(n, open_id);
     if (now.variables != was.variables) deliver_variable(n, open_id);
+    if (now.refused != was.refused) refused_variable(n, open_id, time);
     if (now.displayed != was.displayed) deliver_display(n, open_id);
   }
 
@@ -507,21 +563,68 @@ class harness {
     m.corrupted = !m.misdelivered && got != m.text;
   }
 
+  // The write node `n`'s policy was last asked about is message `id`'s payload, as sent.
+  bool payload_intact(const node_state& n, std::size_t id) const {
+    return id != no_id && records_[id].type == kind::variable && records_[id].vr == n.owner->last_vr &&
+           records_[id].value == n.owner->last_value;
+  }
+
+  // What a wrong write or refusal was: the write, and how the message's header and end of message changed.
+  std::string describe_write(const node_state& n, std::size_t id) const {
+    std::string s = "at node " + std::to_string(index_of(n)) + ": VR(" + std::to_string(n.owner->last_vr) +
+                    ") = " + std::to_string(n.owner->last_value >> 32);
+    if (id == no_id) return s + " from no message";
+    const message_record& m = records_[id];
+    s += " from message " + std::to_string(id) + " (node " + std::to_string(m.sender) + " to node " +
+         std::to_string(m.destination) + ", VR(" + std::to_string(m.vr) + ") = " + std::to_string(m.value >> 32);
+    for (const auto& [what, c] : {std::pair<const char*, message_record::change>{"header", m.header_changed},
+                                  {"end of message", m.end_changed}}) {
+      if (c.link == no_id) continue;
+      s += std::string("; ") + what + " A " + std::to_string(ring::hops_of(c.sent)) + " -> " +
+           std::to_string(ring::hops_of(c.received)) + " on link " + std::to_string(c.link);
+    }
+    return s + ")";
+  }
+
   void deliver_variable(node_state& n, std::size_t id) {
-    const bool right = id != no_id && records_[id].type == kind::variable &&
-                       records_[id].destination == index_of(n) && records_[id].vr == n.store->last_vr &&
-                       records_[id].value == n.store->last_value;
-    if (!right) {
+    const bool intact = payload_intact(n, id);
+    const bool right = intact && records_[id].destination == index_of(n);
+    if (!right) {  // never hidden: each class counted, and the soak fails
       ++report_.wrong_vr_writes;
-      problem("wrong VR write at node " + std::to_string(index_of(n)) + ": VR(" +
-              std::to_string(n.store->last_vr) + ") = " + std::to_string(n.store->last_value >> 32) +
-              (id == no_id ? std::string(" from no message") : " from message " + std::to_string(id)));
+      if (id == no_id) {
+        ++report_.wrong_vr_no_message;
+      } else if (intact) {
+        ++report_.wrong_vr_misaddressed;
+      } else {
+        ++report_.wrong_vr_crc_missed;
+      }
+      report_.wrong_writes.push_back("seed " + std::to_string(cfg_.seed) + ", episode " +
+                                     std::to_string(report_.episodes) + ": wrong VR write " + describe_write(n, id));
+      problem("wrong VR write " + describe_write(n, id));
     }
     if (id == no_id) return;
     message_record& m = records_[id];
     if (m.delivered) return;
     m.delivered = true;
     m.misdelivered = !right;
+  }
+
+  // Node `n`'s write policy refused a direct variable transfer (it took it whole and valid).
+  void refused_variable(node_state& n, std::size_t id, std::uint64_t time) {
+    last_error_ = time;
+    if (!payload_intact(n, id)) {  // a corruption the CRC missed, refused: a counted loss
+      ++report_.corrupted_refused;
+      if (id != no_id) records_[id].counted = true;
+      return;
+    }
+    message_record& m = records_[id];
+    if (m.destination == index_of(n)) {  // the node owns every VR sent to it
+      ++report_.owned_refused;
+      problem("a write to its own VR refused " + describe_write(n, id));
+    }
+    if (m.delivered) return;
+    m.delivered = true;
+    m.refused = true;
   }
 
   void deliver_display(node_state& n, std::size_t id) {
@@ -622,7 +725,9 @@ class harness {
       ++report_.sent;
       if (m.probe && m.delivered && !m.corrupted && !m.misdelivered) ++report_.probes_delivered;
       if (m.delivered) {
-        if (m.misdelivered) {
+        if (m.refused) {
+          ++report_.misaddressed_refused;
+        } else if (m.misdelivered) {
           ++report_.misdelivered;
         } else if (m.corrupted) {
           ++report_.delivered_corrupted;

@@ -277,7 +277,6 @@ template <>
 class forwarding_switch<false> {
  protected:
   static constexpr bool forwarding() noexcept { return true; }
-  static void count_drop() noexcept {}
   static constexpr std::uint16_t drops() noexcept { return 0; }
 };
 
@@ -711,9 +710,10 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     }
     if (type_of(byte) == 0) {  // end of message
       if (forwarding_message()) {
-        if (!into.push(decrement_hops(byte))) return lose(into);
-        receiving_ = receiving::local;
-        return byte_route::forwarded;
+        const bool pushed = into.push(decrement_hops(byte));
+        const byte_route r = pushed ? byte_route::forwarded : lose(into);
+        receiving_ = receiving::local;  // it has ended, lost or not: nothing of it is left to drop
+        return r;
       }
       const bool dropping = receiving_ == receiving::discard;
       receiving_ = receiving::local;
@@ -722,10 +722,12 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     receiving_ = receiving::local;  // any header ends the message being forwarded
     const std::uint8_t hops = hops_of(byte);
     if (hops <= 1) return byte_route::local;
-    if (!this->forwarding()) {
-      receiving_ = receiving::discard;
-      this->count_drop();
-      return byte_route::dropped;
+    if constexpr (Switchable) {
+      if (!this->forwarding()) {  // a keypad in local mode
+        receiving_ = receiving::discard;
+        this->count_drop();
+        return byte_route::dropped;
+      }
     }
     messages_forwarded_.increment();
     if (!into.push(decrement_hops(byte))) {  // nothing of it is in the buffer: nothing to remove

@@ -365,29 +365,22 @@ class motion_coordinator final
     return send_status::bad_address;
   }
 
-  // Link side: a message for this node (the core has counted errors already), still in the decoder.
+  // Link side: a message for this node, `ok` or `no_room` (the core has counted errors already), still in the
+  // decoder.
   void deliver(decode_step step) noexcept {
-    std::uint16_t vr = 0;
-    std::int64_t value = 0;
-    const message_type type = this->decoder_.type();
-    if (type == message_type::variable) Layout::read(this->decoder_.payload(), vr, value);
-    delivered(status_of(step), type, vr, value);
-  }
-  // Link side: the same as a whole result (the bulk path).
-  void deliver(const decode_result& r) noexcept { delivered(r.status, r.msg.type, r.msg.vr, r.msg.value); }
-
-  // A message for this node: `ok` or `no_room`; `vr` and `value` for a variable transfer.
-  void delivered(decode_status status, message_type type, std::uint16_t vr, std::int64_t value) noexcept {
-    if (status == decode_status::no_room) {
+    if (status_of(step) == decode_status::no_room) {
       receive_overflows_.increment();
       this->link_.netstat().raise(netstat_rx_overflow);
       return;
     }
-    switch (type) {
+    switch (this->decoder_.type()) {
       case message_type::character:
         character_messages_.increment();
         return;
-      case message_type::variable:
+      case message_type::variable: {
+        std::uint16_t vr = 0;
+        std::int64_t value = 0;
+        Layout::read(this->decoder_.payload(), vr, value);
         switch (vr_->write(vr, network_value::from_q32(value))) {
           case vr_write_status::ok:
             variables_written_.increment();
@@ -403,6 +396,7 @@ class motion_coordinator final
             return;
         }
         return;
+      }
       case message_type::keypad_offset:
       case message_type::keypad_mode:
         keypad_messages_ignored_.increment();

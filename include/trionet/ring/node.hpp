@@ -41,10 +41,11 @@
 namespace trionet::ring {
 
 /// The ring-node core. `Node` (the derived node, CRTP) provides
-///   void deliver(decode_step)            // a valid message for it (`ok`), or one with no room (`no_room`),
-///                                        // still in the decoder (the per-byte path)
-///   void deliver(const decode_result&)   // the same as a whole result (the bulk path)
-/// which run on the link side. `Decoder` is a `basic_decoder`; `Link` a `detail::link`.
+///   void deliver(decode_step)   // a valid message for it (`ok`), or one with no room (`no_room`), still in
+///                               // the decoder
+/// which runs on the link side. Every message ends with its end of message, a control byte, which the node
+/// takes one at a time in the bulk paths too: so messages are delivered only there. `Decoder` is a
+/// `basic_decoder`; `Link` a `detail::link`.
 template <class Node, class Decoder, class Link>
 class node : public byte_port {
  public:
@@ -162,33 +163,25 @@ class node : public byte_port {
 
   // What a step of the decoder completed: errors are counted here, messages go to the node.
   void handle(decode_step step) noexcept {
-    if (step == 0) return;
-    handle(status_of(step), step);
+    if (step != 0) completed(step);  // 0: incomplete, the common case
   }
-  TRIONET_NOINLINE void handle(decode_status status, decode_step step) noexcept {
-    switch (status) {
-      case decode_status::incomplete:
-        return;
-      case decode_status::frame_error:
-        frame_errors_.increment();
-        link_.netstat().raise(netstat_rx_frame_error);
-        return;
-      case decode_status::crc_error:
-        crc_errors_.increment();
-        link_.netstat().raise(netstat_rx_crc_error);
-        return;
-      case decode_status::no_room:
-      case decode_status::ok:
-        static_cast<Node*>(this)->deliver(step);
-        return;
+  TRIONET_NOINLINE void completed(decode_step step) noexcept {
+    const decode_status status = status_of(step);
+    if (status == decode_status::ok || status == decode_status::no_room) {
+      static_cast<Node*>(this)->deliver(step);
+    } else {
+      count_error(status);
     }
   }
-  // The same for a result of the bulk decoder.
-  void handle_result(const decode_result& r) noexcept {
-    if (r.status == decode_status::ok || r.status == decode_status::no_room) {
-      static_cast<Node*>(this)->deliver(r);
+  // A message for the node that the decoder discarded: a CRC error, else a frame error (the only other
+  // status of a completed step).
+  void count_error(decode_status status) noexcept {
+    if (status == decode_status::crc_error) {
+      crc_errors_.increment();
+      link_.netstat().raise(netstat_rx_crc_error);
     } else {
-      handle(r.status, decode_step{0});
+      frame_errors_.increment();
+      link_.netstat().raise(netstat_rx_frame_error);
     }
   }
 
@@ -235,7 +228,9 @@ class node : public byte_port {
     const std::uint8_t* const run = find_control(p, end);
     const auto n = static_cast<std::size_t>(run - p);
     (void)link_.receive_data(p, n);  // byte_route::local
-    decoder_.push(byte_view(p, n), [this](const decode_result& result) { handle_result(result); });
+    // Data alone completes no message (its end of message is a control byte, above): the decoder can only
+    // report stray data here.
+    decoder_.push(byte_view(p, n), [this](const decode_result& result) { count_error(result.status); });
     return run;
   }
 
