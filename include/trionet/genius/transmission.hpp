@@ -123,10 +123,10 @@ namespace detail {
 
 constexpr std::uint8_t control_byte(const control_layout& layout, std::uint8_t tag,
                                     unsigned fields) noexcept {
-  fields &= 0x3fU;
-  tag &= 3U;
-  return static_cast<std::uint8_t>(layout.position == tag_position::high ? (tag << 6U) | fields
-                                                                         : (fields << 2U) | tag);
+  const unsigned field_bits = fields & 0x3fU;
+  const unsigned tag_bits = tag & 3U;
+  return static_cast<std::uint8_t>(layout.position == tag_position::high ? (tag_bits << 6U) | field_bits
+                                                                         : (field_bits << 2U) | tag_bits);
 }
 
 }  // namespace detail
