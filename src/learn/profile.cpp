@@ -373,16 +373,6 @@ bool same_defkey(const ring::defkey_table& a, const ring::defkey_table& b) {
   return std::memcmp(a.value, b.value, sizeof a.value) == 0;
 }
 
-bool same_display(const ring::display_model& a, const ring::display_model& b) {
-  return a.carriage_return == b.carriage_return && a.line_feed == b.line_feed &&
-         a.position_base == b.position_base;
-}
-
-bool same_control(const genius::control_layout& a, const genius::control_layout& b) {
-  return a.start == b.start && a.stop == b.stop && a.start_of_block == b.start_of_block &&
-         a.end_of_block == b.end_of_block && a.position == b.position;
-}
-
 bool is_identifier(std::string_view word) {
   if (word.empty()) return false;
   const auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
@@ -400,9 +390,9 @@ bool operator==(const profile& a, const profile& b) noexcept {
          a.ring.max_characters == b.ring.max_characters && a.ring.receive_buffer == b.ring.receive_buffer &&
          std::memcmp(a.keypad.codes.raw, b.keypad.codes.raw, sizeof a.keypad.codes.raw) == 0 &&
          same_defkey(a.keypad.defkey, b.keypad.defkey) && a.keypad.key_off == b.keypad.key_off &&
-         same_display(a.keypad.display, b.keypad.display) && a.can.node_count == b.can.node_count &&
+         a.keypad.display == b.keypad.display && a.can.node_count == b.can.node_count &&
          a.can.byte_order == b.can.byte_order && a.genius.crc == b.genius.crc &&
-         same_control(a.genius.control, b.genius.control);
+         a.genius.control == b.genius.control;
 }
 
 profile_result read_profile(std::string_view json) {

@@ -109,6 +109,16 @@ struct control_layout {
         1U << (start & 7U) | 1U << (stop & 7U) | 1U << (start_of_block & 7U) | 1U << (end_of_block & 7U);
     return seen == 0xFU;
   }
+
+  /// Equal when every tag and the tag position are.
+  friend constexpr bool operator==(const control_layout& a, const control_layout& b) noexcept {
+    return a.start == b.start && a.stop == b.stop && a.start_of_block == b.start_of_block &&
+           a.end_of_block == b.end_of_block && a.position == b.position;
+  }
+  /// Not equal when any differs.
+  friend constexpr bool operator!=(const control_layout& a, const control_layout& b) noexcept {
+    return !(a == b);
+  }
 };
 
 /// The fields of a control character's byte. Only the fields of its `kind` are meaningful.
@@ -179,7 +189,8 @@ constexpr std::uint8_t control_byte(const control_layout& layout, std::uint8_t t
 }
 /// A control character of no known kind in `layout` (a Start of block with the top field bit set). A parser
 /// abandons an open transmission on it (`unknown_control`): e.g. what to put where a character was lost.
-[[nodiscard]] constexpr character unknown_control_character(const control_layout& layout = control_layout{}) noexcept {
+[[nodiscard]] constexpr character unknown_control_character(
+    const control_layout& layout = control_layout{}) noexcept {
   return control_character(detail::control_byte(layout, layout.start_of_block, 0x20u));
 }
 

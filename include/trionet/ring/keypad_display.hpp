@@ -77,6 +77,16 @@ struct display_model {
   /// Added to the position p after the escape (27, then the letter H) on the wire: 0 sends p itself, 32
   /// sends p + 32 (a printable character). At most `max_position_base`.
   std::uint8_t position_base = 0;
+
+  /// Equal when every choice is.
+  friend constexpr bool operator==(const display_model& a, const display_model& b) noexcept {
+    return a.carriage_return == b.carriage_return && a.line_feed == b.line_feed &&
+           a.position_base == b.position_base;
+  }
+  /// Not equal when any choice differs.
+  friend constexpr bool operator!=(const display_model& a, const display_model& b) noexcept {
+    return !(a == b);
+  }
 };
 
 /// The largest `display_model::position_base`: the last position, 39, must still be a 7-bit character.
