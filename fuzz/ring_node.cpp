@@ -124,9 +124,10 @@ struct link_model {
     if (classify(byte) == byte_class::end_of_message) {
       if (was_discarding) return byte_route::dropped;
       if (!was_open) return byte_route::local;
-      if (forward.size() == forward_capacity) {
-        open = true;  // lost on its end of message
-        return lose(forwards_lost);
+      if (forward.size() == forward_capacity) {  // lost on its end of message, which still ends it
+        const byte_route r = lose(forwards_lost);
+        discarding = false;
+        return r;
       }
       push(with_hops(byte, static_cast<std::uint8_t>(hops_of(byte) == 0 ? 0 : hops_of(byte) - 1)));
       return byte_route::forwarded;
