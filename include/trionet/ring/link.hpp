@@ -102,7 +102,7 @@ namespace detail {
 /// The forward buffer of a node's link: link side only (no synchronisation). A buffer of Capacity bytes in
 /// two parts: [r_, w_) goes out first, then [0, o_), which fills once w_ has reached the end while bytes
 /// were still waiting (o_ > 0 only when w_ == Capacity, and o_ <= r_). The fast paths are `put_fast` (while
-/// w_ < lim_: the link's grant) and `take_fast` (while r_ < w_): one comparison each, no wrap test.
+/// w_ < lim_: the link's grant) and `ready` + `take` (while r_ < w_): one comparison each, no wrap test.
 /// While the node sends an own frame (`parked`), r_ = w_ = Capacity: every received byte goes to [0, o_).
 template <std::size_t Capacity>
 class forward_buffer {
@@ -122,13 +122,10 @@ class forward_buffer {
     ++w_;  // after the store: one add to memory
     return true;
   }
-  /// Takes the next byte of [r_, w_); false when that part is empty.
-  TRIONET_ALWAYS_INLINE bool take_fast(std::uint8_t& byte) noexcept {
-    if (r_ == w_) return false;
-    byte = data_[r_];
-    ++r_;
-    return true;
-  }
+  /// True when [r_, w_) holds a byte: `take` may take it.
+  TRIONET_ALWAYS_INLINE bool ready() const noexcept { return r_ != w_; }
+  /// Takes the next byte of [r_, w_). Precondition: ready().
+  TRIONET_ALWAYS_INLINE std::uint8_t take() noexcept { return data_[r_++]; }
 
   /// Bytes in the buffer.
   std::size_t size() const noexcept { return std::size_t{w_} - r_ + o_; }
@@ -500,9 +497,16 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   /// Link side: the next byte for the link, if any. The fast path takes the next forwarded byte.
   [[nodiscard]] TRIONET_ALWAYS_INLINE bool transmit(std::uint8_t& byte) noexcept {
-    if (TRIONET_LIKELY(forward_.take_fast(byte))) return true;
-    const int next = transmit_slow();  // in a register: `byte` need not be in memory
-    if (next < 0) return false;
+    // The two paths meet in a whole register, so a caller that widens `byte` does not widen it again after
+    // the fast path (one instruction per byte); the general path's result stays in a register too.
+    std::size_t next;
+    if (TRIONET_LIKELY(forward_.ready())) {
+      next = forward_.take();
+    } else {
+      const int slow = transmit_slow();
+      if (slow < 0) return false;
+      next = static_cast<std::uint8_t>(slow);
+    }
     byte = static_cast<std::uint8_t>(next);
     return true;
   }
@@ -626,10 +630,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
       }
       return byte;
     }
-    if (forward_.next_part()) {  // bytes that arrived meanwhile
-      (void)forward_.take_fast(byte);
-      return byte;
-    }
+    if (forward_.next_part()) return forward_.take();  // bytes that arrived meanwhile
     // The forward buffer is empty. A forwarded message open on the receive side has gone out so far
     // (cut-through): its next byte has not arrived. Otherwise the transmitter is between messages.
     if (forwarding_message() || !queue_.pop(byte)) return -1;
