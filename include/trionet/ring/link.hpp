@@ -32,10 +32,12 @@
 //
 // The per-byte fast paths (a UART interrupt): a data byte of a forwarded message is appended to the forward
 // buffer while a grant lasts (the room up to the end of the buffer, within the forwarding bound), and
-// `transmit` takes the next forward-buffer byte; everything else (control bytes, the node's own frames, the
-// buffer's wrap) takes the general path. While the node sends an own frame the forward buffer's indices are
-// parked at its end, so the fast `transmit` finds nothing there and the bytes that arrive meanwhile wait in
-// the buffer's wrapped-round part.
+// `transmit` takes the next forward-buffer byte. Next come the common bytes of traffic through the node: the
+// next grant at the buffer's wrap, a forwarded end of message, the header of a message to forward (`next_*`,
+// each taking only what it can take simply); whatever they refuse (bytes for the node, drops, losses, the
+// node's own frames) takes the general path (`refuse_*`, `transmit_slow`). While the node sends an own frame
+// the forward buffer's indices are parked at its end, so the fast `transmit` finds nothing there and the
+// bytes that arrive meanwhile wait in the buffer's wrapped-round part.
 //
 // This is the nodes' plumbing (`motion_coordinator` and `keypad` use it through `ring::node`), not an API.
 // Cost: ForwardCapacity + TransmitCapacity bytes + about 40 bytes. Per byte O(1), the bulk calls with one copy
@@ -149,15 +151,7 @@ class forward_buffer {
 
   /// Appends a byte; false (nothing done) when full. Ends any grant.
   [[nodiscard]] TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
-    if (w_ == Capacity) {
-      if (r_ != Capacity || o_ != 0 || parked_) {  // the wrapped-round part, up to the next byte to send
-        if (o_ == r_) return false;
-        data_[o_] = byte;
-        o_ = static_cast<index>(o_ + 1u);
-        return true;
-      }
-      r_ = w_ = 0;  // drained at the end: start again (not while parked: an own frame is going out)
-    }
+    if (w_ == Capacity && !restart()) return push_wrapped(byte);
     data_[w_] = byte;
     lim_ = w_ = static_cast<index>(w_ + 1u);
     return true;
@@ -201,6 +195,31 @@ class forward_buffer {
   }
   /// The most recently appended byte. Precondition: !empty().
   std::uint8_t& back() noexcept { return o_ != 0 ? data_[o_ - 1u] : data_[w_ - 1u]; }
+
+  /// At the end of the buffer (w_ == Capacity): when everything has gone out, starts again at its beginning
+  /// (not while parked: an own frame is going out). True if so.
+  TRIONET_ALWAYS_INLINE bool restart() noexcept {
+    if (r_ != Capacity || o_ != 0 || parked_) return false;
+    r_ = w_ = 0;
+    return true;
+  }
+  /// `push(byte)` then a grant of the rest of the buffer, when the buffer has drained at its end (as
+  /// `restart`); false, with nothing done, otherwise.
+  TRIONET_ALWAYS_INLINE bool restart_with(std::uint8_t byte) noexcept {
+    if (r_ != Capacity || o_ != 0 || parked_) return false;  // (r_ at the end: so is w_)
+    data_[0] = byte;
+    r_ = 0;
+    w_ = 1;
+    lim_ = static_cast<index>(Capacity);
+    return true;
+  }
+  /// Appends a byte to the wrapped-round part, up to the next byte to send (w_ == Capacity); false when full.
+  TRIONET_NOINLINE bool push_wrapped(std::uint8_t byte) noexcept {
+    if (o_ == r_) return false;
+    data_[o_] = byte;
+    o_ = static_cast<index>(o_ + 1u);
+    return true;
+  }
 
   /// When [r_, w_) is used up and bytes wait in [0, o_): they become [r_, w_). True if so.
   bool next_part() noexcept {
@@ -332,32 +351,47 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     return is_data(byte) && forward_.put_fast(byte);
   }
 
-  /// Link side, the step after the fast path: a data byte or the end of message of a forwarded message, taken
-  /// as `receive` would (and a new grant opened) when it fits within the forwarding bound; false, with
-  /// nothing done, for anything else (then call `receive`). Precondition: `forward_fast(byte)` was false, so
-  /// no grant is open.
-  TRIONET_ALWAYS_INLINE bool forward_next(std::uint8_t byte) noexcept {
-    if (!forwarding_message()) return false;
-    if (is_data(byte)) {
-      if (remaining_ == 0 || !forward_.push(byte)) return false;  // cut or lost: `receive` counts it
-      remaining_ = static_cast<std::uint16_t>(remaining_ - 1u);
-      regrant();
-      return true;
-    }
-    if (type_of(byte) != 0 || !forward_.push(decrement_hops(byte))) return false;
-    receiving_ = receiving::local;
+  // After the fast path, a byte is either taken by the next step (`next_data`, `next_control`: the common
+  // bytes of traffic through the node, as `receive` takes them) or refused by it and then routed by the
+  // matching `refuse_*`, which takes everything else: bytes for the node, dropped bytes, and forwarded
+  // messages lost. The pair is exactly `receive`. Precondition of each: `forward_fast(byte)` was false.
+
+  /// Link side: a data byte of a forwarded message when the grant has run out (the end of the forward
+  /// buffer): appended, and a new grant opened. False, with nothing done, otherwise.
+  TRIONET_ALWAYS_INLINE bool next_data(std::uint8_t byte) noexcept {
+    if (!take_data(byte, forward_)) return false;
+    regrant();
     return true;
   }
+  /// Link side: the commonest case of `next_data`, in a few instructions: the forward buffer has drained at
+  /// its end and the bound is not near, so the byte starts it again with a grant of the whole buffer. False,
+  /// with nothing done, otherwise.
+  TRIONET_ALWAYS_INLINE bool renew(std::uint8_t byte) noexcept {
+    if (remaining_ < ForwardCapacity || !forwarding_message() || !forward_.restart_with(byte)) return false;
+    remaining_ = static_cast<std::uint16_t>(remaining_ - ForwardCapacity);
+    return true;
+  }
+  /// Link side: the end of message of a forwarded message, or a header with A > 1 on a forwarding link (a
+  /// new message to forward: a grant is opened), passed on with A - 1. False, with nothing done, otherwise.
+  /// A header ends any message passing through; the node's decoder must end its own.
+  TRIONET_ALWAYS_INLINE bool next_control(std::uint8_t byte) noexcept {
+    if (!take_control(byte, forward_)) return false;
+    regrant();
+    return true;
+  }
+  /// Link side: routes a data byte that `next_data` refused.
+  [[nodiscard]] byte_route refuse_data(std::uint8_t byte) noexcept { return refuse_data(byte, forward_); }
+  /// Link side: routes a header or end of message that `next_control` refused.
+  [[nodiscard]] byte_route refuse_control(std::uint8_t byte) noexcept { return refuse_control(byte, forward_); }
 
   /// Link side: true when `byte` is data for the node's own decoder (`receive` would route it `local`).
   bool local_data(std::uint8_t byte) const noexcept { return is_data(byte) && receiving_ == receiving::local; }
 
-  /// Link side: takes one received byte and says where it went.
-  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route receive(std::uint8_t byte) noexcept {
-    settle();
-    const byte_route r = route_byte(byte, forward_);
-    regrant();
-    return r;
+  /// Link side: takes one received byte that `forward_fast` refused, and says where it went: the next step,
+  /// or what refusing it gives. (`forward_fast` then this is the per-byte receive that the other forms match.)
+  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept {
+    if (is_data(byte)) return next_data(byte) ? byte_route::forwarded : refuse_data(byte);
+    return next_control(byte) ? byte_route::forwarded : refuse_control(byte);
   }
 
   /// Link side: a run of data bytes (no header or end of message among them): the same as `receive` for
@@ -610,7 +644,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     forward_.revoke();
   }
   // A new grant for the fast path, while a forwarded message is open.
-  void regrant() noexcept {
+  TRIONET_ALWAYS_INLINE void regrant() noexcept {
     if (!forwarding_message()) return;
     remaining_ = static_cast<std::uint16_t>(remaining_ - forward_.grant(remaining_));
   }
@@ -701,43 +735,72 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   template <class Into>
   TRIONET_ALWAYS_INLINE byte_route route_byte(std::uint8_t byte, Into& into) noexcept {
-    if (is_data(byte)) {
-      if (forwarding_message()) {
-        if (remaining_ == 0) return cut(into);
-        if (!into.push(byte)) return lose(into);
-        --remaining_;
-        return byte_route::forwarded;
-      }
-      return receiving_ == receiving::local ? byte_route::local : byte_route::dropped;
+    if (is_data(byte)) return take_data(byte, into) ? byte_route::forwarded : refuse_data(byte, into);
+    return take_control(byte, into) ? byte_route::forwarded : refuse_control(byte, into);
+  }
+
+  // A data byte of a forwarded message within its bound, appended (no grant is open: it ran out, or the
+  // caller settled it). False, with nothing done, otherwise.
+  template <class Into>
+  TRIONET_ALWAYS_INLINE bool take_data(std::uint8_t byte, Into& into) noexcept {
+    if (!forwarding_message() || remaining_ == 0 || !into.push(byte)) return false;
+    remaining_ = static_cast<std::uint16_t>(remaining_ - 1u);
+    return true;
+  }
+  // The end of message of a forwarded message, or the header of a message to forward, appended with A - 1.
+  // False, with nothing done, otherwise. (An open grant needs no settling: its message ends, and its bound
+  // with it; the append revokes it.)
+  template <class Into>
+  TRIONET_ALWAYS_INLINE bool take_control(std::uint8_t byte, Into& into) noexcept {
+    std::uint8_t out;
+    if (type_of(byte) == 0) {
+      if (!forwarding_message()) return false;
+      out = decrement_hops(byte);
+    } else {
+      // Any header ends the message passing through: the one before does not matter here.
+      if (hops_of(byte) <= 1 || !this->forwarding()) return false;
+      out = static_cast<std::uint8_t>(byte - 0x08);  // A > 1: decrement_hops without its check
     }
-    if (type_of(byte) == 0) {  // end of message
-      if (forwarding_message()) {
-        if (!into.push(decrement_hops(byte))) return lose(into);
-        receiving_ = receiving::local;
-        return byte_route::forwarded;
-      }
+    if (!into.push(out)) return false;
+    if (type_of(byte) == 0) {
+      receiving_ = receiving::local;
+      return true;
+    }
+    messages_forwarded_.increment();
+    receiving_ = static_cast<receiving>(0x80u | (byte & 0x07u));
+    remaining_ = longest_data[byte & 0x07u];
+    return true;
+  }
+  // A data byte that `take_data` did not take: for the node, dropped, past the bound (cut), or no room (lost).
+  template <class Into>
+  byte_route refuse_data(std::uint8_t, Into& into) noexcept {
+    if (!forwarding_message()) return receiving_ == receiving::local ? byte_route::local : byte_route::dropped;
+    return remaining_ == 0 ? cut(into) : lose(into);
+  }
+  // A control byte that `take_control` did not take: an end of message for the node or of a dropped
+  // message, one that found no room (lost), or a header: for the node, of a message dropped while
+  // forwarding is off, or of one that found no room (nothing of it is in the buffer: nothing to remove).
+  template <class Into>
+  byte_route refuse_control(std::uint8_t byte, Into& into) noexcept {
+    if (type_of(byte) == 0) {
+      if (forwarding_message()) return lose(into);
       const bool dropping = receiving_ == receiving::discard;
       receiving_ = receiving::local;
       return dropping ? byte_route::dropped : byte_route::local;
     }
-    receiving_ = receiving::local;  // any header ends the message being forwarded
-    const std::uint8_t hops = hops_of(byte);
-    if (hops <= 1) return byte_route::local;
+    settle();  // any header ends the message being forwarded, and its grant
+    receiving_ = receiving::local;
+    if (hops_of(byte) <= 1) return byte_route::local;
     if (!this->forwarding()) {
       receiving_ = receiving::discard;
       this->count_drop();
       return byte_route::dropped;
     }
     messages_forwarded_.increment();
-    if (!into.push(decrement_hops(byte))) {  // nothing of it is in the buffer: nothing to remove
-      forwards_lost_.increment();
-      netstat_.raise(netstat_tx_buffer_error);
-      receiving_ = receiving::discard;
-      return byte_route::lost;
-    }
-    receiving_ = static_cast<receiving>(0x80u | (byte & 0x07u));
-    remaining_ = longest_data[byte & 0x07u];
-    return byte_route::forwarded;
+    forwards_lost_.increment();
+    netstat_.raise(netstat_tx_buffer_error);
+    receiving_ = receiving::discard;
+    return byte_route::lost;
   }
 
   // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
@@ -784,6 +847,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   template <class Into>
   byte_route end_forward(Into& into) noexcept {
+    settle();
     netstat_.raise(netstat_tx_buffer_error);
     // Its header and data so far are in the buffer, if none of it has gone out.
     const std::size_t incoming = std::size_t{longest_data[forward_type()]} - remaining_ + 1u;

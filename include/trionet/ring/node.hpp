@@ -53,11 +53,15 @@ class node : public byte_port {
   /// Link side: a byte arrived. A data byte of a message passing through takes the fast path (inlined into
   /// a caller that knows the node's type, e.g. the UART interrupt).
   TRIONET_ALWAYS_INLINE void receive(std::uint8_t byte) noexcept final {
-    if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
+    if (TRIONET_LIKELY(is_data(byte))) {
+      if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
 #if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
-    if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
+      if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
 #endif
-    receive_slow(byte);
+      receive_data_slow(byte);
+    } else {
+      receive_control(byte);
+    }
   }
   /// Link side: the next byte to send, if there is one now. The next forwarded byte takes the fast path
   /// (inlined as `receive` is).
@@ -147,18 +151,29 @@ class node : public byte_port {
   Decoder decoder_;  ///< the decoder of messages for this node (link side)
 
  private:
-  // Everything but a data byte passing through while the link's grant lasts.
-  TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
-#if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
-    if (link_.forward_next(byte)) return;  // the next grant, or the end of a forwarded message
+  // The general path of a data byte: the next grant, or what `refuse_data` makes of it.
+  TRIONET_NOINLINE void receive_data_slow(std::uint8_t byte) noexcept {
+#if !defined(__OPTIMIZE_SIZE__)  // (not worth its size in -Os firmware)
+    if (link_.renew(byte)) return;  // the commonest next grant, in a few instructions
 #endif
-    const byte_route r = link_.receive(byte);
-    if (r == byte_route::local) {
-      handle(decoder_.step(byte));
+    if (link_.next_data(byte)) return;
+    if (link_.refuse_data(byte) == byte_route::local) decode(byte);
+  }
+  // The general path of a header or end of message: the next step of traffic through the node, or what
+  // `refuse_control` makes of it.
+  TRIONET_NOINLINE void receive_control(std::uint8_t byte) noexcept {
+    if (link_.next_control(byte)) {
+      if (type_of(byte) != 0) passed_header();
       return;
     }
-    if (classify(byte) == byte_class::header) passed_header();
+    if (link_.refuse_control(byte) == byte_route::local) {
+      decode(byte);
+    } else if (type_of(byte) != 0) {
+      passed_header();
+    }
   }
+  // A byte for the node's decoder.
+  TRIONET_FAST_PATH void decode(std::uint8_t byte) noexcept { handle(decoder_.step(byte)); }
 
   // What a step of the decoder completed: errors are counted here, messages go to the node.
   void handle(decode_step step) noexcept {
@@ -215,7 +230,11 @@ class node : public byte_port {
 
   // A header passed through the node: it ends any message the node was receiving, and the decoder is then
   // between messages.
-  void passed_header() noexcept {
+  TRIONET_ALWAYS_INLINE void passed_header() noexcept {
+    if (TRIONET_LIKELY(decoder_.idle())) return;
+    passed_header_slow();
+  }
+  TRIONET_NOINLINE void passed_header_slow() noexcept {
     if (decoder_.in_message()) {
       end_local_message();
     } else {
@@ -229,7 +248,7 @@ class node : public byte_port {
   // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
   TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p, const std::uint8_t* end) noexcept {
     if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
-      receive_slow(*p);
+      receive_control(*p);
       return p + 1;
     }
     const std::uint8_t* const run = find_control(p, end);
