@@ -151,9 +151,8 @@ class forward_buffer {
 
   /// Appends a byte; false (nothing done) when full. Ends any grant.
   [[nodiscard]] TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
-    if (w_ == Capacity && !restart()) return push_wrapped(byte);
-    data_[w_] = byte;
-    lim_ = w_ = static_cast<index>(w_ + 1u);
+    if (!reserve()) return push_wrapped(byte);
+    put_reserved(byte);
     return true;
   }
   /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. Ends any grant.
@@ -202,6 +201,14 @@ class forward_buffer {
     if (r_ != Capacity || o_ != 0 || parked_) return false;
     r_ = w_ = 0;
     return true;
+  }
+  /// Room for one byte after [r_, w_) (restarting the buffer if it has drained at its end): then
+  /// `put_reserved` appends it. False when only the wrapped-round part is left (`push` takes it there).
+  TRIONET_ALWAYS_INLINE bool reserve() noexcept { return w_ != Capacity || restart(); }
+  /// Appends a byte after `reserve`. Ends any grant.
+  TRIONET_ALWAYS_INLINE void put_reserved(std::uint8_t byte) noexcept {
+    data_[w_] = byte;
+    lim_ = w_ = static_cast<index>(w_ + 1u);
   }
   /// `push(byte)` then a grant of the rest of the buffer, when the buffer has drained at its end (as
   /// `restart`); false, with nothing done, otherwise.
@@ -351,15 +358,16 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     return is_data(byte) && forward_.put_fast(byte);
   }
 
-  // After the fast path, a byte is either taken by the next step (`next_data`, `next_control`: the common
-  // bytes of traffic through the node, as `receive` takes them) or refused by it and then routed by the
-  // matching `refuse_*`, which takes everything else: bytes for the node, dropped bytes, and forwarded
-  // messages lost. The pair is exactly `receive`. Precondition of each: `forward_fast(byte)` was false.
+  // After the fast path, on hosts, the next steps take the common bytes of traffic through the node that it
+  // does not (`renew`, `next_data`, `next_control`: exactly as `receive` would, when that needs nothing
+  // unusual: no wrapped-round part of the forward buffer, no loss, no byte for the node); `receive` takes
+  // everything. Precondition of each: `forward_fast(byte)` was false.
 
   /// Link side: a data byte of a forwarded message when the grant has run out (the end of the forward
   /// buffer): appended, and a new grant opened. False, with nothing done, otherwise.
   TRIONET_ALWAYS_INLINE bool next_data(std::uint8_t byte) noexcept {
-    if (!take_data(byte, forward_)) return false;
+    unwrapped into{forward_};
+    if (!take_data(byte, into)) return false;
     regrant();
     return true;
   }
@@ -375,23 +383,31 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   /// new message to forward: a grant is opened), passed on with A - 1. False, with nothing done, otherwise.
   /// A header ends any message passing through; the node's decoder must end its own.
   TRIONET_ALWAYS_INLINE bool next_control(std::uint8_t byte) noexcept {
-    if (!take_control(byte, forward_)) return false;
+    unwrapped into{forward_};
+    if (!take_control(byte, into)) return false;
     regrant();
     return true;
   }
-  /// Link side: routes a data byte that `next_data` refused.
-  [[nodiscard]] byte_route refuse_data(std::uint8_t byte) noexcept { return refuse_data(byte, forward_); }
-  /// Link side: routes a header or end of message that `next_control` refused.
-  [[nodiscard]] byte_route refuse_control(std::uint8_t byte) noexcept { return refuse_control(byte, forward_); }
 
   /// Link side: true when `byte` is data for the node's own decoder (`receive` would route it `local`).
   bool local_data(std::uint8_t byte) const noexcept { return is_data(byte) && receiving_ == receiving::local; }
 
-  /// Link side: takes one received byte that `forward_fast` refused, and says where it went: the next step,
-  /// or what refusing it gives. (`forward_fast` then this is the per-byte receive that the other forms match.)
+  /// Link side: takes one received byte that `forward_fast` refused, and says where it went.
   [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept {
-    if (is_data(byte)) return next_data(byte) ? byte_route::forwarded : refuse_data(byte);
-    return next_control(byte) ? byte_route::forwarded : refuse_control(byte);
+    return is_data(byte) ? route_data(byte) : route_control(byte);
+  }
+  /// Link side: `receive` of a data byte.
+  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route route_data(std::uint8_t byte) noexcept {
+    if (!take_data(byte, forward_)) return refuse_data(byte, forward_);
+    regrant();
+    return byte_route::forwarded;
+  }
+  /// Link side: `receive` of a header or end of message. (A grant still open needs no settling first: a
+  /// control byte that ends its message either appends, which revokes it, or is refused, which settles it.)
+  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route route_control(std::uint8_t byte) noexcept {
+    if (!take_control(byte, forward_)) return refuse_control(byte, forward_);
+    regrant();
+    return byte_route::forwarded;
   }
 
   /// Link side: a run of data bytes (no header or end of message among them): the same as `receive` for
@@ -635,6 +651,17 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   enum class receiving : std::uint8_t { local = 0, discard = 1, forward = 0x80 };
   bool forwarding_message() const noexcept { return (static_cast<unsigned>(receiving_) & 0x80u) != 0; }
   std::uint8_t forward_type() const noexcept { return static_cast<std::uint8_t>(receiving_) & 0x07u; }
+
+  // The forward buffer for the next steps: appends only where the fast path would (after [r_, w_), or at
+  // the beginning of a buffer drained at its end), so that the wrapped-round part is left to `receive`.
+  struct unwrapped {
+    forward_buffer<ForwardCapacity>& buffer;
+    TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
+      if (!buffer.reserve()) return false;
+      buffer.put_reserved(byte);
+      return true;
+    }
+  };
 
   // The grant of the fast path goes back into the forwarding bound: `remaining_` is exact again.
   void settle() noexcept {

@@ -55,13 +55,16 @@ class node : public byte_port {
   TRIONET_ALWAYS_INLINE void receive(std::uint8_t byte) noexcept final {
     if (TRIONET_LIKELY(is_data(byte))) {
       if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
-#if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
+#if !defined(__OPTIMIZE_SIZE__)  // the next steps on hosts; with -Os straight to the general paths (size)
       if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
-#endif
-      receive_data_slow(byte);
-    } else {
-      receive_control(byte);
+      return receive_next_data(byte);
     }
+    receive_next_control(byte);
+#else
+      return receive_data_general(byte);
+    }
+    receive_control_general(byte);
+#endif
   }
   /// Link side: the next byte to send, if there is one now. The next forwarded byte takes the fast path
   /// (inlined as `receive` is).
@@ -151,22 +154,25 @@ class node : public byte_port {
   Decoder decoder_;  ///< the decoder of messages for this node (link side)
 
  private:
-  // The general path of a data byte: the next grant, or what `refuse_data` makes of it.
-  TRIONET_NOINLINE void receive_data_slow(std::uint8_t byte) noexcept {
-#if !defined(__OPTIMIZE_SIZE__)  // (not worth its size in -Os firmware)
-    if (link_.renew(byte)) return;  // the commonest next grant, in a few instructions
-#endif
-    if (link_.next_data(byte)) return;
-    if (link_.refuse_data(byte) == byte_route::local) decode(byte);
+#if !defined(__OPTIMIZE_SIZE__)
+  // The next steps (hosts): the common bytes of traffic through the node, each in a function whose common
+  // path saves no register (the rest goes on to the general paths, tail calls).
+  TRIONET_NOINLINE void receive_next_data(std::uint8_t byte) noexcept {
+    if (link_.renew(byte) || link_.next_data(byte)) return;
+    receive_data_general(byte);
   }
-  // The general path of a header or end of message: the next step of traffic through the node, or what
-  // `refuse_control` makes of it.
-  TRIONET_NOINLINE void receive_control(std::uint8_t byte) noexcept {
-    if (link_.next_control(byte)) {
-      if (type_of(byte) != 0) passed_header();
-      return;
-    }
-    if (link_.refuse_control(byte) == byte_route::local) {
+  TRIONET_NOINLINE void receive_next_control(std::uint8_t byte) noexcept {
+    if (!link_.next_control(byte)) return receive_control_general(byte);
+    if (type_of(byte) != 0) passed_header();
+  }
+#endif
+  // The general paths: a data byte that the fast path refused, and a header or end of message.
+  TRIONET_NOINLINE void receive_data_general(std::uint8_t byte) noexcept {
+    if (link_.route_data(byte) == byte_route::local) decode(byte);
+  }
+  TRIONET_NOINLINE void receive_control_general(std::uint8_t byte) noexcept {
+    const byte_route r = link_.route_control(byte);
+    if (r == byte_route::local) {
       decode(byte);
     } else if (type_of(byte) != 0) {
       passed_header();
@@ -248,7 +254,7 @@ class node : public byte_port {
   // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
   TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p, const std::uint8_t* end) noexcept {
     if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
-      receive_control(*p);
+      receive_control_general(*p);
       return p + 1;
     }
     const std::uint8_t* const run = find_control(p, end);
