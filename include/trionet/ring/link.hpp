@@ -221,7 +221,8 @@ class forward_buffer {
     return true;
   }
   /// Appends a byte to the wrapped-round part, up to the next byte to send (w_ == Capacity); false when full.
-  TRIONET_NOINLINE bool push_wrapped(std::uint8_t byte) noexcept {
+  /// (Inlined on hosts: a node forwarding while it sends its own frames appends there often.)
+  TRIONET_FAST_PATH bool push_wrapped(std::uint8_t byte) noexcept {
     if (o_ == r_) return false;
     data_[o_] = byte;
     o_ = static_cast<index>(o_ + 1u);
@@ -359,15 +360,14 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   }
 
   // After the fast path, on hosts, the next steps take the common bytes of traffic through the node that it
-  // does not (`renew`, `next_data`, `next_control`: exactly as `receive` would, when that needs nothing
-  // unusual: no wrapped-round part of the forward buffer, no loss, no byte for the node); `receive` takes
-  // everything. Precondition of each: `forward_fast(byte)` was false.
+  // does not (`renew`, `next_data`, `next_control`: exactly as `receive` would, when nothing is lost and no
+  // byte is for the node); `receive` takes everything. Precondition of each: `forward_fast(byte)` was false.
 
   /// Link side: a data byte of a forwarded message when the grant has run out (the end of the forward
-  /// buffer): appended, and a new grant opened. False, with nothing done, otherwise.
+  /// buffer, or its wrapped-round part while the node sends an own frame): appended, and a new grant opened
+  /// where there is one. False, with nothing done, otherwise.
   TRIONET_ALWAYS_INLINE bool next_data(std::uint8_t byte) noexcept {
-    unwrapped into{forward_};
-    if (!take_data(byte, into)) return false;
+    if (!take_data(byte, forward_)) return false;
     regrant();
     return true;
   }
@@ -381,7 +381,8 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   }
   /// Link side: the end of message of a forwarded message, or a header with A > 1 on a forwarding link (a
   /// new message to forward: a grant is opened), passed on with A - 1. False, with nothing done, otherwise.
-  /// A header ends any message passing through; the node's decoder must end its own.
+  /// A header ends any message passing through; the node's decoder must end its own. Not into the
+  /// wrapped-round part (`receive` takes those), which keeps this step small.
   TRIONET_ALWAYS_INLINE bool next_control(std::uint8_t byte) noexcept {
     unwrapped into{forward_};
     if (!take_control(byte, into)) return false;
@@ -652,8 +653,8 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   bool forwarding_message() const noexcept { return (static_cast<unsigned>(receiving_) & 0x80u) != 0; }
   std::uint8_t forward_type() const noexcept { return static_cast<std::uint8_t>(receiving_) & 0x07u; }
 
-  // The forward buffer for the next steps: appends only where the fast path would (after [r_, w_), or at
-  // the beginning of a buffer drained at its end), so that the wrapped-round part is left to `receive`.
+  // The forward buffer for `next_control`: appends only after [r_, w_), or at the beginning of a buffer
+  // drained at its end, leaving the wrapped-round part to `receive` (so the step needs no register saved).
   struct unwrapped {
     forward_buffer<ForwardCapacity>& buffer;
     TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
