@@ -32,12 +32,13 @@
 //
 // The per-byte fast paths (a UART interrupt): a data byte of a forwarded message is appended to the forward
 // buffer while a grant lasts (the room up to the end of the buffer, within the forwarding bound), and
-// `transmit` takes the next forward-buffer byte. Next come the common bytes of traffic through the node: the
-// next grant at the buffer's wrap, a forwarded end of message, the header of a message to forward (`next_*`,
-// each taking only what it can take simply); whatever they refuse (bytes for the node, drops, losses, the
-// node's own frames) takes the general path (`refuse_*`, `transmit_slow`). While the node sends an own frame
-// the forward buffer's indices are parked at its end, so the fast `transmit` finds nothing there and the
-// bytes that arrive meanwhile wait in the buffer's wrapped-round part.
+// `transmit` takes the next forward-buffer byte. On hosts the next steps take the common bytes of traffic
+// through the node that the fast path does not: the next grant at the buffer's end, a forwarded end of
+// message, the header of a message to forward (`renew`, `next_*`); everything else (bytes for the node, drops,
+// losses, the node's own frames) takes the general path of its kind (`route_data`, `route_control`: `take_*`
+// then `refuse_*`; `transmit_slow`). While the node sends an own frame the forward buffer's indices are
+// parked at its end, so the fast `transmit` finds nothing there and the bytes that arrive meanwhile wait in
+// the buffer's wrapped-round part.
 //
 // This is the nodes' plumbing (`motion_coordinator` and `keypad` use it through `ring::node`), not an API.
 // Cost: ForwardCapacity + TransmitCapacity bytes + about 40 bytes. Per byte O(1), the bulk calls with one copy
@@ -875,7 +876,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   template <class Into>
   byte_route end_forward(Into& into) noexcept {
-    settle();
+    settle();  // (no grant is open when a message is lost; this keeps `remaining_` exact whatever the caller)
     netstat_.raise(netstat_tx_buffer_error);
     // Its header and data so far are in the buffer, if none of it has gone out.
     const std::size_t incoming = std::size_t{longest_data[forward_type()]} - remaining_ + 1u;
