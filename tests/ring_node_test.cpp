@@ -940,3 +940,75 @@ TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
   EXPECT_GT(forwarded_whole, 1000u);
   EXPECT_GT(lost, 10u);
 }
+
+// A UART interrupt per byte (one byte in, then one out) at the library's default capacities: the per-byte
+// steps after the fast path (the next grant at the forward buffer's end, a forwarded end of message or header)
+// against the general path (the bulk forms take every byte there), over long character messages, headers
+// that cut into an open grant, losses while the node's own messages go out, and damaged bytes.
+TEST(RingMotionCoordinator, OneByteEachWayMatchesTheBulkForms) {
+  std::mt19937_64 rng(7);
+  std::uint64_t forwarded = 0, lost = 0, cut = 0;
+  for (int round = 0; round < 100; ++round) {
+    std::vector<std::uint8_t> stream;
+    for (int i = 0; i < 24; ++i) {
+      const auto hops = static_cast<std::uint8_t>(1 + rng() % 3);
+      std::vector<std::uint8_t> frame;
+      if (rng() % 2 == 0) {
+        frame = chars(hops, std::string(1 + rng() % 120, static_cast<char>('a' + rng() % 26)));
+      } else {
+        frame = frame_of(ring::message::variable(hops, static_cast<std::uint16_t>(rng() % 16),
+                                                 static_cast<std::int64_t>(rng())));
+      }
+      if (rng() % 6 == 0) frame.resize(frame.size() / 2);  // cut short: the next header ends it
+      if (rng() % 8 == 0) frame.insert(frame.end() - 1, 20, 'x');  // longer than a variable transfer may be
+      insert_junk(stream, rng);
+      stream.insert(stream.end(), frame.begin(), frame.end());
+    }
+    for (int i = 0; i < 6; ++i) stream[rng() % stream.size()] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
+    trionet::vr_table<16> vr_one, vr_bulk, vr_relayed;
+    ring::motion_coordinator<> one(vr_one), bulk(vr_bulk), relayed(vr_relayed);
+    std::vector<std::uint8_t> out_one, out_bulk, out_relayed;
+    for (std::size_t i = 0; i < stream.size(); ++i) {
+      if (i % 97 == 0) {  // an own message now and then: forwarded bytes wait while it goes out
+        const int address = 10 + static_cast<int>(rng() % 2);
+        const ring::print_result printed = one.print(address, "OWN MESSAGE");
+        expect_same(printed, bulk.print(address, "OWN MESSAGE"));
+        expect_same(printed, relayed.print(address, "OWN MESSAGE"));
+      }
+      const bool pull = rng() % 8 != 0;  // now and then the transmitter is busy: a backlog builds up
+      one.receive(stream[i]);
+      std::uint8_t b = 0;
+      if (pull && one.transmit(b)) out_one.push_back(b);
+      bulk.receive(byte_view(&stream[i], 1));
+      std::uint8_t buffer[1];
+      if (pull && bulk.transmit(trionet::byte_buffer(buffer, 1)) == 1) out_bulk.push_back(buffer[0]);
+      const std::size_t n = relayed.relay(byte_view(&stream[i], 1), trionet::byte_buffer(buffer, pull ? 1 : 0));
+      if (n == 1) out_relayed.push_back(buffer[0]);
+      ASSERT_EQ(out_one, out_bulk) << "round " << round << ", byte " << i;
+      ASSERT_EQ(out_one, out_relayed) << "round " << round << ", byte " << i;
+    }
+    const auto rest = drain(one);
+    EXPECT_EQ(rest, drain(bulk));
+    EXPECT_EQ(rest, drain(relayed));
+    EXPECT_EQ(one.netstat(), bulk.netstat());
+    EXPECT_EQ(one.netstat(), relayed.netstat());
+    const std::string text = read_all(one, 4);
+    EXPECT_EQ(text, read_all(bulk, 4));
+    EXPECT_EQ(text, read_all(relayed, 4));
+    EXPECT_TRUE(same(one.forwarding_counters(), bulk.forwarding_counters()));
+    EXPECT_TRUE(same(one.counters(), bulk.counters()));
+    EXPECT_TRUE(same(one.forwarding_counters(), relayed.forwarding_counters()));
+    EXPECT_TRUE(same(one.counters(), relayed.counters()));
+    for (std::size_t v = 0; v < 16; ++v) {
+      EXPECT_EQ(vr_one[v], vr_bulk[v]);
+      EXPECT_EQ(vr_one[v], vr_relayed[v]);
+    }
+    forwarded += one.forwarding_counters().messages_forwarded;
+    lost += one.forwarding_counters().forwards_lost;
+    cut += one.forwarding_counters().forwards_cut;
+  }
+  // Forwarding, the loss of forwarded messages to a full forward buffer and the bound were all exercised.
+  EXPECT_GT(forwarded, 1000u);
+  EXPECT_GT(lost, 10u);
+  EXPECT_GT(cut, 10u);
+}

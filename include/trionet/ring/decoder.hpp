@@ -319,6 +319,8 @@ class basic_decoder : private detail::crc_holder<Crc> {
     state_ = state::idle;
   }
 
+  /// True between messages, with nothing to skip or report.
+  bool idle() const noexcept { return state_ == state::idle; }
   /// True while a message has begun and not ended.
   bool in_message() const noexcept { return state_ == state::in_message; }
   /// True while a message, or a skipped A = 0 message, has begun and not ended.

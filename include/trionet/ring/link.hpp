@@ -32,8 +32,11 @@
 //
 // The per-byte fast paths (a UART interrupt): a data byte of a forwarded message is appended to the forward
 // buffer while a grant lasts (the room up to the end of the buffer, within the forwarding bound), and
-// `transmit` takes the next forward-buffer byte; everything else (control bytes, the node's own frames, the
-// buffer's wrap) takes the general path. While the node sends an own frame the forward buffer's indices are
+// `transmit` takes the next forward-buffer byte. On hosts the next steps take the common bytes of traffic
+// through the node that the fast path does not: the next grant at the buffer's end, a forwarded end of
+// message, the header of a message to forward (`renew`, `next_*`); everything else (bytes for the node, drops,
+// losses, the node's own frames) takes the general path of its kind (`route_data`, `route_control`: `take_*`
+// then `refuse_*`; `transmit_slow`). While the node sends an own frame the forward buffer's indices are
 // parked at its end, so the fast `transmit` finds nothing there and the bytes that arrive meanwhile wait in
 // the buffer's wrapped-round part.
 //
@@ -102,7 +105,7 @@ namespace detail {
 /// The forward buffer of a node's link: link side only (no synchronisation). A buffer of Capacity bytes in
 /// two parts: [r_, w_) goes out first, then [0, o_), which fills once w_ has reached the end while bytes
 /// were still waiting (o_ > 0 only when w_ == Capacity, and o_ <= r_). The fast paths are `put_fast` (while
-/// w_ < lim_: the link's grant) and `take_fast` (while r_ < w_): one comparison each, no wrap test.
+/// w_ < lim_: the link's grant) and `ready` + `take` (while r_ < w_): one comparison each, no wrap test.
 /// While the node sends an own frame (`parked`), r_ = w_ = Capacity: every received byte goes to [0, o_).
 template <std::size_t Capacity>
 class forward_buffer {
@@ -122,13 +125,10 @@ class forward_buffer {
     ++w_;  // after the store: one add to memory
     return true;
   }
-  /// Takes the next byte of [r_, w_); false when that part is empty.
-  TRIONET_ALWAYS_INLINE bool take_fast(std::uint8_t& byte) noexcept {
-    if (r_ == w_) return false;
-    byte = data_[r_];
-    ++r_;
-    return true;
-  }
+  /// True when [r_, w_) holds a byte: `take` may take it.
+  TRIONET_ALWAYS_INLINE bool ready() const noexcept { return r_ != w_; }
+  /// Takes the next byte of [r_, w_). Precondition: ready().
+  TRIONET_ALWAYS_INLINE std::uint8_t take() noexcept { return data_[r_++]; }
 
   /// Bytes in the buffer.
   std::size_t size() const noexcept { return std::size_t{w_} - r_ + o_; }
@@ -152,17 +152,8 @@ class forward_buffer {
 
   /// Appends a byte; false (nothing done) when full. Ends any grant.
   [[nodiscard]] TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
-    if (w_ == Capacity) {
-      if (r_ != Capacity || o_ != 0 || parked_) {  // the wrapped-round part, up to the next byte to send
-        if (o_ == r_) return false;
-        data_[o_] = byte;
-        o_ = static_cast<index>(o_ + 1u);
-        return true;
-      }
-      r_ = w_ = 0;  // drained at the end: start again (not while parked: an own frame is going out)
-    }
-    data_[w_] = byte;
-    lim_ = w_ = static_cast<index>(w_ + 1u);
+    if (!reserve()) return push_wrapped(byte);
+    put_reserved(byte);
     return true;
   }
   /// Appends as many of `n` bytes as fit (all or a prefix); returns how many. Ends any grant.
@@ -204,6 +195,40 @@ class forward_buffer {
   }
   /// The most recently appended byte. Precondition: !empty().
   std::uint8_t& back() noexcept { return o_ != 0 ? data_[o_ - 1u] : data_[w_ - 1u]; }
+
+  /// At the end of the buffer (w_ == Capacity): when everything has gone out, starts again at its beginning
+  /// (not while parked: an own frame is going out). True if so.
+  TRIONET_ALWAYS_INLINE bool restart() noexcept {
+    if (r_ != Capacity || o_ != 0 || parked_) return false;
+    r_ = w_ = 0;
+    return true;
+  }
+  /// Room for one byte after [r_, w_) (restarting the buffer if it has drained at its end): then
+  /// `put_reserved` appends it. False when only the wrapped-round part is left (`push` takes it there).
+  TRIONET_ALWAYS_INLINE bool reserve() noexcept { return w_ != Capacity || restart(); }
+  /// Appends a byte after `reserve`. Ends any grant.
+  TRIONET_ALWAYS_INLINE void put_reserved(std::uint8_t byte) noexcept {
+    data_[w_] = byte;
+    lim_ = w_ = static_cast<index>(w_ + 1u);
+  }
+  /// `push(byte)` then a grant of the rest of the buffer, when the buffer has drained at its end (as
+  /// `restart`); false, with nothing done, otherwise.
+  TRIONET_ALWAYS_INLINE bool restart_with(std::uint8_t byte) noexcept {
+    if (r_ != Capacity || o_ != 0 || parked_) return false;  // (r_ at the end: so is w_)
+    data_[0] = byte;
+    r_ = 0;
+    w_ = 1;
+    lim_ = static_cast<index>(Capacity);
+    return true;
+  }
+  /// Appends a byte to the wrapped-round part, up to the next byte to send (w_ == Capacity); false when full.
+  /// (Inlined on hosts: a node forwarding while it sends its own frames appends there often.)
+  TRIONET_FAST_PATH bool push_wrapped(std::uint8_t byte) noexcept {
+    if (o_ == r_) return false;
+    data_[o_] = byte;
+    o_ = static_cast<index>(o_ + 1u);
+    return true;
+  }
 
   /// When [r_, w_) is used up and bytes wait in [0, o_): they become [r_, w_). True if so.
   bool next_part() noexcept {
@@ -334,32 +359,56 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     return is_data(byte) && forward_.put_fast(byte);
   }
 
-  /// Link side, the step after the fast path: a data byte or the end of message of a forwarded message, taken
-  /// as `receive` would (and a new grant opened) when it fits within the forwarding bound; false, with
-  /// nothing done, for anything else (then call `receive`). Precondition: `forward_fast(byte)` was false, so
-  /// no grant is open.
-  TRIONET_ALWAYS_INLINE bool forward_next(std::uint8_t byte) noexcept {
-    if (!forwarding_message()) return false;
-    if (is_data(byte)) {
-      if (remaining_ == 0 || !forward_.push(byte)) return false;  // cut or lost: `receive` counts it
-      remaining_ = static_cast<std::uint16_t>(remaining_ - 1u);
-      regrant();
-      return true;
-    }
-    if (type_of(byte) != 0 || !forward_.push(decrement_hops(byte))) return false;
-    receiving_ = receiving::local;
+  // After the fast path, on hosts, the next steps take the common bytes of traffic through the node that it
+  // does not (`renew`, `next_data`, `next_control`: exactly as `receive` would, when nothing is lost and no
+  // byte is for the node); `receive` takes everything. Precondition of each: `forward_fast(byte)` was false.
+
+  /// Link side: a data byte of a forwarded message when the grant has run out (the end of the forward
+  /// buffer, or its wrapped-round part while the node sends an own frame): appended, and a new grant opened
+  /// where there is one. False, with nothing done, otherwise.
+  TRIONET_ALWAYS_INLINE bool next_data(std::uint8_t byte) noexcept {
+    if (!take_data(byte, forward_)) return false;
+    regrant();
+    return true;
+  }
+  /// Link side: the commonest case of `next_data`, in a few instructions: the forward buffer has drained at
+  /// its end and the bound is not near, so the byte starts it again with a grant of the whole buffer. False,
+  /// with nothing done, otherwise.
+  TRIONET_ALWAYS_INLINE bool renew(std::uint8_t byte) noexcept {
+    if (remaining_ < ForwardCapacity || !forwarding_message() || !forward_.restart_with(byte)) return false;
+    remaining_ = static_cast<std::uint16_t>(remaining_ - ForwardCapacity);
+    return true;
+  }
+  /// Link side: the end of message of a forwarded message, or a header with A > 1 on a forwarding link (a
+  /// new message to forward: a grant is opened), passed on with A - 1. False, with nothing done, otherwise.
+  /// A header ends any message passing through; the node's decoder must end its own. Not into the
+  /// wrapped-round part (`receive` takes those), which keeps this step small.
+  TRIONET_ALWAYS_INLINE bool next_control(std::uint8_t byte) noexcept {
+    unwrapped into{forward_};
+    if (!take_control(byte, into)) return false;
+    regrant();
     return true;
   }
 
   /// Link side: true when `byte` is data for the node's own decoder (`receive` would route it `local`).
   bool local_data(std::uint8_t byte) const noexcept { return is_data(byte) && receiving_ == receiving::local; }
 
-  /// Link side: takes one received byte and says where it went.
-  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route receive(std::uint8_t byte) noexcept {
-    settle();
-    const byte_route r = route_byte(byte, forward_);
+  /// Link side: takes one received byte that `forward_fast` refused, and says where it went.
+  [[nodiscard]] byte_route receive(std::uint8_t byte) noexcept {
+    return is_data(byte) ? route_data(byte) : route_control(byte);
+  }
+  /// Link side: `receive` of a data byte.
+  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route route_data(std::uint8_t byte) noexcept {
+    if (!take_data(byte, forward_)) return refuse_data(byte, forward_);
     regrant();
-    return r;
+    return byte_route::forwarded;
+  }
+  /// Link side: `receive` of a header or end of message. (A grant still open needs no settling first: a
+  /// control byte that ends its message either appends, which revokes it, or is refused, which settles it.)
+  [[nodiscard]] TRIONET_ALWAYS_INLINE byte_route route_control(std::uint8_t byte) noexcept {
+    if (!take_control(byte, forward_)) return refuse_control(byte, forward_);
+    regrant();
+    return byte_route::forwarded;
   }
 
   /// Link side: a run of data bytes (no header or end of message among them): the same as `receive` for
@@ -499,9 +548,16 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   /// Link side: the next byte for the link, if any. The fast path takes the next forwarded byte.
   [[nodiscard]] TRIONET_ALWAYS_INLINE bool transmit(std::uint8_t& byte) noexcept {
-    if (TRIONET_LIKELY(forward_.take_fast(byte))) return true;
-    const int next = transmit_slow();  // in a register: `byte` need not be in memory
-    if (next < 0) return false;
+    // The two paths meet in a whole register, so a caller that widens `byte` does not widen it again after
+    // the fast path (one instruction per byte); the general path's result stays in a register too.
+    std::size_t next;
+    if (TRIONET_LIKELY(forward_.ready())) {
+      next = forward_.take();
+    } else {
+      const int slow = transmit_slow();
+      if (slow < 0) return false;
+      next = static_cast<std::uint8_t>(slow);
+    }
     byte = static_cast<std::uint8_t>(next);
     return true;
   }
@@ -597,6 +653,17 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
   bool forwarding_message() const noexcept { return (static_cast<unsigned>(receiving_) & 0x80u) != 0; }
   std::uint8_t forward_type() const noexcept { return static_cast<std::uint8_t>(receiving_) & 0x07u; }
 
+  // The forward buffer for `next_control`: appends only after [r_, w_), or at the beginning of a buffer
+  // drained at its end, leaving the wrapped-round part to `receive` (so the step needs no register saved).
+  struct unwrapped {
+    forward_buffer<ForwardCapacity>& buffer;
+    TRIONET_ALWAYS_INLINE bool push(std::uint8_t byte) noexcept {
+      if (!buffer.reserve()) return false;
+      buffer.put_reserved(byte);
+      return true;
+    }
+  };
+
   // The grant of the fast path goes back into the forwarding bound: `remaining_` is exact again.
   void settle() noexcept {
     const std::size_t granted = forward_.granted();
@@ -605,7 +672,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
     forward_.revoke();
   }
   // A new grant for the fast path, while a forwarded message is open.
-  void regrant() noexcept {
+  TRIONET_ALWAYS_INLINE void regrant() noexcept {
     if (!forwarding_message()) return;
     remaining_ = static_cast<std::uint16_t>(remaining_ - forward_.grant(remaining_));
   }
@@ -625,10 +692,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
       }
       return byte;
     }
-    if (forward_.next_part()) {  // bytes that arrived meanwhile
-      (void)forward_.take_fast(byte);
-      return byte;
-    }
+    if (forward_.next_part()) return forward_.take();  // bytes that arrived meanwhile
     // The forward buffer is empty. A forwarded message open on the receive side has gone out so far
     // (cut-through): its next byte has not arrived. Otherwise the transmitter is between messages.
     if (forwarding_message() || !queue_.pop(byte)) return -1;
@@ -699,19 +763,56 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   template <class Into>
   TRIONET_ALWAYS_INLINE byte_route route_byte(std::uint8_t byte, Into& into) noexcept {
-    if (is_data(byte)) {
-      if (forwarding_message()) {
-        if (remaining_ == 0) return cut(into);
-        if (!into.push(byte)) return lose(into);
-        --remaining_;
-        return byte_route::forwarded;
-      }
-      return receiving_ == receiving::local ? byte_route::local : byte_route::dropped;
+    if (is_data(byte)) return take_data(byte, into) ? byte_route::forwarded : refuse_data(byte, into);
+    return take_control(byte, into) ? byte_route::forwarded : refuse_control(byte, into);
+  }
+
+  // A data byte of a forwarded message within its bound, appended (no grant is open: it ran out, or the
+  // caller settled it). False, with nothing done, otherwise.
+  template <class Into>
+  TRIONET_ALWAYS_INLINE bool take_data(std::uint8_t byte, Into& into) noexcept {
+    if (!forwarding_message() || remaining_ == 0 || !into.push(byte)) return false;
+    remaining_ = static_cast<std::uint16_t>(remaining_ - 1u);
+    return true;
+  }
+  // The end of message of a forwarded message, or the header of a message to forward, appended with A - 1.
+  // False, with nothing done, otherwise. (An open grant needs no settling: its message ends, and its bound
+  // with it; the append revokes it.)
+  template <class Into>
+  TRIONET_ALWAYS_INLINE bool take_control(std::uint8_t byte, Into& into) noexcept {
+    std::uint8_t out;
+    if (type_of(byte) == 0) {
+      if (!forwarding_message()) return false;
+      out = decrement_hops(byte);
+    } else {
+      // Any header ends the message passing through: the one before does not matter here.
+      if (hops_of(byte) <= 1 || !this->forwarding()) return false;
+      out = static_cast<std::uint8_t>(byte - 0x08);  // A > 1: decrement_hops without its check
     }
-    if (type_of(byte) == 0) {  // end of message
+    if (!into.push(out)) return false;
+    if (type_of(byte) == 0) {
+      receiving_ = receiving::local;
+      return true;
+    }
+    messages_forwarded_.increment();
+    receiving_ = static_cast<receiving>(0x80u | (byte & 0x07u));
+    remaining_ = longest_data[byte & 0x07u];
+    return true;
+  }
+  // A data byte that `take_data` did not take: for the node, dropped, past the bound (cut), or no room (lost).
+  template <class Into>
+  byte_route refuse_data(std::uint8_t, Into& into) noexcept {
+    if (!forwarding_message()) return receiving_ == receiving::local ? byte_route::local : byte_route::dropped;
+    return remaining_ == 0 ? cut(into) : lose(into);
+  }
+  // A control byte that `take_control` did not take: an end of message for the node or of a dropped
+  // message, one that found no room (lost), or a header: for the node, of a message dropped while
+  // forwarding is off, or of one that found no room (nothing of it is in the buffer: nothing to remove).
+  template <class Into>
+  byte_route refuse_control(std::uint8_t byte, Into& into) noexcept {
+    if (type_of(byte) == 0) {
       if (forwarding_message()) {
-        const bool pushed = into.push(decrement_hops(byte));
-        const byte_route r = pushed ? byte_route::forwarded : lose(into);
+        const byte_route r = lose(into);
         receiving_ = receiving::local;  // it has ended, lost or not: nothing of it is left to drop
         return r;
       }
@@ -719,9 +820,9 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
       receiving_ = receiving::local;
       return dropping ? byte_route::dropped : byte_route::local;
     }
-    receiving_ = receiving::local;  // any header ends the message being forwarded
-    const std::uint8_t hops = hops_of(byte);
-    if (hops <= 1) return byte_route::local;
+    settle();  // any header ends the message being forwarded, and its grant
+    receiving_ = receiving::local;
+    if (hops_of(byte) <= 1) return byte_route::local;
     if constexpr (Switchable) {
       if (!this->forwarding()) {  // a keypad in local mode
         receiving_ = receiving::discard;
@@ -730,15 +831,10 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
       }
     }
     messages_forwarded_.increment();
-    if (!into.push(decrement_hops(byte))) {  // nothing of it is in the buffer: nothing to remove
-      forwards_lost_.increment();
-      netstat_.raise(netstat_tx_buffer_error);
-      receiving_ = receiving::discard;
-      return byte_route::lost;
-    }
-    receiving_ = static_cast<receiving>(0x80u | (byte & 0x07u));
-    remaining_ = longest_data[byte & 0x07u];
-    return byte_route::forwarded;
+    forwards_lost_.increment();
+    netstat_.raise(netstat_tx_buffer_error);
+    receiving_ = receiving::discard;
+    return byte_route::lost;
   }
 
   // The rest of a forwarded message, [data, end_of_message]: data then the end of message, in one copy if it
@@ -785,6 +881,7 @@ class link : private forwarding_switch<Switchable>, private crc_holder<Crc> {
 
   template <class Into>
   byte_route end_forward(Into& into) noexcept {
+    settle();  // (no grant is open when a message is lost; this keeps `remaining_` exact whatever the caller)
     netstat_.raise(netstat_tx_buffer_error);
     // Its header and data so far are in the buffer, if none of it has gone out.
     const std::size_t incoming = std::size_t{longest_data[forward_type()]} - remaining_ + 1u;

@@ -54,11 +54,18 @@ class node : public byte_port {
   /// Link side: a byte arrived. A data byte of a message passing through takes the fast path (inlined into
   /// a caller that knows the node's type, e.g. the UART interrupt).
   TRIONET_ALWAYS_INLINE void receive(std::uint8_t byte) noexcept final {
-    if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
-#if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
-    if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
+    if (TRIONET_LIKELY(is_data(byte))) {
+      if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
+#if !defined(__OPTIMIZE_SIZE__)  // the next steps on hosts; with -Os straight to the general paths (size)
+      if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
+      return receive_next_data(byte);
+    }
+    receive_next_control(byte);
+#else
+      return receive_data_general(byte);
+    }
+    receive_control_general(byte);
 #endif
-    receive_slow(byte);
   }
   /// Link side: the next byte to send, if there is one now. The next forwarded byte takes the fast path
   /// (inlined as `receive` is).
@@ -148,18 +155,32 @@ class node : public byte_port {
   Decoder decoder_;  ///< the decoder of messages for this node (link side)
 
  private:
-  // Everything but a data byte passing through while the link's grant lasts.
-  TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
-#if !defined(__OPTIMIZE_SIZE__)  // (with -Os the general path does it: smaller firmware)
-    if (link_.forward_next(byte)) return;  // the next grant, or the end of a forwarded message
-#endif
-    const byte_route r = link_.receive(byte);
-    if (r == byte_route::local) {
-      handle(decoder_.step(byte));
-      return;
-    }
-    if (classify(byte) == byte_class::header) passed_header();
+#if !defined(__OPTIMIZE_SIZE__)
+  // The next steps (hosts): the common bytes of traffic through the node, each in a function whose common
+  // path saves no register (the rest goes on to the general paths, tail calls).
+  TRIONET_NOINLINE void receive_next_data(std::uint8_t byte) noexcept {
+    if (link_.renew(byte) || link_.next_data(byte)) return;
+    receive_data_general(byte);
   }
+  TRIONET_NOINLINE void receive_next_control(std::uint8_t byte) noexcept {
+    if (!link_.next_control(byte)) return receive_control_general(byte);
+    if (type_of(byte) != 0) passed_header();
+  }
+#endif
+  // The general paths: a data byte that the fast path refused, and a header or end of message.
+  TRIONET_NOINLINE void receive_data_general(std::uint8_t byte) noexcept {
+    if (link_.route_data(byte) == byte_route::local) decode(byte);
+  }
+  TRIONET_NOINLINE void receive_control_general(std::uint8_t byte) noexcept {
+    const byte_route r = link_.route_control(byte);
+    if (r == byte_route::local) {
+      decode(byte);
+    } else if (type_of(byte) != 0) {
+      passed_header();
+    }
+  }
+  // A byte for the node's decoder.
+  TRIONET_FAST_PATH void decode(std::uint8_t byte) noexcept { handle(decoder_.step(byte)); }
 
   // What a step of the decoder completed: errors are counted here, messages go to the node.
   void handle(decode_step step) noexcept {
@@ -208,7 +229,11 @@ class node : public byte_port {
 
   // A header passed through the node: it ends any message the node was receiving, and the decoder is then
   // between messages.
-  void passed_header() noexcept {
+  TRIONET_ALWAYS_INLINE void passed_header() noexcept {
+    if (TRIONET_LIKELY(decoder_.idle())) return;
+    passed_header_slow();
+  }
+  TRIONET_NOINLINE void passed_header_slow() noexcept {
     if (decoder_.in_message()) {
       end_local_message();
     } else {
@@ -222,7 +247,7 @@ class node : public byte_port {
   // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
   TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p, const std::uint8_t* end) noexcept {
     if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
-      receive_slow(*p);
+      receive_control_general(*p);
       return p + 1;
     }
     const std::uint8_t* const run = find_control(p, end);
