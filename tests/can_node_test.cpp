@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -142,6 +143,48 @@ TEST(CanNode, LittleEndianNodesSendAndReceiveLittleEndianNumbers) {
   // Read big-endian, 7A 0D is 31245 ten-thousandths: not a fraction, so nothing is written.
   EXPECT_EQ(big4.receive(wire.frames[0]).status, receive_status::bad_fraction);
   EXPECT_EQ(big_endian_vrs[1], 0.0);
+}
+
+// A byte order fixed at compile time (firmware that knows its network) sends and reads exactly what a node
+// given the same order at run time does, and the node holds no byte order.
+TEST(CanNode, AByteOrderFixedAtCompileTimeBehavesAsTheSameOrderChosenAtRunTime) {
+  using little_node = basic_vr_exchange_node<fixed_byte_order<byte_order::little_endian>>;
+  using big_node = basic_vr_exchange_node<fixed_byte_order<byte_order::big_endian>>;
+  static_assert(sizeof(little_node) <= sizeof(vr_exchange_node));
+  static_assert(!std::is_constructible_v<big_node, node_address, port&, trionet::vr_store&, byte_order>,
+                "a fixed order cannot be given another at run time");
+  for (const byte_order order : {byte_order::big_endian, byte_order::little_endian}) {
+    recording_port fixed_wire;
+    recording_port run_time_wire;
+    vr_table<256> fixed_vrs;
+    vr_table<256> run_time_vrs;
+    little_node little(address(5, 1), fixed_wire, fixed_vrs);
+    big_node big(address(5, 1), fixed_wire, fixed_vrs);
+    vr_exchange_node run_time(address(5, 1), run_time_wire, run_time_vrs, order);
+    EXPECT_EQ(little.order(), byte_order::little_endian);
+    EXPECT_EQ(big.order(), byte_order::big_endian);
+    for (const double value : {2.345, -256.0005, 65536.25, 0.0001}) {
+      ASSERT_EQ(order == byte_order::little_endian ? little.send_to_node(4, 7, value)
+                                                   : big.send_to_node(4, 7, value),
+                send_status::ok);
+      ASSERT_EQ(run_time.send_to_node(4, 7, value), send_status::ok);
+    }
+    EXPECT_EQ(fixed_wire.frames, run_time_wire.frames);
+    // Frames on node 1's first receive identifier: each node reads them as its order says.
+    for (const std::vector<std::uint8_t>& data :
+         {std::vector<std::uint8_t>{3, 0, 0, 0, 0x01, 0x02, 0x00, 0x05},
+          std::vector<std::uint8_t>{4, 1, 0x02, 0x00, 0x00, 0x00, 0x0D, 0x7A}}) {
+      const frame f = make_frame(10, data);
+      const receive_result fixed_result =
+          order == byte_order::little_endian ? little.receive(f) : big.receive(f);
+      const receive_result run_time_result = run_time.receive(f);
+      EXPECT_EQ(fixed_result.status, run_time_result.status);
+      EXPECT_EQ(fixed_result.message.vr, run_time_result.message.vr);
+      EXPECT_EQ(fixed_result.message.value.integer_part, run_time_result.message.value.integer_part);
+      EXPECT_EQ(fixed_result.message.value.fraction, run_time_result.message.value.fraction);
+    }
+    for (std::uint16_t vr = 0; vr < 8; ++vr) EXPECT_EQ(fixed_vrs[vr], run_time_vrs[vr]) << "VR " << vr;
+  }
 }
 
 TEST(CanNode, ForeignAndMalformedFramesAreDroppedAndCountedByReason) {

@@ -1,6 +1,6 @@
 // Firmware image (d): a TN20-17 CAN VR-exchange node (node 1 of 5).
 //
-// The CAN receive-FIFO interrupt hands every frame to trionet::can::vr_exchange_node, which writes VR() for
+// The CAN receive-FIFO interrupt hands every frame to a trionet::can node, which writes VR() for
 // the frames addressed to this node (through a vr_table with the default write policy) and counts the rest.
 // Every SysTick (10 ms) the main loop sends VR(0), the axis position it keeps up to date, to the next node
 // round the ring (transmit channel 5) through a one-mailbox bxCAN port.
@@ -50,7 +50,10 @@ class bxcan_port final : public can::port {
 
 trionet::vr_table<64, std::int64_t> vr;  // Q32.32 VRs: no floating point anywhere in the image
 bxcan_port can_port;
-can::vr_exchange_node node(can::make_node_address(node_count, this_node).address, can_port, vr);
+// The network's byte order is known when the firmware is built (big-endian, the default of docs/protocol.md
+// 2.2): fixed at compile time, the node holds none and has no choice to make.
+can::basic_vr_exchange_node<can::fixed_byte_order<can::byte_order::big_endian>> node(
+    can::make_node_address(node_count, this_node).address, can_port, vr);
 #endif
 
 }  // namespace

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "trionet/can/frame.hpp"
 #include "trionet/can/identifiers.hpp"
@@ -168,6 +169,30 @@ struct node_counters {
   }
 };
 
+namespace detail {
+
+// Where a node keeps its byte order: nothing when it is fixed at compile time (`fixed_byte_order`), one byte
+// when it is chosen at run time (`byte_order`).
+template <class Order>
+class order_holder {
+ protected:
+  constexpr order_holder() noexcept = default;
+  static constexpr byte_order held_order() noexcept { return Order::value; }
+};
+
+template <>
+class order_holder<byte_order> {
+ protected:
+  constexpr order_holder() noexcept = default;
+  constexpr explicit order_holder(byte_order order) noexcept : order_(order) {}
+  constexpr byte_order held_order() const noexcept { return order_; }
+
+ private:
+  byte_order order_ = byte_order::big_endian;
+};
+
+}  // namespace detail
+
 /// One controller on the exchange. Holds its address, a reference to its port and VR store, and counters.
 /// Cost: 11 counters and their values at the last clear (88 bytes), two pointers and a 2-byte address
 /// (100 bytes on a 32-bit MCU); `send_*` and `receive` are O(1) with one virtual call each (port or store).
@@ -178,20 +203,27 @@ struct node_counters {
 /// an ISR instead). Each counter is written by one side only: `clear_counters` does not touch the receive
 /// side's, it notes their values, and `counters` reports the counts since. Two contexts must not both send
 /// (or both receive) at once.
-class vr_exchange_node {
+///
+/// `Order` is the byte order of the messages' numbers (vr_codec.hpp): `byte_order` (the `vr_exchange_node`
+/// alias) when it is chosen at run time, passed to the constructor (default big-endian);
+/// `fixed_byte_order<...>` when it is fixed at compile time, as firmware that knows its network may prefer
+/// (smaller code, one byte less RAM).
+template <class Order = byte_order>
+class basic_vr_exchange_node : private detail::order_holder<Order> {
  public:
   /// constexpr, so that a node defined at namespace scope in firmware is constant-initialized (no start-up
   /// code).
-  constexpr vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
+  constexpr basic_vr_exchange_node(node_address address, port& port, vr_store& store) noexcept
       : address_(address), port_(&port), store_(&store) {}
-  /// The same with the byte order of the messages' numbers (vr_codec.hpp; the default is big-endian).
-  constexpr vr_exchange_node(node_address address, port& port, vr_store& store, byte_order order) noexcept
-      : address_(address), port_(&port), store_(&store), order_(order) {}
+  /// The same with the byte order of the messages' numbers, for a node whose order is chosen at run time.
+  template <class O = Order, std::enable_if_t<std::is_same_v<O, byte_order>, int> = 0>
+  constexpr basic_vr_exchange_node(node_address address, port& port, vr_store& store, byte_order order) noexcept
+      : detail::order_holder<Order>(order), address_(address), port_(&port), store_(&store) {}
 
   /// Which node of how many this is.
   [[nodiscard]] node_address address() const noexcept { return address_; }
   /// The byte order of the numbers in the messages it sends and receives.
-  [[nodiscard]] byte_order order() const noexcept { return order_; }
+  [[nodiscard]] constexpr byte_order order() const noexcept { return this->held_order(); }
   /// Program side: the counts since construction or `clear_counters` (each read whole; not all at one
   /// instant).
   [[nodiscard]] node_counters counters() const noexcept {
@@ -230,7 +262,7 @@ class vr_exchange_node {
     const identifier_result id = identifier_to(destination);
     if (!id) return scheme_to_send(id.status);
     frame out;
-    const encode_status encoded = encode_vr(vr, value, out.data, order_);
+    const encode_status encoded = encode_vr(vr, value, out.data, order());
     if (encoded != encode_status::ok) return encode_to_send(encoded);
     return transmit(id.identifier, out);
   }
@@ -240,7 +272,7 @@ class vr_exchange_node {
     const identifier_result id = identifier_to(destination);
     if (!id) return scheme_to_send(id.status);
     frame out;
-    const encode_status encoded = encode_vr_message(message, out.data, order_);
+    const encode_status encoded = encode_vr_message(message, out.data, order());
     if (encoded != encode_status::ok) return encode_to_send(encoded);
     return transmit(id.identifier, out);
   }
@@ -277,7 +309,7 @@ class vr_exchange_node {
     }
     result.receive_channel = static_cast<std::uint8_t>(offset + 1U);
     result.sender = static_cast<std::uint8_t>(result.receive_channel < k ? offset + 1U : offset + 2U);
-    const decode_result decoded = decode_vr_frame(received, order_);
+    const decode_result decoded = decode_vr_frame(received, order());
     switch (decoded.status) {
       case decode_status::ok:
         break;
@@ -366,7 +398,6 @@ class vr_exchange_node {
   node_address address_;
   port* port_;
   vr_store* store_;
-  byte_order order_ = byte_order::big_endian;
   // Written by the program side:
   single_writer<std::uint32_t> sent_;
   single_writer<std::uint32_t> send_busy_;
@@ -382,5 +413,8 @@ class vr_exchange_node {
   single_writer<std::uint32_t> bad_sign_;
   single_writer<std::uint32_t> bad_fraction_;
 };
+
+/// A node whose byte order is chosen at run time (the constructor's last argument; default big-endian).
+using vr_exchange_node = basic_vr_exchange_node<>;
 
 }  // namespace trionet::can
