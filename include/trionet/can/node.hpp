@@ -207,7 +207,7 @@ class order_holder<byte_order> {
 /// `Order` is the byte order of the messages' numbers (vr_codec.hpp): `byte_order` (the `vr_exchange_node`
 /// alias) when it is chosen at run time, passed to the constructor (default big-endian);
 /// `fixed_byte_order<...>` when it is fixed at compile time, as firmware that knows its network may prefer
-/// (smaller code, one byte less RAM).
+/// (smaller code; the same RAM on a 32-bit MCU, where the run-time order's byte sits in padding).
 template <class Order = byte_order>
 class basic_vr_exchange_node : private detail::order_holder<Order> {
  public:

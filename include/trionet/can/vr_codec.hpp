@@ -54,7 +54,7 @@ enum class byte_order : std::uint8_t {
 };
 
 /// A byte order fixed at compile time, for a node's `Order` parameter (node.hpp): the node then holds no
-/// byte order and its code has no choice to make (on a Cortex-M0+, 92 bytes less text than a node whose
+/// byte order and its code has no choice to make (on a Cortex-M0+, 92 bytes less code than a node whose
 /// byte order is chosen at run time).
 template <byte_order Order>
 struct fixed_byte_order {
