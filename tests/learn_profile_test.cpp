@@ -349,6 +349,9 @@ static_assert(custom::net::keypad_config.key_off_code == ring::same_key_off_code
 static_assert(plain::keypad_config.key_off_code == ring::default_key_off_code, "");
 static_assert(plain::can_byte_order == trionet::can::byte_order::big_endian, "");
 static_assert(custom::net::can_byte_order == trionet::can::byte_order::little_endian, "");
+static_assert(std::is_same_v<custom::net::can_node, trionet::can::basic_vr_exchange_node<
+                                                         trionet::can::fixed_byte_order<trionet::can::byte_order::little_endian>>>,
+              "");
 static_assert(plain::keypad_config.display.carriage_return ==
                   ring::carriage_return_rule::other_line_unless_at_line_start, "");
 static_assert(custom::net::keypad_config.display.carriage_return == ring::carriage_return_rule::line_start &&
@@ -394,6 +397,18 @@ int main() {
   std::uint8_t can_data[8] = {};
   failures += trionet::can::encode_vr(1, 2.345, can_data, custom::net::can_byte_order) != trionet::can::encode_status::ok;
   failures += can_data[2] != 2 || can_data[6] != 0x7A;
+  struct recording_port final : trionet::can::port {
+    trionet::can::frame sent{};
+    trionet::can::transmit_status send(const trionet::can::frame& f) noexcept override {
+      sent = f;
+      return trionet::can::transmit_status::ok;
+    }
+  } port;
+  trionet::vr_table<16> can_vr;
+  custom::net::can_node node(trionet::can::make_node_address(custom::net::can_node_count, 1).address, port, can_vr);
+  failures += node.order() != trionet::can::byte_order::little_endian;
+  failures += node.send_to_node(2, 1, 2.345) != trionet::can::send_status::ok;
+  failures += port.sent.data[2] != 2 || port.sent.data[6] != 0x7A;
   return failures;
 }
 )";

@@ -493,6 +493,7 @@ header_result profile_header(const profile& p, std::string_view namespace_name) 
   h += "// constexpr policies for a firmware build. Profile name: " + json_quote(p.name) + "\n";
   h += "#pragma once\n\n";
   h += "#include <cstddef>\n#include <cstdint>\n\n";
+  h += "#include \"trionet/can/node.hpp\"\n";
   h += "#include \"trionet/can/vr_codec.hpp\"\n";
   h += "#include \"trionet/genius/crc6.hpp\"\n";
   h += "#include \"trionet/genius/transmission.hpp\"\n";
@@ -546,10 +547,12 @@ header_result profile_header(const profile& p, std::string_view namespace_name) 
   h += "inline constexpr trionet::ring::keypad_config keypad_config = {&keypad_codes, trionet::ring::" +
        std::string(p.keypad.key_off == key_off_rule::same ? "same_key_off_code" : "default_key_off_code") +
        ", keypad_display_model};\n\n";
-  h += "// ---- CAN (docs/protocol.md 2.1, 2.2): pass can_byte_order to a vr_exchange_node ----\n";
+  h += "// ---- CAN (docs/protocol.md 2.1, 2.2): can_node has the byte order fixed at compile time; or pass\n";
+  h += "// can_byte_order to a vr_exchange_node and the codec calls ----\n";
   h += "inline constexpr std::uint8_t can_node_count = " + std::to_string(p.can.node_count) + ";\n";
   h += "inline constexpr trionet::can::byte_order can_byte_order = trionet::can::byte_order::" +
-       std::string(to_string(p.can.byte_order)) + ";\n\n";
+       std::string(to_string(p.can.byte_order)) + ";\n";
+  h += "using can_node = trionet::can::basic_vr_exchange_node<trionet::can::fixed_byte_order<can_byte_order>>;\n\n";
   h += "// ---- Genius (docs/protocol.md 3.2) ----\n";
   h += "using genius_crc = trionet::genius::crc6<" + hex(g.polynomial, 2) + ", " + hex(g.initial, 2) + ", " +
        boolean_text(g.reflect_in) + ", " + boolean_text(g.reflect_out) + ", " + hex(g.xor_out, 2) + ">;\n";
