@@ -178,17 +178,6 @@ int check_ring_capacities(const std::string& command, ring_capacity_use use) {
   return exit_ok;
 }
 
-profile_decoder::profile_decoder() {
-  const learn::ring_profile& p = active_profile().ring;
-  if (p.crc == ring::crc16_parameters{} && p.layout == ring::variable_layout_parameters{})
-    return;  // decoder<>
-  const ring::crc16_runtime crc(p.crc);
-  ring::with_variable_layout(p.layout, [&](auto layout) {
-    using layout_type = decltype(layout);
-    decoder_.emplace<ring::decoder<ring::default_max_characters, ring::crc16_runtime, layout_type>>(crc);
-  });
-}
-
 ring::encode_result encode_with_profile(byte_buffer out, const ring::message& m) {
   const learn::ring_profile& p = active_profile().ring;
   if (p.crc == ring::crc16_parameters{} && p.layout == ring::variable_layout_parameters{})

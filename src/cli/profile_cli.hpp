@@ -4,10 +4,10 @@
 
 #include <cstdint>
 #include <string>
-#include <variant>
 
 #include "cli.hpp"
 #include "learn/profile.hpp"
+#include "learn/profile_decoder.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/encode.hpp"
 
@@ -45,43 +45,9 @@ int write_profile_file(const learn::profile& p, const std::string& path);
 
 /// A ring decoder with the active profile's CRC and variable layout (chosen at run time), for the tool's
 /// decoders: the same calls as `ring::decoder<>`.
-class profile_decoder {
+class profile_decoder : public learn::profile_decoder {
  public:
-  profile_decoder();
-
-  // The default decoder is called directly (inlined), the others through the variant.
-  ring::decode_result push(std::uint8_t byte) {
-    if (auto* const fixed = std::get_if<0>(&decoder_)) return fixed->push(byte);
-    return std::visit([byte](auto& dec) { return dec.push(byte); }, decoder_);
-  }
-  template <class Sink>
-  void push(byte_view bytes, Sink&& sink) {
-    if (auto* const fixed = std::get_if<0>(&decoder_)) return fixed->push(bytes, sink);
-    std::visit([&](auto& dec) { dec.push(bytes, sink); }, decoder_);
-  }
-  ring::decode_result line_idle() {
-    return std::visit([](auto& dec) { return dec.line_idle(); }, decoder_);
-  }
-  [[nodiscard]] bool in_message() const {
-    return std::visit([](const auto& dec) { return dec.in_message(); }, decoder_);
-  }
-  [[nodiscard]] bool open() const {
-    return std::visit([](const auto& dec) { return dec.open(); }, decoder_);
-  }
-
- private:
-  template <ring::group_order V, ring::group_order X, ring::crc_input C>
-  using with =
-      ring::decoder<ring::default_max_characters, ring::crc16_runtime, ring::variable_layout<V, X, C>>;
-  static constexpr ring::group_order l = ring::group_order::least_significant_first;
-  static constexpr ring::group_order m = ring::group_order::most_significant_first;
-  static constexpr ring::crc_input s = ring::crc_input::as_sent;
-  static constexpr ring::crc_input d = ring::crc_input::least_significant_first;
-  // The library's default decoder (its CRC sliced at compile time) for the default CRC and layout: the
-  // common case keeps its speed.
-  std::variant<ring::decoder<>, with<l, l, s>, with<l, m, s>, with<m, l, s>, with<m, m, s>, with<l, l, d>,
-               with<l, m, d>, with<m, l, d>, with<m, m, d>>
-      decoder_;
+  profile_decoder() : learn::profile_decoder(active_profile().ring) {}
 };
 
 /// Encodes `m` with the active profile's CRC and variable layout.

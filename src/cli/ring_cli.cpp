@@ -11,6 +11,7 @@
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "ring_message_arguments.hpp"
+#include "trionet/host/ring_events.hpp"
 #include "trionet/ring.hpp"
 
 namespace trionet::cli {
@@ -63,50 +64,31 @@ class ring_stream {
  public:
   ring_stream(std::string& out, where_kind kind) : out_(out), kind_(kind) {}
 
-  void push(std::uint8_t byte, std::uint64_t at) {
-    const bool header = !ring::is_data(byte) && ring::type_of(byte) != 0;
-    const std::uint64_t message_at = start_;
-    if (header) start_ = at;
-    const ring::decode_result r = decoder_.push(byte);
-    if (r.status == ring::decode_status::incomplete) return;
-    const bool about_this_byte = r.status == ring::decode_status::frame_error &&
-                                 (r.error == ring::frame_error::stray_data || r.error == ring::frame_error::stray_eom ||
-                                  r.error == ring::frame_error::zero_hops);
-    append_ring_event(out_, r, [&](event& e) { e.number(key(), about_this_byte ? at : message_at); });
-  }
-
-  // Many bytes, the first at offset `at`: runs of data go to the decoder whole (its fast path); only a run
-  // outside a message gives a result (stray_data), and that is about the run's first byte.
+  void push(std::uint8_t byte, std::uint64_t at) { stream_.push(byte, at, printer{this}); }
   void push(const std::uint8_t* first, const std::uint8_t* last, std::uint64_t at) {
-    while (first != last) {
-      const std::uint8_t* run = ring::find_control(first, last);
-      if (run != first) {
-        const std::uint64_t run_at = at;
-        decoder_.push(byte_view(first, static_cast<std::size_t>(run - first)), [&](const ring::decode_result& r) {
-          append_ring_event(out_, r, [&](event& e) { e.number(key(), run_at); });
-        });
-        at += static_cast<std::uint64_t>(run - first);
-        first = run;
-        if (first == last) break;
-      }
-      push(*first++, at++);
-    }
+    stream_.push(first, last, at, printer{this});
   }
 
   // The end of the input: a message still open is reported.
   void finish() {
-    if (!decoder_.in_message()) return;
+    std::uint64_t at = 0;
+    if (!stream_.unfinished(at)) return;
     event e(out_, "unfinished");
-    e.number(key(), start_);
+    e.number(key(), at);
   }
 
  private:
   const char* key() const { return kind_ == where_kind::line ? "line" : "offset"; }
+  struct printer {
+    ring_stream* self;
+    void operator()(const ring::decode_result& r, std::uint64_t at) const {
+      append_ring_event(self->out_, r, [&](event& e) { e.number(self->key(), at); });
+    }
+  };
 
   std::string& out_;
   where_kind kind_;
-  profile_decoder decoder_;
-  std::uint64_t start_ = 0;
+  host::ring_event_stream<profile_decoder> stream_;
 };
 
 // Hex text, read in pieces: pairs of hex digits in words separated by blanks. A character that is not hex is
@@ -245,45 +227,9 @@ std::string hex_line(const std::uint8_t* bytes, std::size_t length) {
   return line;
 }
 
-void append_ring_event_body(event& e, const ring::decode_result& result) {
-  const ring::message& m = result.msg;
-  if (result.status == ring::decode_status::frame_error) {
-    e.text("reason", ring::to_string(result.error));
-    return;
-  }
-  if (result.status != ring::decode_status::ok) {  // crc_error, no_room
-    e.number("hops", m.hops);
-    if (result.status == ring::decode_status::crc_error) e.number("vr", m.vr);
-    return;
-  }
-  switch (m.type) {
-    case ring::message_type::character:
-      e.name("type", "char").number("hops", m.hops);
-      e.text("text", std::string_view(reinterpret_cast<const char*>(m.text.data()), m.text.size()));
-      return;
-    case ring::message_type::variable: {
-      static constexpr char digits[] = "0123456789abcdef";
-      char raw[21] = {'"', '0', 'x'};
-      const auto bits = static_cast<std::uint64_t>(trionet::q32_to_raw(m.value));
-      for (unsigned i = 0; i < 16; ++i) raw[3 + i] = digits[bits >> (60U - 4U * i) & 0xFU];
-      raw[19] = '"';
-      raw[20] = 0;
-      e.name("type", "var").number("hops", m.hops).number("vr", m.vr).json("raw", std::string_view(raw, 20));
-      e.real("value", trionet::q32_to_double(m.value));
-      return;
-    }
-    case ring::message_type::keypad_offset:
-      e.name("type", "offset").number("hops", m.hops).number("offset", m.offset);
-      return;
-    case ring::message_type::keypad_mode:
-      e.name("type", "mode").number("hops", m.hops).number("mode", m.mode);
-      return;
-  }
-}
+void append_ring_event_body(event& e, const ring::decode_result& result) { host::ring_event_fields(e, result); }
 
-const char* ring_event_kind(const ring::decode_result& result) {
-  return result.status == ring::decode_status::ok ? "message" : ring::to_string(result.status);
-}
+const char* ring_event_kind(const ring::decode_result& result) { return host::ring_event_kind(result); }
 
 const part ring_part = {"ring", "Trio Motion Coordinator fibre-optic ring (encode, decode, simulate, monitor, send, join, learn)",
                         ring_commands, sizeof ring_commands / sizeof ring_commands[0], ""};

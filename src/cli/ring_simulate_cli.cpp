@@ -18,36 +18,11 @@
 #include "profile_cli.hpp"
 #include "ring_cli.hpp"
 #include "ring_network.hpp"
+#include "simulation.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/pcapng.hpp"
 
 namespace trionet::cli {
-namespace {
-
-// The networks built into the tool: their programs are the files under examples/, built in at build time.
-struct builtin_network {
-  const char* name;
-  const char* title;
-  std::vector<const char*> nodes;  // "keypad", "mc" or "mc:FILE"
-  const char* keys;
-};
-
-const builtin_network builtins[] = {
-    {"example1", "the manual's Example 1: one Motion Coordinator and two keypads",
-     {"mc:examples/manual/example1.bas", "keypad", "keypad"},
-     "wait=200 1:1 2:2 1:5 2:up 1:up 2:up 1:down"},
-    {"example2", "the manual's Example 2: two Motion Coordinators and one keypad",
-     {"mc:examples/manual/example2_three_axis.bas", "mc:examples/manual/example2_two_axis.bas", "keypad"},
-     "wait=1000 1:up 1:up 1:up 1:y 1:up 1:up 1:y 1:start"},
-    {"example3", "the manual's warning: a second MC prints through the keypad before it is in network mode",
-     {"mc:examples/keypad_order/master.bas", "mc:examples/keypad_order/feeder.bas", "keypad"},
-     ""},
-    {"example3-fixed", "the same ring with the feeder waiting for the master's handshake",
-     {"mc:examples/keypad_order/master_fixed.bas", "mc:examples/keypad_order/feeder_fixed.bas", "keypad"},
-     ""},
-};
-
-}  // namespace
 
 const char* const simulate_usage =
     "usage: trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
@@ -111,10 +86,6 @@ bool node_of(const std::string& spec, bool builtin, host::node_spec& node, std::
   return true;
 }
 
-std::string json_number(double v) {
-  return std::isfinite(v) ? basic::format_number(v) : "null";
-}
-
 std::string box(const std::vector<std::string>& lines, const char* indent) {
   std::string out = std::string(indent) + "+--------------------+\n";
   for (const std::string& line : lines) out += std::string(indent) + "|" + line + "|\n";
@@ -175,43 +146,6 @@ void print_summary(const host::ring_network& net) {
   }
 }
 
-std::string summary_json(const host::ring_network& net, host::run_end end) {
-  std::string out = "{\"byte_times\":" + std::to_string(net.now()) + ",\"seconds\":" + json_number(net.seconds()) +
-                    ",\"end\":\"" + host::to_string(end) + "\",\"nodes\":[";
-  for (std::size_t i = 1; i <= net.size(); ++i) {
-    const host::node_report r = net.report(i);
-    if (i > 1) out += ',';
-    out += "{\"node\":" + std::to_string(i);
-    if (r.what == host::node_spec::kind::keypad) {
-      out += ",\"kind\":\"keypad\",\"keypad\":" + std::to_string(r.keypad_number) +
-             ",\"network_mode\":" + (r.network_mode ? "true" : "false") + ",\"offset\":" + std::to_string(r.offset) +
-             ",\"display\":[" + json_string(r.display[0]) + "," + json_string(r.display[1]) +
-             "],\"dropped\":" + std::to_string(r.dropped) + ",\"keys_lost\":" + std::to_string(r.keys_lost) + "}";
-      continue;
-    }
-    const bool has_program = r.state != "none";
-    out += ",\"kind\":\"mc\",\"program\":" + (has_program ? json_string(r.program) : std::string("null"));
-    out += ",\"state\":" + json_string(r.state);
-    out += ",\"ended\":" + std::string(r.state == "running" || r.state == "waiting" ? "false" : "true");
-    out += ",\"line\":" + (has_program ? std::to_string(r.line) : std::string("null"));
-    out += ",\"error\":" + (r.error.empty() ? std::string("null") : json_string(r.error));
-    out += ",\"netstat\":" + std::to_string(r.netstat) + ",\"vr\":{";
-    for (std::size_t k = 0; k < r.vrs.size(); ++k) {
-      out += (k ? ",\"" : "\"") + std::to_string(r.vrs[k].first) + "\":" + json_number(r.vrs[k].second);
-    }
-    out += "},\"variables\":{";
-    for (std::size_t k = 0; k < r.variables.size(); ++k) {
-      out += (k ? "," : "") + json_string(r.variables[k].first) + ":" + json_number(r.variables[k].second);
-    }
-    out += "},\"parameters\":{";
-    for (std::size_t k = 0; k < r.parameters.size(); ++k) {
-      out += (k ? "," : "") + json_string(r.parameters[k].first) + ":" + json_number(r.parameters[k].second);
-    }
-    out += "}}";
-  }
-  return out + "]}";
-}
-
 }  // namespace
 
 int ring_simulate_main(const words& all) {
@@ -224,12 +158,10 @@ int ring_simulate_main(const words& all) {
   }
   const int capacities = check_ring_capacities("ring simulate", ring_capacity_use::receive_buffer);
   if (capacities != exit_ok) return capacities;
-  const builtin_network* builtin = nullptr;
+  const host::builtin_network* builtin = nullptr;
   if (args.positionals.size() > 1) return fail("ring simulate takes one built-in network name at most");
   if (args.positionals.size() == 1) {
-    for (const builtin_network& b : builtins) {
-      if (args.positionals[0] == b.name) builtin = &b;
-    }
+    builtin = host::find_builtin_network(args.positionals[0]);
     if (builtin == nullptr)
       return fail("unknown network '" + args.positionals[0] + "' (expected example1, example2, example3 or "
                   "example3-fixed, or --node options)");
@@ -371,7 +303,7 @@ int ring_simulate_main(const words& all) {
                 basic::format_number(net->seconds()).c_str());
     print_summary(*net);
   }
-  if (json) std::printf("%s\n", summary_json(*net, end).c_str());
+  if (json) std::printf("%s\n", host::summary_json(*net, end).c_str());
   if (writer) {
     for (host::ring_link_recorder& link : links) {
       link.flush();
