@@ -69,6 +69,8 @@ function exchange.dissector(tvb, pinfo, tree)
   if sender == nil then return 0 end
 
   pinfo.cols.protocol = "TN20-17"
+  pinfo.cols.src = string.format("node %d", sender)
+  pinfo.cols.dst = string.format("node %d", receiver)
   local root = tree:add(exchange, tvb(0, 8))
   root:add(f.sender, tvb(0, 0), sender)
   root:add(f.receiver, tvb(0, 0), receiver)
@@ -78,11 +80,11 @@ function exchange.dissector(tvb, pinfo, tree)
   root:add(f.integer, tvb(2, 4))
   root:add(f.fraction, tvb(6, 2))
   local vr, sign, integer, fraction = tvb(0, 1):uint(), tvb(1, 1):uint(), tvb(2, 4):uint(), tvb(6, 2):uint()
-  local error = nil
+  local error, problem = nil, nil
   if sign > 1 then
-    error = "bad_sign"
+    error, problem = "bad_sign", string.format("sign byte %d is neither 0 nor 1", sign)
   elseif fraction > 9999 then
-    error = "bad_fraction"
+    error, problem = "bad_fraction", string.format("fraction %d is above 9999", fraction)
   end
   if error == nil then
     local value = (integer * 10000 + fraction) / 10000
@@ -96,7 +98,7 @@ function exchange.dissector(tvb, pinfo, tree)
   else
     root:add(f.error, tvb(0, 8), error)
     root:add_proto_expert_info(experts[error])
-    pinfo.cols.info = string.format("node %d -> node %d: VR(%d), bad %s", sender, receiver, vr, error)
+    pinfo.cols.info = string.format("node %d -> node %d: VR(%d), %s", sender, receiver, vr, problem)
   end
   return 8
 end

@@ -225,7 +225,8 @@ local function is_error(status)
   return status ~= "in_progress" and status ~= "ok" and status ~= "skipped"
 end
 
--- One part: the words at record offsets words[from .. to] (each {offset, value}). Returns a summary.
+-- One part: the words at record offsets words[from .. to] (each {offset, value}). Returns a summary and,
+-- for a transmission, its ends {source, destination} (the Source and Destination columns).
 local function dissect_unit(tvb, tree, words, from, to)
   local first, last = words[from], words[to]
   local unit = tree:add(tvb(first.offset, last.offset + 2 - first.offset), "")
@@ -317,7 +318,14 @@ local function dissect_unit(tvb, tree, words, from, to)
     end
   end
   unit:set_text("Transmission: " .. summary)
-  return summary
+  local ends = nil
+  if sender ~= nil then
+    ends = { source = string.format("SBA %d", sender), destination = "broadcast" }
+    if not broadcast then
+      ends.destination = destination ~= nil and string.format("SBA %d", destination) or "unknown"
+    end
+  end
+  return summary, ends
 end
 
 function genius.dissector(tvb, pinfo, tree)
@@ -331,9 +339,14 @@ function genius.dissector(tvb, pinfo, tree)
   -- Cut the record into parts as the capture writer cuts a line: a Start begins a transmission and its
   -- Stop ends it; characters outside a transmission run up to the next Start; a bad word stands alone.
   local summaries = {}
+  local ends = nil  -- of the record's first transmission
   local start, open = nil, nil  -- open: "transmission" or "stray"
   local function close(last)
-    if open ~= nil then summaries[#summaries + 1] = dissect_unit(tvb, root, words, start, last) end
+    if open ~= nil then
+      local summary, unit_ends = dissect_unit(tvb, root, words, start, last)
+      summaries[#summaries + 1] = summary
+      ends = ends or unit_ends
+    end
     open = nil
   end
   for i, w in ipairs(words) do
@@ -360,5 +373,8 @@ function genius.dissector(tvb, pinfo, tree)
     summaries[#summaries + 1] = "odd byte"
   end
   pinfo.cols.info = table.concat(summaries, "; ")
+  -- Characters outside any transmission have no sender on record.
+  pinfo.cols.src = ends and ends.source or "unknown"
+  pinfo.cols.dst = ends and ends.destination or "unknown"
   return n
 end

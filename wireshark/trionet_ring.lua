@@ -249,10 +249,28 @@ local function dissect_unit(tvb, tree, data, from, to)
   return summary
 end
 
+local interface_name = Field.new("frame.interface_name")
+
+-- The Source and Destination columns: the two ends of the link the record crossed, from the interface's name.
+-- A ring link runs from one node to the next, so a live capture's port is the receiving or the sending end.
+local function link_ends()
+  local field = interface_name()
+  local name = field and field.value or ""
+  local from, to = name:match("^link %d+: (.-) %-> (.+)$")
+  if from ~= nil then return from, to end
+  local port = name:match("^received on (.+)$")
+  if port ~= nil then return "previous node", port end
+  port = name:match("^sent on (.+)$")
+  if port ~= nil then return port, "next node" end
+  if name == "" then name = "ring link" end
+  return name, "next node"
+end
+
 function ring.dissector(tvb, pinfo, tree)
   local n = tvb:len()
   if n == 0 then return 0 end
   pinfo.cols.protocol = "TRIO RING"
+  pinfo.cols.src, pinfo.cols.dst = link_ends()
   local data = {}
   for i = 1, n do data[i] = tvb(i - 1, 1):uint() end
   local root = tree:add(ring, tvb())
