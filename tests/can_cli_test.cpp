@@ -128,34 +128,43 @@ TEST(CanCli, EncodeThenDecodeEveryPairOfFiveNodes) {
   EXPECT_EQ(decoded.out, expected);
 }
 
-// The note's two tables, as the note prints them (tab-separated).
+// The note's two tables, one after the other, in columns aligned with blanks.
 TEST(CanCli, TableReproducesTheNotesTwoTablesForFiveNodes) {
   const auto r = run_cli("can table --nodes 5");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.out,
-            "Node Base address\tRx #1\tRx #2\tRx #3\tRx #4\n"
-            "10\t10\t11\t12\t13\n"
-            "20\t20\t21\t22\t23\n"
-            "30\t30\t31\t32\t33\n"
-            "40\t40\t41\t42\t43\n"
-            "50\t50\t51\t52\t53\n"
+            "Node Base address  Rx #1  Rx #2  Rx #3  Rx #4\n"
+            "10                 10     11     12     13\n"
+            "20                 20     21     22     23\n"
+            "30                 30     31     32     33\n"
+            "40                 40     41     42     43\n"
+            "50                 50     51     52     53\n"
             "\n"
-            "Node Base address\tTx #5\tTx #6\tTx #7\tTx #8\n"
-            "10\t20\t30\t40\t50\n"
-            "20\t31\t41\t51\t10\n"
-            "30\t42\t52\t11\t21\n"
-            "40\t53\t12\t22\t32\n"
-            "50\t13\t23\t33\t43\n");
+            "Node Base address  Tx #5  Tx #6  Tx #7  Tx #8\n"
+            "10                 20     30     40     50\n"
+            "20                 31     41     51     10\n"
+            "30                 42     52     11     21\n"
+            "40                 53     12     22     32\n"
+            "50                 13     23     33     43\n");
   EXPECT_EQ(run_cli("can table").out, r.out) << "5 nodes is the default";
 }
 
+// Columns widen for three-digit identifiers and two-digit channels; no line ends in a blank.
 TEST(CanCli, TableForTwoAndElevenNodes) {
   EXPECT_EQ(run_cli("can table --nodes 2").out,
-            "Node Base address\tRx #1\n10\t10\n20\t20\n\nNode Base address\tTx #5\n10\t20\n20\t10\n");
+            "Node Base address  Rx #1\n10                 10\n20                 20\n\n"
+            "Node Base address  Tx #5\n10                 20\n20                 10\n");
   const auto eleven = run_cli("can table --nodes 11");
   EXPECT_EQ(eleven.exit_code, 0);
-  EXPECT_NE(eleven.out.find("110\t110\t111\t112\t113\t114\t115\t116\t117\t118\t119\n"), std::string::npos);
-  EXPECT_NE(eleven.out.find("\tTx #14\n"), std::string::npos);
+  EXPECT_NE(eleven.out.find("Node Base address  Rx #1  Rx #2  Rx #3  Rx #4  Rx #5  Rx #6  Rx #7  Rx #8  Rx #9  "
+                            "Rx #10\n"),
+            std::string::npos);
+  EXPECT_NE(eleven.out.find("\n110                110    111    112    113    114    115    116    117    118    "
+                            "119\n"),
+            std::string::npos);
+  EXPECT_NE(eleven.out.find("Tx #13  Tx #14\n"), std::string::npos);
+  EXPECT_EQ(eleven.out.find(" \n"), std::string::npos);
+  EXPECT_EQ(eleven.out.find('\t'), std::string::npos);
   const auto bad = run_cli("can table --nodes 12");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(bad.out, "");

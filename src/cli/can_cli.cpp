@@ -1,5 +1,6 @@
 // `trionet can ...`: encode a VR message as candump text, decode candump text or captures as they arrive,
 // print the note's tables; the command table of the part.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -44,7 +45,8 @@ constexpr const char* decode_usage =
 
 constexpr const char* table_usage =
     "usage: trionet can table [--nodes K]\n"
-    "Prints the note's receive-identifier table, a blank line, then its transmit-identifier table, tab-separated.\n";
+    "Prints the note's receive-identifier table, a blank line, then its transmit-identifier table, in aligned\n"
+    "columns.\n";
 
 bool parse_args(const words& all, const std::set<std::string>& options, const std::set<std::string>& flags,
                 arguments& parsed, std::string& error) {
@@ -206,36 +208,51 @@ int decode_command(const words& all) {
   return out.flush() ? exit_ok : fail_io("cannot write standard output");
 }
 
+// A table as text: columns left-aligned, two blanks between them, no blank at the end of a line.
+std::string aligned(const std::vector<std::vector<std::string>>& rows) {
+  std::vector<std::size_t> widths;
+  for (const auto& row : rows) {
+    if (widths.size() < row.size()) widths.resize(row.size(), 0);
+    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  }
+  std::string out;
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      line += row[c];
+      if (c + 1 < row.size()) line += std::string(widths[c] - row[c].size() + 2, ' ');
+    }
+    out += line + '\n';
+  }
+  return out;
+}
+
 int table_command(const words& all) {
   arguments parsed;
   std::string error;
   if (!parse_args(all, {"--nodes"}, {}, parsed, error)) return fail(error);
   std::uint8_t nodes = 0;
   if (!parse_node_count(parsed, nodes, error)) return fail(error);
-  std::string out = "Node Base address";
-  for (unsigned channel = 1; channel < nodes; ++channel) out += "\tRx #" + std::to_string(channel);
-  out += '\n';
-  for (std::uint8_t node = 1; node <= nodes; ++node) {
-    out += std::to_string(can::base_identifier(nodes, node).identifier);
-    for (std::uint8_t channel = 1; channel < nodes; ++channel) {
-      out += '\t' + std::to_string(can::receive_identifier(nodes, node, channel).identifier);
-    }
-    out += '\n';
-  }
-  out += "\nNode Base address";
+  std::vector<std::vector<std::string>> receive(1, {"Node Base address"});
+  std::vector<std::vector<std::string>> transmit(1, {"Node Base address"});
+  for (unsigned channel = 1; channel < nodes; ++channel) receive[0].push_back("Rx #" + std::to_string(channel));
   for (unsigned channel = can::first_transmit_channel; channel <= nodes + 3U; ++channel) {
-    out += "\tTx #" + std::to_string(channel);
+    transmit[0].push_back("Tx #" + std::to_string(channel));
   }
-  out += '\n';
   for (std::uint8_t node = 1; node <= nodes; ++node) {
-    out += std::to_string(can::base_identifier(nodes, node).identifier);
-    for (auto channel = can::first_transmit_channel; channel <= nodes + 3U; ++channel) {
-      out += '\t' + std::to_string(can::transmit_identifier(nodes, node, channel).identifier);
+    const std::string base = std::to_string(can::base_identifier(nodes, node).identifier);
+    receive.push_back({base});
+    transmit.push_back({base});
+    for (std::uint8_t channel = 1; channel < nodes; ++channel) {
+      receive.back().push_back(std::to_string(can::receive_identifier(nodes, node, channel).identifier));
     }
-    out += '\n';
+    for (auto channel = can::first_transmit_channel; channel <= nodes + 3U; ++channel) {
+      transmit.back().push_back(std::to_string(can::transmit_identifier(nodes, node, channel).identifier));
+    }
   }
-  std::fputs(out.c_str(), stdout);
-  return exit_ok;
+  output out;
+  out.text() += aligned(receive) + "\n" + aligned(transmit);
+  return out.flush() ? exit_ok : fail_io("cannot write standard output");
 }
 
 const command can_commands[] = {
