@@ -52,7 +52,7 @@ bool parse_args(const words& all, const std::set<std::string>& options, const st
                 arguments& parsed, std::string& error) {
   if (!parse_arguments(all, options, flags, parsed, error)) return false;
   if (!parsed.positionals.empty()) {
-    error = "unexpected argument '" + host::clipped(parsed.positionals.front()) + "'";
+    error = "unexpected argument '" + host::printable(parsed.positionals.front()) + "'";
     return false;
   }
   return true;
@@ -272,7 +272,7 @@ bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& e
   if (!parsed.has("--nodes")) return true;
   long long value = 0;
   if (!parse_integer(parsed.options.at("--nodes"), can::min_node_count, can::max_node_count, value)) {
-    error = "--nodes must be an integer from 2 to 11, got '" + host::clipped(parsed.options.at("--nodes")) + "'";
+    error = "--nodes must be an integer from 2 to 11, got '" + host::printable(parsed.options.at("--nodes")) + "'";
     return false;
   }
   out = static_cast<std::uint8_t>(value);
@@ -298,7 +298,7 @@ bool can_message_frame(const arguments& parsed, can::frame& out, std::string& er
   long long vr = 0;
   double value = 0;
   const std::string node_range = "an integer from 1 to " + std::to_string(nodes);
-  const auto given = [&parsed](const char* name) { return "'" + host::clipped(parsed.options.at(name)) + "'"; };
+  const auto given = [&parsed](const char* name) { return "'" + host::printable(parsed.options.at(name)) + "'"; };
   if (!parse_integer(parsed.options.at("--from"), 1, nodes, from)) {
     error = "--from must be " + node_range + ", got " + given("--from");
     return false;

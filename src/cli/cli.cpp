@@ -14,13 +14,37 @@
 
 namespace trionet::cli {
 
+namespace {
+
+// One message line on standard error. Echoed values are host::printable already; a control character that
+// reached the message another way is still shown escaped, never written raw to the terminal.
+void message_line(const std::string& message) {
+  std::string line = "trionet: ";
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      line += c;
+      continue;
+    }
+    static constexpr char digits[] = "0123456789abcdef";
+    line += "\\x";
+    line += digits[byte >> 4U];
+    line += digits[byte & 0x0FU];
+  }
+  line += '\n';
+  std::fputs(line.c_str(), stderr);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
 int fail(const std::string& message) {
-  std::fprintf(stderr, "trionet: %s\n", message.c_str());
+  message_line(message);
   return exit_usage;
 }
 
 int fail_io(const std::string& message) {
-  std::fprintf(stderr, "trionet: %s\n", message.c_str());
+  message_line(message);
   return exit_io;
 }
 
@@ -114,7 +138,7 @@ bool parse_arguments(const words& args, const std::set<std::string>& value_optio
       continue;
     }
     if (value_options.count(word) == 0) {
-      error = "unknown option " + host::clipped(word);
+      error = "unknown option " + host::printable(word);
       return false;
     }
     if (i + 1 >= args.size()) {

@@ -124,16 +124,16 @@ int encode_main(const std::vector<std::string>& words) {
     const std::string& text = args.positionals[i];
     if (text.compare(0, 6, "block:") == 0) {
       const std::size_t colon = text.find(':', 6);
-      if (colon == std::string::npos) return fail("block segment '" + host::clipped(text) + "' must be block:SBA:HEX");
+      if (colon == std::string::npos) return fail("block segment '" + host::printable(text) + "' must be block:SBA:HEX");
       segments[i].block = true;
       if (!parse_sba(text.substr(6, colon - 6), segments[i].destination)) {
-        return fail("block segment '" + host::clipped(text) + "': destination must be an SBA 0..31");
+        return fail("block segment '" + host::printable(text) + "': destination must be an SBA 0..31");
       }
       if (!host::parse_hex_bytes(std::string_view(text).substr(colon + 1), bytes[i]) || bytes[i].empty()) {
-        return fail("block segment '" + host::clipped(text) + "': data must be one or more hex bytes");
+        return fail("block segment '" + host::printable(text) + "': data must be one or more hex bytes");
       }
     } else if (!host::parse_hex_bytes(text, bytes[i]) || bytes[i].empty()) {
-      return fail("data segment '" + host::clipped(text) + "' must be one or more hex bytes (e.g. 1122)");
+      return fail("data segment '" + host::printable(text) + "' must be one or more hex bytes (e.g. 1122)");
     }
     segments[i].data = byte_view(bytes[i].data(), bytes[i].size());
   }
@@ -195,11 +195,6 @@ bool parse_token(std::string_view text, std::uint16_t& word) {
   return true;
 }
 
-// Text for a message: the bytes with anything unprintable as \xNN, at most 40 of them.
-std::string shown(std::string_view token) {
-  const std::string cut = host::clipped(token);
-  return host::escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
-}
 
 // Characters in, transmissions and errors out, each line printed with where it is. Optionally every
 // character also goes to a capture.
@@ -237,7 +232,7 @@ class genius_stream {
       ++transmissions_;
       print_transmission(parser_.received());
     } else if (genius::is_error(status)) {
-      out_ += "error at " + where + " (" + shown(token) + "): " + genius::to_string(status) + detail + "\n";
+      out_ += "error at " + where + " (" + host::printable(token) + "): " + genius::to_string(status) + detail + "\n";
     }
   }
 
@@ -248,7 +243,7 @@ class genius_stream {
     } else {
       ++bad_tokens_;
     }
-    out_ += "error at " + where + " (" + shown(token) + "): not a character (XX, c:XX or w:XXX)\n";
+    out_ += "error at " + where + " (" + host::printable(token) + "): not a character (XX, c:XX or w:XXX)\n";
   }
 
   // Another error of the input (e.g. an odd byte at the end of raw input).
@@ -408,7 +403,7 @@ int decode_main(const std::vector<std::string>& all) {
   if (args.has("--rate") && !args.has("--write-pcap")) return fail("--rate sets the times of --write-pcap");
   genius::rate rate = genius::rate::standard_153k6;
   if (args.has("--rate") && !genius::rate_from_name(args.options.at("--rate"), rate)) {
-    return fail("unknown rate '" + host::clipped(args.options.at("--rate")) +
+    return fail("unknown rate '" + host::printable(args.options.at("--rate")) +
                 "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
   }
 
@@ -533,7 +528,7 @@ int timing_main(const std::vector<std::string>& words) {
   if (!args.has("--rate")) return fail("timing needs --rate 153.6s|153.6e|76.8|38.4");
   genius::rate rate{};
   if (!genius::rate_from_name(args.options["--rate"], rate)) {
-    return fail("unknown rate '" + host::clipped(args.options["--rate"]) + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
+    return fail("unknown rate '" + host::printable(args.options["--rate"]) + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
   }
   genius::bus_timing timing = genius::default_timing(rate);
   if (!args.has("--after")) return fail("timing needs --after SBA (the SBA whose Stop just ended)");
@@ -547,7 +542,7 @@ int timing_main(const std::vector<std::string>& words) {
     double feet = 0;
     if (at == std::string::npos || !parse_sba(text.substr(0, at), d.sba) ||
         !parse_bounded(text.substr(at + 1), 0, max_feet, feet)) {
-      return fail("--device '" + host::clipped(text) + "' must be SBA@FEET with SBA 0..31 and FEET 0..1000000");
+      return fail("--device '" + host::printable(text) + "' must be SBA@FEET with SBA 0..31 and FEET 0..1000000");
     }
     d.position_ft = feet;
     for (const genius::device& other : devices) {

@@ -68,7 +68,7 @@ int too_much_input() {
 
 // The whole of FILE, or of standard input when there is none (or it is "-").
 int read_input(const std::vector<std::string>& positionals, std::string& text) {
-  if (positionals.size() > 1) return fail("unexpected argument '" + host::clipped(positionals[1]) + "'");
+  if (positionals.size() > 1) return fail("unexpected argument '" + host::printable(positionals[1]) + "'");
   input in;
   std::string error;
   const bool from_file = !positionals.empty() && positionals[0] != "-";
@@ -118,7 +118,7 @@ int each_word(const std::string& text, const char* expected, Take&& take) {
     while (end < text.size() && !host::is_blank(text[end])) ++end;
     const std::string_view word(text.data() + i, end - i);
     if (!take(word)) {
-      return fail("line " + std::to_string(line) + ": '" + host::clipped(std::string(word)) + "' is not " +
+      return fail("line " + std::to_string(line) + ": '" + host::printable(std::string(word)) + "' is not " +
                   expected);
     }
     i = end;
@@ -211,7 +211,7 @@ int ring_learn_layout(const arguments& args) {
   if (read != exit_ok) return read;
   const learn::sent_list_result sent = learn::parse_sent_list(list);
   if (!sent) {
-    return fail("--sent " + host::clipped(args.options.at("--sent")) + " line " + std::to_string(sent.line) +
+    return fail("--sent " + host::printable(args.options.at("--sent")) + " line " + std::to_string(sent.line) +
                 ": " + learn::to_string(sent.status) + " (expected \"VR VALUE\", VR 0..16383)");
   }
   std::vector<std::uint8_t> bytes;
@@ -334,14 +334,14 @@ int ring_learn_main(const words& all) {
   return learn_main(all, "ring", "crc or layout", [](const std::string& kind, const arguments& args) {
     if (kind == "crc") return ring_learn_crc(args);
     if (kind == "layout") return ring_learn_layout(args);
-    return fail("unknown ring learn kind '" + host::clipped(kind) + "' (expected crc or layout)");
+    return fail("unknown ring learn kind '" + host::printable(kind) + "' (expected crc or layout)");
   });
 }
 
 int genius_learn_main(const words& all) {
   return learn_main(all, "genius", "crc", [](const std::string& kind, const arguments& args) {
     if (kind == "crc") return genius_learn_crc(args);
-    return fail("unknown genius learn kind '" + host::clipped(kind) + "' (expected crc)");
+    return fail("unknown genius learn kind '" + host::printable(kind) + "' (expected crc)");
   });
 }
 

@@ -46,5 +46,5 @@ int main(int argc, char** argv) {
   for (const part* p : parts) {
     if (words[0] == p->name) return trionet::cli::dispatch(*p, std::vector<std::string>(words.begin() + 1, words.end()));
   }
-  return trionet::cli::fail("unknown part '" + trionet::host::clipped(words[0]) + "' (expected ring, can, genius or profile)");
+  return trionet::cli::fail("unknown part '" + trionet::host::printable(words[0]) + "' (expected ring, can, genius or profile)");
 }

@@ -3,7 +3,8 @@
 
 #include <cstdio>
 #include <fstream>
-#include <sstream>
+
+#include "trionet/host/files.hpp"
 
 namespace trionet::cli {
 namespace {
@@ -41,7 +42,7 @@ constexpr const char* header_usage =
 // The profile a `profile` command works on: FILE if given, else the one in effect.
 int profile_argument(const arguments& args, learn::profile& out) {
   if (args.positionals.size() > 1)
-    return fail("unexpected argument '" + host::clipped(args.positionals[1]) + "'");
+    return fail("unexpected argument '" + host::printable(args.positionals[1]) + "'");
   if (args.positionals.empty()) {
     out = active_profile();
     return exit_ok;
@@ -73,7 +74,7 @@ int header_main(const words& all) {
   const learn::header_result header = learn::profile_header(p, name);
   if (!header)
     return fail("--namespace must be a C++ namespace name (identifiers joined by ::), got '" +
-                host::clipped(name) + "'");
+                host::printable(name) + "'");
   if (!args.has("-o")) {
     std::fputs(header.text.c_str(), stdout);
     return std::fflush(stdout) == 0 ? exit_ok : fail_io("cannot write standard output");
@@ -81,7 +82,7 @@ int header_main(const words& all) {
   std::ofstream file(args.options.at("-o"), std::ios::binary);
   file << header.text;
   file.close();
-  if (!file) return fail_io("cannot write " + host::clipped(args.options.at("-o")));
+  if (!file) return fail_io("cannot write " + host::printable(args.options.at("-o")));
   return exit_ok;
 }
 
@@ -102,18 +103,17 @@ bool profile_given() {
 }
 
 bool read_profile_file(const std::string& path, learn::profile& out, std::string& error, bool& io) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  if (file) text << file.rdbuf();
-  if (!file) {
-    io = true;
-    error = "cannot read profile " + host::clipped(path);
+  std::string text;
+  const host::file_result read = host::read_bounded_file(path, learn::max_json_bytes, text);
+  if (!read) {
+    io = read.status != host::file_status::too_large;  // too large is a profile that is not valid
+    error = read.message(path, "profile");
     return false;
   }
   io = false;
-  const learn::profile_result r = learn::read_profile(text.str());
+  const learn::profile_result r = learn::read_profile(text);
   if (!r) {
-    error = "profile " + host::clipped(path) + ": " + learn::to_string(r.status);
+    error = "profile " + host::printable(path) + ": " + learn::to_string(r.status);
     if (r.status == learn::profile_status::not_json)
       error += std::string(" (") + learn::to_string(r.json) + ")";
     if (!r.key.empty()) error += " at " + r.key;
@@ -135,7 +135,7 @@ int write_profile_file(const learn::profile& p, const std::string& path) {
   std::ofstream file(path, std::ios::binary);
   file << text;
   file.close();
-  if (!file) return fail_io("cannot write profile " + host::clipped(path));
+  if (!file) return fail_io("cannot write profile " + host::printable(path));
   return exit_ok;
 }
 

@@ -244,20 +244,20 @@ int ring_join_main(const words& given) {
     long long n = 0;
     const std::string& address = args.options.at("--learn-keypad");
     if (!parse_integer(address, ring::first_basic_address, ring::last_basic_address, n)) {
-      return fail("ring join: --learn-keypad takes the keypad's BASIC address 10..24, got '" + host::clipped(address) +
+      return fail("ring join: --learn-keypad takes the keypad's BASIC address 10..24, got '" + host::printable(address) +
                   "'");
     }
     settings.learn_keypad = static_cast<int>(n);
     const std::string& back = args.has("--keypad-offset") ? args.options.at("--keypad-offset") : address;
     if (!parse_integer(back, ring::first_basic_address, ring::last_basic_address, n)) {
-      return fail("ring join: --keypad-offset takes a BASIC address 10..24, got '" + host::clipped(back) + "'");
+      return fail("ring join: --keypad-offset takes a BASIC address 10..24, got '" + host::printable(back) + "'");
     }
     settings.keypad_offset = static_cast<int>(n);
     settings.learn_output = args.options.at("-o");
   }
   if (as == "mc") return join_mc(settings);
   if (as == "keypad") return join_keypad(settings);
-  return fail("ring join: --as must be mc or keypad, got '" + host::clipped(as) + "'");
+  return fail("ring join: --as must be mc or keypad, got '" + host::printable(as) + "'");
 }
 
 }  // namespace trionet::cli

@@ -18,7 +18,7 @@ bool basic_address(const arguments& args, const std::string& name, std::uint8_t&
   }
   long long n = 0;
   if (!parse_integer(found->second, ring::first_basic_address, ring::last_basic_address, n)) {
-    error = name + " must be a BASIC address 10..24, got '" + host::clipped(found->second) + "'";
+    error = name + " must be a BASIC address 10..24, got '" + host::printable(found->second) + "'";
     return false;
   }
   hops = *ring::hops_from_basic_address(static_cast<int>(n));
@@ -68,17 +68,17 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
     const std::string& value_text = args.options.at("--value");
     long long vr = 0;
     if (!parse_integer(vr_text, 0, ring::max_vr, vr)) {
-      error = "--vr must be a VR number 0..16383, got '" + host::clipped(vr_text) + "'";
+      error = "--vr must be a VR number 0..16383, got '" + host::printable(vr_text) + "'";
       return false;
     }
     double value = 0;
     if (!parse_real(value_text, value)) {
-      error = "--value must be a real number, got '" + host::clipped(value_text) + "'";
+      error = "--value must be a real number, got '" + host::printable(value_text) + "'";
       return false;
     }
     const trionet::q32_result q = trionet::q32_from_double(value);
     if (!q) {
-      error = "--value " + host::clipped(value_text) +
+      error = "--value " + host::printable(value_text) +
               " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]";
       return false;
     }
@@ -97,7 +97,7 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
   }
   long long mode = 0;
   if (!parse_integer(args.options.at("--mode"), 0, 127, mode) || (mode != 0 && mode != 127)) {
-    error = "--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + host::clipped(args.options.at("--mode")) + "'";
+    error = "--mode must be 0 (key ON) or 127 (key ON and OFF), got '" + host::printable(args.options.at("--mode")) + "'";
     return false;
   }
   m = ring::message::keypad_mode(hops, static_cast<std::uint8_t>(mode));
@@ -121,7 +121,7 @@ bool ring_message_frame(const std::string& kind, const arguments& args, std::vec
     return {};
   }();
   if (allowed_for.empty()) {
-    error = "unknown message kind '" + host::clipped(kind) + "' (expected print, var, offset or mode)";
+    error = "unknown message kind '" + host::printable(kind) + "' (expected print, var, offset or mode)";
     return false;
   }
   for (const auto& option : args.options) {
@@ -134,7 +134,7 @@ bool ring_message_frame(const std::string& kind, const arguments& args, std::vec
     }
   }
   if (kind != "print" && !args.positionals.empty()) {
-    error = "unexpected argument '" + host::clipped(args.positionals[0]) + "'";
+    error = "unexpected argument '" + host::printable(args.positionals[0]) + "'";
     return false;
   }
   ring::message m;

@@ -1,6 +1,6 @@
 #include "learn/json.hpp"
 
-#include <cstdio>
+#include "trionet/host/text.hpp"
 
 namespace trionet::learn {
 namespace {
@@ -115,7 +115,7 @@ class parser {
       std::string key;
       if (!string(key)) return false;
       for (const auto& member : out.members) {
-        if (member.first == key) return fail(json_status::duplicate_key, "duplicate key \"" + key + "\"");
+        if (member.first == key) return fail(json_status::duplicate_key, "duplicate key \"" + host::printable(key) + "\"");
       }
       skip_blanks();
       if (peek() != ':') return fail(json_status::syntax, "expected ':' after a key");
@@ -334,39 +334,6 @@ class parser {
 
 json_result parse_json(std::string_view text) {
   return parser(text).run();
-}
-
-std::string json_quote(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char escaped[8];
-          std::snprintf(escaped, sizeof escaped, "\\u%04x",
-                        static_cast<unsigned>(static_cast<unsigned char>(c)));
-          out += escaped;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
 }
 
 }  // namespace trionet::learn

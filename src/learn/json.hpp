@@ -1,4 +1,4 @@
-// A strict JSON reader (RFC 8259) for profiles, and the string escaping the writer needs.
+// A strict JSON reader (RFC 8259) for profiles (the writer escapes strings with host::json_string).
 //
 // Strict: one value, nothing after it but blanks; no comments, trailing commas or duplicate object keys;
 // strings of valid UTF-8 with the standard escapes (a surrogate pair for characters above U+FFFF); numbers
@@ -81,8 +81,5 @@ struct [[nodiscard]] json_result {
 };
 
 [[nodiscard]] json_result parse_json(std::string_view text);
-
-/// `text` as a JSON string literal, quotes included (control characters, '"' and '\' escaped).
-[[nodiscard]] std::string json_quote(std::string_view text);
 
 }  // namespace trionet::learn

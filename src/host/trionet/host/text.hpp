@@ -90,14 +90,23 @@ inline std::string format_real(double value) {
   return ec == std::errc() ? std::string(text, end) : std::string("null");
 }
 
-/// The length of the well-formed UTF-8 sequence of 2..4 bytes at the start of `text`, or 0.
+/// The length of the well-formed UTF-8 sequence of 2..4 bytes at the start of `text`, or 0: the shortest
+/// form of a code point up to U+10FFFF that is not a surrogate (Unicode's table of well-formed sequences).
 constexpr std::size_t utf8_sequence(std::string_view text) noexcept {
+  if (text.empty()) return 0;
   const auto lead = static_cast<unsigned char>(text[0]);
   const std::size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
                              : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
   if (length == 0 || text.size() < length) return 0;
   for (std::size_t i = 1; i < length; ++i) {
     if ((static_cast<unsigned char>(text[i]) & 0xC0U) != 0x80U) return 0;
+  }
+  // The second byte's narrower range after E0 (no overlong form), ED (no surrogate), F0 (no overlong form)
+  // and F4 (nothing above U+10FFFF).
+  const auto second = static_cast<unsigned char>(text[1]);
+  if ((lead == 0xE0 && second < 0xA0) || (lead == 0xED && second > 0x9F) || (lead == 0xF0 && second < 0x90) ||
+      (lead == 0xF4 && second > 0x8F)) {
+    return 0;
   }
   return length;
 }
@@ -173,10 +182,65 @@ inline std::string escaped_text(byte_view characters) {
   return out;
 }
 
-/// At most `limit` bytes of `text`, followed by "..." when it was longer: for echoing input in messages
-/// (escape the result as any other input).
-inline std::string clipped(std::string_view text, std::size_t limit = 40) {
-  return text.size() <= limit ? std::string(text) : std::string(text.substr(0, limit)) + "...";
+/// Text from outside (an argument, a file name, a value read from a file or a port) as a message shows it:
+/// at most `limit` characters, then "..." when there were more; a backslash as `\\`, CR, LF and tab as
+/// `\r`, `\n`, `\t`; every other control character (below 0x20, 0x7f, and the C1 controls U+0080..U+009F)
+/// and every byte that is not part of well-formed UTF-8 as `\xNN`; the Unicode direction controls
+/// (U+200E, U+200F, U+202A..U+202E, U+2066..U+2069) as `\uXXXX`; other well-formed UTF-8 as it is. So a
+/// message never carries a control character to a terminal, and its length is bounded whatever the input:
+/// the one function the tool echoes untrusted text with.
+inline std::string printable(std::string_view text, std::size_t limit = 40) {
+  static constexpr char digits[] = "0123456789abcdef";
+  std::string out;
+  std::size_t characters = 0;
+  std::size_t i = 0;
+  for (; i < text.size() && characters < limit; ++characters) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte >= 0x20 && byte < 0x7f) {
+      if (byte == '\\') out += '\\';
+      out += static_cast<char>(byte);
+      ++i;
+      continue;
+    }
+    const std::size_t length = byte >= 0x80 ? utf8_sequence(text.substr(i)) : 0;
+    if (length != 0) {
+      unsigned code = length == 2 ? byte & 0x1FU : length == 3 ? byte & 0x0FU : byte & 0x07U;
+      for (std::size_t k = 1; k < length; ++k) code = code << 6U | (static_cast<unsigned char>(text[i + k]) & 0x3FU);
+      const bool c1 = code >= 0x80 && code <= 0x9F;
+      const bool direction = code == 0x200E || code == 0x200F || (code >= 0x202A && code <= 0x202E) ||
+                             (code >= 0x2066 && code <= 0x2069);
+      if (direction) {
+        out += "\\u";
+        for (unsigned shift = 12;; shift -= 4) {
+          out += digits[code >> shift & 0xFU];
+          if (shift == 0) break;
+        }
+      } else if (c1) {
+        for (std::size_t k = 0; k < length; ++k) {
+          const auto b = static_cast<unsigned char>(text[i + k]);
+          out += "\\x";
+          out += digits[b >> 4U];
+          out += digits[b & 0x0FU];
+        }
+      } else {
+        out.append(text.data() + i, length);
+      }
+      i += length;
+      continue;
+    }
+    const char named = byte == '\r' ? 'r' : byte == '\n' ? 'n' : byte == '\t' ? 't' : 0;
+    out += '\\';
+    if (named != 0) {
+      out += named;
+    } else {
+      out += 'x';
+      out += digits[byte >> 4U];
+      out += digits[byte & 0x0FU];
+    }
+    ++i;
+  }
+  if (i < text.size()) out += "...";
+  return out;
 }
 
 }  // namespace trionet::host

@@ -1,0 +1,249 @@
+// The host helpers every reader of untrusted input goes through: bounded file reading
+// (trionet/host/files.hpp), the one function that echoes untrusted text in messages (host::printable), and
+// the progress line for long work (trionet/host/progress.hpp).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "trionet/host/files.hpp"
+#include "trionet/host/progress.hpp"
+#include "trionet/host/text.hpp"
+
+namespace {
+
+using trionet::host::file_result;
+using trionet::host::file_status;
+using trionet::host::printable;
+using trionet::host::progress;
+using trionet::host::read_bounded_fd;
+using trionet::host::read_bounded_file;
+
+std::string temp_file(const std::string& name, const std::string& content) {
+  const std::string path = ::testing::TempDir() + "trionet-host-" + std::to_string(::getpid()) + "-" + name;
+  std::ofstream(path, std::ios::binary) << content;
+  return path;
+}
+
+// ---- printable ----
+
+TEST(Printable, PlainTextIsShownAsItIs) {
+  EXPECT_EQ(printable("prog.bas"), "prog.bas");
+  EXPECT_EQ(printable(""), "");
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // well-formed UTF-8
+}
+
+TEST(Printable, ControlCharactersAreShownEscapedNeverRaw) {
+  EXPECT_EQ(printable(std::string("a\0b", 3)), "a\\x00b");
+  EXPECT_EQ(printable("\x1b[31mred"), "\\x1b[31mred");
+  EXPECT_EQ(printable("bell\x07"), "bell\\x07");
+  EXPECT_EQ(printable("del\x7f"), "del\\x7f");
+  EXPECT_EQ(printable("a\r\n\tb"), "a\\r\\n\\tb");
+  EXPECT_EQ(printable("back\\slash"), "back\\\\slash");
+}
+
+TEST(Printable, BytesThatAreNotWellFormedUtf8AreShownAsHex) {
+  EXPECT_EQ(printable("\xff"), "\\xff");
+  EXPECT_EQ(printable("\xc3"), "\\xc3");                  // cut sequence
+  EXPECT_EQ(printable("\xc0\x80"), "\\xc0\\x80");         // overlong NUL
+  EXPECT_EQ(printable("\xe0\x80\x9b"), "\\xe0\\x80\\x9b");  // overlong CSI
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate
+  EXPECT_EQ(printable("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80");  // above U+10FFFF
+}
+
+TEST(Printable, C1ControlsAndDirectionControlsAreEscaped) {
+  EXPECT_EQ(printable("\xc2\x9b" "2J"), "\\xc2\\x9b2J");  // U+009B, a CSI to some terminals
+  EXPECT_EQ(printable("ab\xe2\x80\xae" "cd"), "ab\\u202ecd");  // U+202E right-to-left override
+  EXPECT_EQ(printable("\xe2\x81\xa6"), "\\u2066");
+}
+
+TEST(Printable, CutTo40CharactersWithAMark) {
+  const std::string forty(40, 'x');
+  EXPECT_EQ(printable(forty), forty);
+  EXPECT_EQ(printable(forty + "y"), forty + "...");
+  // Characters, not bytes: 41 two-byte characters are cut after 40 of them.
+  std::string accents;
+  for (int i = 0; i < 41; ++i) accents += "\xc3\xa9";
+  EXPECT_EQ(printable(accents), accents.substr(0, 80) + "...");
+  EXPECT_EQ(printable("abcdef", 3), "abc...");
+}
+
+TEST(Printable, AMegabyteOfHostileBytesGivesAShortLine) {
+  std::string hostile;
+  for (int i = 0; i < (1 << 20); ++i) hostile += static_cast<char>(i % 256);
+  const std::string shown = printable(hostile);
+  EXPECT_LE(shown.size(), 40U * 8U + 3U);
+  for (const char c : shown) {
+    const auto byte = static_cast<unsigned char>(c);
+    EXPECT_TRUE(byte >= 0x20 && byte != 0x7f) << static_cast<int>(byte);
+  }
+}
+
+// ---- read_bounded_file ----
+
+TEST(ReadBoundedFile, ReadsAWholeFile) {
+  const std::string path = temp_file("whole", "PRINT 1\n");
+  std::string text = "old";
+  const file_result r = read_bounded_file(path, 100, text);
+  EXPECT_TRUE(r);
+  EXPECT_EQ(text, "PRINT 1\n");
+  std::remove(path.c_str());
+}
+
+TEST(ReadBoundedFile, AFileOfExactlyTheBoundIsRead_OneByteMoreIsRefused) {
+  const std::string exact = temp_file("exact", std::string(64, 'a'));
+  const std::string over = temp_file("over", std::string(65, 'a'));
+  std::string text;
+  EXPECT_TRUE(read_bounded_file(exact, 64, text));
+  EXPECT_EQ(text.size(), 64U);
+  const file_result r = read_bounded_file(over, 64, text);
+  EXPECT_EQ(r.status, file_status::too_large);
+  EXPECT_TRUE(text.empty());
+  EXPECT_EQ(r.message("big.json", "profile"), "profile big.json is larger than 64 bytes");
+  std::remove(exact.c_str());
+  std::remove(over.c_str());
+}
+
+TEST(ReadBoundedFile, AMissingFileNamesTheCause) {
+  std::string text;
+  const file_result r = read_bounded_file("/nonexistent/x.bas", 100, text);
+  EXPECT_EQ(r.status, file_status::cannot_open);
+  EXPECT_EQ(r.system_error, ENOENT);
+  EXPECT_EQ(r.message("/nonexistent/x.bas", "program"),
+            "cannot open program /nonexistent/x.bas: No such file or directory");
+}
+
+TEST(ReadBoundedFile, AnUnreadableFileNamesTheCause) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads a file whatever its mode";
+  const std::string path = temp_file("unreadable", "x");
+  ::chmod(path.c_str(), 0);
+  std::string text;
+  const file_result r = read_bounded_file(path, 100, text);
+  EXPECT_EQ(r.status, file_status::cannot_open);
+  EXPECT_NE(r.message(path).find("Permission denied"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+TEST(ReadBoundedFile, ADirectoryIsRefused) {
+  std::string text;
+  const file_result r = read_bounded_file(".", 100, text);
+  EXPECT_EQ(r.status, file_status::directory);
+  EXPECT_EQ(r.message("."), ". is a directory, not a file");
+}
+
+TEST(ReadBoundedFile, ADeviceIsRefusedBeforeAByteIsRead) {
+  std::string text;
+  const file_result zero = read_bounded_file("/dev/zero", 100, text);
+  EXPECT_EQ(zero.status, file_status::device);
+  EXPECT_EQ(zero.message("/dev/zero"), "/dev/zero is a device, not a file");
+  EXPECT_EQ(read_bounded_file("/dev/null", 100, text).status, file_status::device);
+}
+
+TEST(ReadBoundedFile, AnEndlessPipeIsCutAtTheBound) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  // The writer learns that the reader has gone from EPIPE, not from a signal that would end the test.
+  void (*const old_handler)(int) = std::signal(SIGPIPE, SIG_IGN);
+  std::thread writer([&] {
+    const std::string block(4096, 'x');
+    while (::write(fds[1], block.data(), block.size()) > 0) {
+    }
+  });
+  std::string text;
+  const file_result r = read_bounded_fd(fds[0], 100000, text);
+  ::close(fds[0]);  // the writer's next write fails (EPIPE) and it ends
+  writer.join();
+  ::close(fds[1]);
+  std::signal(SIGPIPE, old_handler);
+  EXPECT_EQ(r.status, file_status::too_large);
+  EXPECT_TRUE(text.empty());
+}
+
+TEST(ReadBoundedFile, ANamedFifoIsReadToItsEnd) {
+  const std::string path = ::testing::TempDir() + "trionet-host-fifo-" + std::to_string(::getpid());
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  std::thread writer([&] {
+    const int fd = ::open(path.c_str(), O_WRONLY);
+    (void)!::write(fd, "12 34\n", 6);
+    ::close(fd);
+  });
+  std::string text;
+  const file_result r = read_bounded_file(path, 100, text);
+  writer.join();
+  ::unlink(path.c_str());
+  EXPECT_TRUE(r) << r.message(path);
+  EXPECT_EQ(text, "12 34\n");
+}
+
+TEST(ReadBoundedFile, TheNameInAMessageIsShownEscaped) {
+  std::string text;
+  const std::string name = std::string("/nonexistent/\x1b[2J\0x", 19);
+  const file_result r = read_bounded_file(name, 100, text);
+  EXPECT_EQ(r.message(name), "cannot open /nonexistent/\\x1b[2J\\x00x: No such file or directory");
+}
+
+// ---- progress ----
+
+TEST(Progress, TheLineSaysWhatIsDoneTheRateAndTheTimeLeft) {
+  EXPECT_EQ(progress::line("ring simulate", "s of ring time", 12.5, 60, 3.2),
+            "ring simulate: 12.5 of 60 s of ring time (21%), 3.91 s of ring time/s, 3.20 s elapsed, about 12.2 s "
+            "left");
+  EXPECT_EQ(progress::line("ring learn crc", "candidates", 1.5e6, 4e9, 100),
+            "ring learn crc: 1.50 M of 4 G candidates (0%), 15 k candidates/s, 1 min 40 s elapsed, about 74 h 02 "
+            "min left");
+  // Without a total: no percentage and no estimate.
+  EXPECT_EQ(progress::line("soak", "runs", 400, 0, 2), "soak: 400 runs, 200 runs/s, 2.00 s elapsed");
+  // Nothing done yet: no rate.
+  EXPECT_EQ(progress::line("soak", "runs", 0, 10, 2), "soak: 0 of 10 runs (0%)");
+}
+
+TEST(Progress, SilentWhenTheOutputIsNotATerminal) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  {
+    progress shown("work", "items", 10, fds[1]);
+    EXPECT_FALSE(shown.active());
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));
+    shown.update(5);
+  }
+  ::close(fds[1]);
+  char c = 0;
+  EXPECT_EQ(::read(fds[0], &c, 1), 0);  // nothing was written
+  ::close(fds[0]);
+}
+
+TEST(Progress, DrawnInPlaceOnATerminalAndClearedAtTheEnd) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const int terminal = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
+  ASSERT_GE(terminal, 0);
+  {
+    progress shown("work", "items", 10, terminal);
+    EXPECT_TRUE(shown.active());
+    shown.update(1);  // too early: nothing is drawn in the first half second
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));
+    shown.update(5);
+  }
+  ::close(terminal);
+  std::string got;
+  char chunk[512];
+  ::fcntl(master, F_SETFL, O_NONBLOCK);
+  for (ssize_t n = 0; (n = ::read(master, chunk, sizeof chunk)) > 0;) got.append(chunk, static_cast<std::size_t>(n));
+  ::close(master);
+  EXPECT_EQ(got.rfind("\rwork: 5 of 10 items (50%), ", 0), 0U) << got;
+  EXPECT_EQ(got.substr(got.size() - 4), "\r\x1b[K") << got;
+  EXPECT_EQ(got.find("work: 1 "), std::string::npos) << got;
+}
+
+}  // namespace
