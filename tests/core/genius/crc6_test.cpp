@@ -5,14 +5,11 @@
 
 #include <trionet/genius/crc6.hpp>
 
+#include "support/rng.hpp"
+
 namespace {
 
-// 32-bit random numbers as unsigned (std::mt19937's result_type is wider than unsigned on LP64).
-struct rng {
-  std::mt19937 engine;
-  explicit rng(unsigned seed) : engine(seed) {}
-  unsigned operator()() { return static_cast<unsigned>(engine()); }
-};
+using trionet::test::rng;
 
 using namespace trionet::genius;
 

@@ -8,42 +8,19 @@
 #include <string>
 #include <vector>
 
+#include "support/ring_frames.hpp"
 #include "support/ring_soak.hpp"
 #include "trionet/ring.hpp"
 #include "trionet/vr.hpp"
 
 namespace ring = trionet::ring;
 using trionet::byte_view;
+using trionet::test::chars;
+using trionet::test::drain;
+using trionet::test::feed;
+using trionet::test::read_all;
 
 namespace {
-
-std::vector<std::uint8_t> chars(std::uint8_t hops, const std::string& text) {
-  const ring::message m =
-      ring::message::characters(hops, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-  std::vector<std::uint8_t> out(ring::frame_length(m));
-  EXPECT_TRUE(ring::encode(trionet::byte_buffer(out.data(), out.size()), m));
-  return out;
-}
-
-template <class Node>
-void feed(Node& node, const std::vector<std::uint8_t>& bytes) {
-  for (std::uint8_t b : bytes) node.receive(b);
-}
-
-template <class Node>
-std::vector<std::uint8_t> drain(Node& node) {
-  std::vector<std::uint8_t> out;
-  std::uint8_t b = 0;
-  while (node.transmit(b)) out.push_back(b);
-  return out;
-}
-
-template <class Node>
-std::string read_all(Node& node) {
-  std::string out;
-  while (auto r = node.get(4)) out += static_cast<char>(r.value);
-  return out;
-}
 
 // Drops the first byte on `link` that `pick` chooses.
 struct drop_first {

@@ -8,63 +8,24 @@
 #include <utility>
 #include <vector>
 
+#include "support/ring_events.hpp"
 #include "trionet/ring.hpp"
 
 namespace ring = trionet::ring;
 using trionet::byte_view;
+using trionet::test::decode_bulk;
+using trionet::test::decode_bytewise;
+using trionet::test::event;
+using trionet::test::to_event;
 
 namespace {
+
+// docs/protocol.md 1.3's example frame.
+const std::vector<std::uint8_t>& golden = trionet::test::golden_variable_transfer;
 
 std::vector<std::uint8_t> bytes_of(std::initializer_list<int> list) {
   std::vector<std::uint8_t> out;
   for (int b : list) out.push_back(static_cast<std::uint8_t>(b));
-  return out;
-}
-
-// A decode result with its text copied out of the decoder, comparable with ==.
-struct event {
-  ring::decode_status status;
-  ring::frame_error error;
-  ring::message_type type;
-  int hops;
-  std::string text;
-  int vr;
-  std::int64_t value;
-  int offset;
-  int mode;
-  bool operator==(const event& o) const {
-    return status == o.status && error == o.error && type == o.type && hops == o.hops && text == o.text &&
-           vr == o.vr && value == o.value && offset == o.offset && mode == o.mode;
-  }
-};
-
-event to_event(const ring::decode_result& r) {
-  return {r.status,
-          r.error,
-          r.msg.type,
-          r.msg.hops,
-          std::string(reinterpret_cast<const char*>(r.msg.text.data()), r.msg.text.size()),
-          r.msg.vr,
-          r.msg.value,
-          r.msg.offset,
-          r.msg.mode};
-}
-
-template <class Decoder>
-std::vector<event> decode_bytewise(Decoder& d, const std::vector<std::uint8_t>& bytes) {
-  std::vector<event> out;
-  for (std::uint8_t b : bytes) {
-    const ring::decode_result r = d.push(b);
-    if (r.status != ring::decode_status::incomplete) out.push_back(to_event(r));
-  }
-  return out;
-}
-
-template <class Decoder>
-std::vector<event> decode_bulk(Decoder& d, const std::vector<std::uint8_t>& bytes) {
-  std::vector<event> out;
-  d.push(byte_view(bytes.data(), bytes.size()),
-         [&](const ring::decode_result& r) { out.push_back(to_event(r)); });
   return out;
 }
 
@@ -80,9 +41,6 @@ ring::frame_error only_error(const std::vector<std::uint8_t>& bytes) {
   EXPECT_EQ(events[0].status, ring::decode_status::frame_error);
   return events[0].error;
 }
-
-const std::vector<std::uint8_t> golden = bytes_of(
-    {0x8a, 0x48, 0x01, 0x00, 0x00, 0x00, 0x00, 0x30, 0x0c, 0x00, 0x00, 0x00, 0x00, 0x7f, 0x3e, 0x88});
 
 }  // namespace
 
@@ -106,73 +64,6 @@ TEST(RingGoldenExample, Decodes) {
   EXPECT_EQ(events[0].vr, 200);
   EXPECT_EQ(events[0].value, trionet::q32_from_integer(99));
   EXPECT_EQ(trionet::q32_to_double(events[0].value), 99.0);
-}
-
-TEST(RingGoldenExample, TableFreeCrcGivesTheSameFrame) {
-  std::uint8_t frame[16];
-  ASSERT_TRUE(
-      ring::encode_variable<ring::crc16_ccitt_false_bitwise>(frame, 1, 200, trionet::q32_from_integer(99)));
-  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
-  ring::decoder<256, ring::crc16_ccitt_false_bitwise> d;
-  const auto events = decode_bytewise(d, golden);
-  ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::ok);
-}
-
-// ---- CRC ----
-
-TEST(RingCrc, CheckValueWithTable) {
-  const char* check = "123456789";
-  EXPECT_EQ(ring::crc16_ccitt_false_table::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
-  EXPECT_EQ(ring::crc16_ccitt_false::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
-}
-
-// The default is sliced on 64-bit cores and one table on 32-bit ones (the firmware build checks the latter).
-TEST(RingCrc, DefaultIsSlicedOnSixtyFourBitCores) {
-  constexpr bool sixty_four_bit = sizeof(void*) == 8;
-  EXPECT_EQ((std::is_same_v<ring::crc16_ccitt_false, ring::crc16_ccitt_false_sliced>), sixty_four_bit);
-  EXPECT_EQ((std::is_same_v<ring::crc16_ccitt_false, ring::crc16_ccitt_false_table>), !sixty_four_bit);
-}
-
-TEST(RingCrc, CheckValueWithoutTable) {
-  const char* check = "123456789";
-  EXPECT_EQ(ring::crc16_ccitt_false_bitwise::compute(reinterpret_cast<const std::uint8_t*>(check), 9),
-            0x29B1);
-}
-
-TEST(RingCrc, CheckValueAtCompileTime) {
-  constexpr std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
-  static_assert(ring::crc16_ccitt_false_table::compute(check, 9) == 0x29B1, "table CRC check value");
-  static_assert(ring::crc16_ccitt_false_sliced::compute(check, 9) == 0x29B1, "sliced CRC check value");
-  static_assert(ring::crc16_ccitt_false_bitwise::compute(check, 9) == 0x29B1, "bitwise CRC check value");
-  SUCCEED();
-}
-
-TEST(RingCrc, AnotherPolynomialAndInitCanBePluggedIn) {
-  // CRC-16/XMODEM (poly 0x1021, init 0) and CRC-16/GENIBUS (init 0xFFFF, xorout 0xFFFF): catalogue check
-  // values.
-  using xmodem = ring::crc16<0x1021, 0x0000>;
-  using genibus = ring::crc16<0x1021, 0xFFFF, 0xFFFF, ring::crc_table::none>;
-  const char* check = "123456789";
-  const auto* data = reinterpret_cast<const std::uint8_t*>(check);
-  EXPECT_EQ(xmodem::compute(data, 9), 0x31C3);
-  EXPECT_EQ(genibus::compute(data, 9), 0xD64E);
-
-  // A decoder with another CRC accepts frames encoded with it and rejects default-CRC frames.
-  std::uint8_t frame[16];
-  ASSERT_TRUE(ring::encode_variable<xmodem>(frame, 1, 200, trionet::q32_from_integer(99)));
-  ring::decoder<256, xmodem> d;
-  auto events = decode_bytewise(d, std::vector<std::uint8_t>(frame, frame + 16));
-  ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::ok);
-  events = decode_bytewise(d, golden);
-  ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::crc_error);
-}
-
-TEST(RingCrc, OnlyFourteenBitsTravel) {
-  EXPECT_EQ(ring::crc_wire_bits(0xFFFF), 0x7F7F);
-  EXPECT_EQ(ring::crc_wire_bits(0x3EFF), 0x3E7F);
 }
 
 // ---- bytes, hops and BASIC addresses ----
@@ -608,53 +499,6 @@ TEST(RingProperty, BytewiseAndBulkGiveTheSameResultsOnCorruptedStreams) {
     total_events += expected.size();
   }
   EXPECT_GT(total_events, 10000u);  // the streams really exercised the decoder
-}
-
-TEST(RingCrc, SlicedTablesGiveTheSameCrc) {
-  const char* check = "123456789";
-  EXPECT_EQ(ring::crc16_ccitt_false_sliced::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x29B1);
-  constexpr std::uint8_t check_bytes[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
-  static_assert(ring::crc16_ccitt_false_sliced::compute(check_bytes, 9) == 0x29B1, "sliced CRC check value");
-  std::mt19937_64 rng(5);
-  std::vector<std::uint8_t> bytes(1000);
-  for (auto& b : bytes) b = static_cast<std::uint8_t>(rng());
-  for (std::size_t length = 0; length <= bytes.size(); length += 1 + length / 7) {
-    ASSERT_EQ(ring::crc16_ccitt_false_sliced::compute(bytes.data(), length),
-              ring::crc16_ccitt_false::compute(bytes.data(), length))
-        << length;
-  }
-  using xmodem_sliced = ring::crc16<0x1021, 0x0000, 0, ring::crc_table::sliced>;
-  EXPECT_EQ(xmodem_sliced::compute(reinterpret_cast<const std::uint8_t*>(check), 9), 0x31C3);
-  // A decoder and an encoder with the sliced policy agree with the golden frame.
-  std::uint8_t frame[16];
-  ASSERT_TRUE(
-      ring::encode_variable<ring::crc16_ccitt_false_sliced>(frame, 1, 200, trionet::q32_from_integer(99)));
-  EXPECT_EQ(std::vector<std::uint8_t>(frame, frame + 16), golden);
-  ring::decoder<256, ring::crc16_ccitt_false_sliced> d;
-  const auto events = decode_bulk(d, golden);
-  ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::ok);
-}
-
-// A CRC policy written by hand, with only initial, update and finish, plugs in too.
-namespace {
-struct sum16 {
-  static constexpr std::uint16_t initial = 0;
-  static constexpr std::uint16_t update(std::uint16_t crc, std::uint8_t b) noexcept {
-    return static_cast<std::uint16_t>(crc + b);
-  }
-  static constexpr std::uint16_t finish(std::uint16_t crc) noexcept { return crc; }
-};
-}  // namespace
-
-TEST(RingCrc, HandWrittenPolicyWithTheMinimalInterface) {
-  std::uint8_t frame[16];
-  ASSERT_TRUE(ring::encode_variable<sum16>(frame, 1, 1, 1));
-  ring::decoder<256, sum16> d;
-  const auto events = decode_bytewise(d, std::vector<std::uint8_t>(frame, frame + 16));
-  ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].status, ring::decode_status::ok);
-  EXPECT_EQ(frame[13], 2);  // V0 + X0 = 1 + 1
 }
 
 // Every encode_status, decode_status and frame_error has its enumerator's spelling (the CLI, the traces and

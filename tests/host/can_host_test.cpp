@@ -15,6 +15,7 @@
 #include <trionet/can.hpp>
 
 #include "trionet/host/candump.hpp"
+#include "support/vcan.hpp"
 #include "trionet/host/socketcan.hpp"
 
 namespace {
@@ -189,38 +190,14 @@ TEST(CanSocketCan, ClosedPortFailsAndBadNamesAreRefused) {
   EXPECT_EQ(closed.open("an-interface-name-too-long").status, socketcan_status::name_too_long);
 }
 
-// What stands in the way of a vcan interface on this machine, found out rather than guessed.
-std::string vcan_missing() {
-  if (::geteuid() != 0) return "creating a network interface needs root, and this test runs as uid " + std::to_string(::geteuid());
-  if (std::system("command -v ip >/dev/null 2>&1") != 0) return "the `ip` command (iproute2) is not installed";
-  const int can_socket = ::socket(PF_CAN, SOCK_RAW, CAN_RAW);
-  if (can_socket < 0) {
-    return std::string("the kernel has no CAN socket support (socket(PF_CAN) failed: ") + std::strerror(errno) + ")";
-  }
-  ::close(can_socket);
-  return "the kernel has CAN sockets but `ip link add type vcan` failed: the vcan module is missing or cannot be "
-         "loaded here (modprobe vcan)";
-}
-
 // Node 1 and node 4 of a 5-node exchange on a real (virtual) CAN interface.
 TEST(CanSocketCan, VrExchangeOverVcan) {
-  const std::string name = "trionetvcan0";
-  bool created = false;
-  if (::if_nametoindex(name.c_str()) == 0) {
-    const std::string add = "ip link add dev " + name + " type vcan >/dev/null 2>&1 && ip link set up " +
-                            name + " >/dev/null 2>&1";
-    if (std::system(add.c_str()) != 0) {
-      GTEST_SKIP() << "cannot create vcan interface " << name << ": " << vcan_missing()
-                   << "; frame conversion is tested without it";
-    }
-    created = true;
+  const trionet::test::vcan_interface vcan("trionetvcan0");
+  if (!vcan.usable()) {
+    GTEST_SKIP() << "cannot create vcan interface " << vcan.name() << ": " << vcan.missing()
+                 << "; frame conversion is tested without it";
   }
-  struct remove_on_exit {
-    std::string command;
-    ~remove_on_exit() {
-      if (!command.empty()) (void)std::system(command.c_str());
-    }
-  } cleanup{created ? "ip link del " + name + " >/dev/null 2>&1" : ""};
+  const std::string& name = vcan.name();
 
   socketcan_port port1;
   socketcan_port port4;

@@ -11,11 +11,13 @@
 
 #include "learn/crc_catalogue.hpp"
 #include "learn/ring_capture.hpp"
+#include "support/sent_variables.hpp"
 #include "learn/ring_crc_learn.hpp"
 #include "trionet/ring.hpp"
 
 namespace ring = trionet::ring;
 namespace learn = trionet::learn;
+using trionet::test::random_sent;
 
 namespace {
 
@@ -31,14 +33,6 @@ std::vector<learn::catalogue_entry> catalogue_of_width(unsigned width) {
     if (e.width == width) out.push_back(e);
   }
   return out;
-}
-
-std::vector<learn::sent_variable> random_sent(std::mt19937_64& rng, std::size_t count) {
-  std::vector<learn::sent_variable> sent;
-  for (std::size_t i = 0; i < count; ++i) {
-    sent.push_back({static_cast<std::uint16_t>(rng() % 16384), static_cast<std::int64_t>(rng())});
-  }
-  return sent;
 }
 
 const ring::variable_layout_parameters lsf_layout{};

@@ -15,6 +15,7 @@
 
 #include "support/live_process.hpp"
 #include "support/run_cli.hpp"
+#include "support/vcan.hpp"
 #include "trionet/host/candump.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/pcapng.hpp"
@@ -214,22 +215,11 @@ TEST(LiveCan, OverSocketCanOnVcan) {
                  << "); the candump-text variants are tested instead";
   }
   ::close(probe);
-  bool created = false;
-  if (::if_nametoindex(name.c_str()) == 0) {
-    const std::string add = "ip link add dev " + name + " type vcan 2>/dev/null && ip link set up " + name;
-    if (std::system(add.c_str()) != 0) {
-      GTEST_SKIP() << "cannot create the vcan interface " << name << ": `ip link add dev " << name
-                   << " type vcan` failed (needs root and the vcan kernel module); the candump-text variants "
-                      "are tested instead";
-    }
-    created = true;
+  const trionet::test::vcan_interface vcan(name);
+  if (!vcan.usable()) {
+    GTEST_SKIP() << "cannot create the vcan interface " << name << ": " << vcan.missing()
+                 << "; the candump-text variants are tested instead";
   }
-  struct remove_on_exit {
-    std::string command;
-    ~remove_on_exit() {
-      if (!command.empty()) (void)std::system(command.c_str());
-    }
-  } cleanup{created ? "ip link del " + name + " >/dev/null 2>&1" : ""};
   tool_process monitor({"can", "monitor", name, "--json"});
   tool_process node({"can", "node", name, "--node", "4", "--json"});
   ::usleep(200000);  // both bound before the frame goes out

@@ -17,6 +17,7 @@
 #include "learn/ring_capture.hpp"
 #include "support/live_process.hpp"
 #include "support/run_cli.hpp"
+#include "support/sent_variables.hpp"
 #include "trionet/host/pcapng.hpp"
 #include "trionet/host/text.hpp"
 #include "trionet/genius/crc6.hpp"
@@ -28,6 +29,7 @@ using trionet::test::expect_usage_error;
 using trionet::test::run_cli;
 using trionet::test::slurp;
 namespace learn = trionet::learn;
+using trionet::test::random_sent;
 namespace ring = trionet::ring;
 
 std::string temp_path(const std::string& name) {
@@ -51,14 +53,6 @@ std::string hex_frames(const std::vector<learn::variable_frame>& frames) {
     out += " 88\n";
   }
   return out;
-}
-
-std::vector<learn::sent_variable> random_sent(std::mt19937_64& rng, std::size_t count) {
-  std::vector<learn::sent_variable> sent;
-  for (std::size_t i = 0; i < count; ++i) {
-    sent.push_back({static_cast<std::uint16_t>(rng() % 16384), static_cast<std::int64_t>(rng())});
-  }
-  return sent;
 }
 
 std::size_t count_of(const std::string& text, const std::string& what) {
