@@ -36,6 +36,7 @@ TRIONET_WEAK_HANDLER(DebugMon_Handler);
 TRIONET_WEAK_HANDLER(PendSV_Handler);
 TRIONET_WEAK_HANDLER(SysTick_Handler);
 TRIONET_WEAK_HANDLER(UART0_IRQHandler);
+TRIONET_WEAK_HANDLER(UART1_IRQHandler);
 TRIONET_WEAK_HANDLER(CAN0_RX0_IRQHandler);
 #undef TRIONET_WEAK_HANDLER
 
@@ -66,6 +67,7 @@ constexpr vector_table make_vector_table() noexcept {
                      {}};
   for (handler& irq : table.irqs) irq = Default_Handler;
   table.irqs[board::uart0::irq] = UART0_IRQHandler;
+  table.irqs[board::uart0::irq + 1] = UART1_IRQHandler;  // the LM3S6965's UART1 (the lab's debug console)
   table.irqs[board::can0::rx0_irq] = CAN0_RX0_IRQHandler;
   return table;
 }

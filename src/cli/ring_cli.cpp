@@ -11,6 +11,7 @@
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "ring_message_arguments.hpp"
+#include "ring_wire_cli.hpp"
 #include "trionet/host/ring_events.hpp"
 #include "trionet/ring.hpp"
 
@@ -210,6 +211,7 @@ const command ring_commands[] = {
     {"send", "put one message on a live ring port", ring_live_usage, ring_send_main},
     {"join", "be a node on a live ring: a Motion Coordinator (--as mc) or a keypad (--as keypad)", ring_live_usage,
      ring_join_main},
+    {"wire", "connect byte endpoints (ports, sockets, ptys) into one ring, with faults on its links", ring_wire_usage, ring_wire_main},
     {"learn", "crc or layout: find the wire parameters from captured frames, write them into a profile",
      ring_learn_usage, ring_learn_main},
 };

@@ -625,14 +625,26 @@ int join_keypad_with(const join_settings& settings) {
     }
   };
 
+  // The keypad's counters and its link's, on SIGUSR1 and at the end.
+  const auto counters = [&]() {
+    event e(log.text(), "counters");
+    e.time(live::now_ns())
+        .boolean("network", keypad->network_mode())
+        .signed_number("offset", keypad->offset());
+    const ring::keypad_counters& c = keypad->counters();
+    e.number("keys_sent", c.keys_sent)
+        .number("keys_lost", c.keys_lost)
+        .number("display_messages", c.display_messages);
+    e.number("dropped_in_local_mode", c.dropped_in_local_mode).number("frame_errors", c.frame_errors);
+    e.number("crc_errors", c.crc_errors);
+    e.number("netstat", keypad->netstat());
+    add_link_counters(e, keypad->forwarding_counters());
+    st->in().add_counters(e, "in_");
+    st->out().add_counters(e, "out_");
+  };
   show();
   while (port_open && !quit && !live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) {
-      event e(log.text(), "counters");
-      e.time(live::now_ns());
-      st->in().add_counters(e, "in_");
-      st->out().add_counters(e, "out_");
-    }
+    if (live::signal_watch::take_report_request()) counters();
     const int due = script.due_in_ms(live::now_ns());
     const int wait = due >= 0 ? due : interactive ? 200 : 1000;
     short input_events = 0;
@@ -671,22 +683,7 @@ int join_keypad_with(const join_settings& settings) {
   screen.leave();
   terminal.restore();
   log.keep_last(0);  // the counters go to standard output, screen or not
-  {
-    event e(log.text(), "counters");
-    e.time(live::now_ns())
-        .boolean("network", keypad->network_mode())
-        .signed_number("offset", keypad->offset());
-    const ring::keypad_counters& c = keypad->counters();
-    e.number("keys_sent", c.keys_sent)
-        .number("keys_lost", c.keys_lost)
-        .number("display_messages", c.display_messages);
-    e.number("dropped_in_local_mode", c.dropped_in_local_mode).number("frame_errors", c.frame_errors);
-    e.number("crc_errors", c.crc_errors);
-    e.number("netstat", keypad->netstat());
-    add_link_counters(e, keypad->forwarding_counters());
-    st->in().add_counters(e, "in_");
-    st->out().add_counters(e, "out_");
-  }
+  counters();
   log.flush();
   st->finish();
   if (!port_open) std::fprintf(stderr, "trionet: ring join: %s\n", ended.c_str());
