@@ -158,8 +158,8 @@ void program_step() {
   const ring::get_result key = node.get(3);  // GET #3,VR(100)
   if (now == step::wait_running && vrs.get(ready_vr) == 999 * one) {  // WAIT UNTIL VR(200)=999
     lab::line t;
-    t.add("\x0c\x0e").add("RUNNING\r\n").add("LENGTH").fixed(vrs.get(feed_length_vr), 6, 1);
-    t.add(" SPEED").fixed(vrs.get(speed_vr), 6, 2);
+    t.add("\x0c\x0e").add("RUNNING\r\n").add("LEN").fixed(vrs.get(feed_length_vr), 6, 1);  // 19 characters
+    t.add(" SPD").fixed(vrs.get(speed_vr), 6, 2);
     print(keypad, t);
     go(step::running);
   }

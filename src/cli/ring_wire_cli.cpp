@@ -91,10 +91,6 @@ class endpoint {
     if (spec.compare(0, 5, "unix:") == 0) return connect_unix(spec.substr(5), connect_ms, error);
     if (spec.compare(0, 4, "tcp:") == 0) return connect_tcp(spec.substr(4), connect_ms, error);
     if (spec == "pty" || spec.compare(0, 4, "pty:") == 0) return open_pty(spec.size() > 4 ? spec.substr(4) : "", error);
-    if (spec == "-") {
-      error = "an endpoint is read and written: - is not one";
-      return false;
-    }
     if (!device_.open(spec, options, error)) return false;
     fd_ = device_.fd();
     return true;
@@ -743,6 +739,9 @@ int ring_wire_main(const words& given) {
   }
   if (args.positionals.size() < 2) return fail("ring wire needs at least two endpoints (a ring of two nodes)");
   if (args.positionals.size() > 15) return fail("ring wire: a ring holds at most 15 nodes (docs/protocol.md 1.1)");
+  for (const std::string& e : args.positionals) {
+    if (e == "-") return fail("ring wire: an endpoint is read and written: - is not one");
+  }
   const int capacities = check_ring_capacities("ring wire", ring_capacity_use::decoder);
   if (capacities != exit_ok) return capacities;
   wire_settings s;
