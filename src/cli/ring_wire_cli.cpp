@@ -119,7 +119,7 @@ class endpoint {
     sockaddr_un address{};
     address.sun_family = AF_UNIX;
     if (path.empty() || path.size() >= sizeof address.sun_path) {
-      error = "unix:" + host::clipped(path) + ": the socket path must be 1.." +
+      error = "unix:" + host::printable(path) + ": the socket path must be 1.." +
               std::to_string(sizeof address.sun_path - 1) + " characters";
       return false;
     }
@@ -149,7 +149,7 @@ class endpoint {
   bool connect_tcp(const std::string& where, int connect_ms, std::string& error) {
     const std::size_t colon = where.rfind(':');
     if (colon == std::string::npos || colon == 0 || colon + 1 == where.size()) {
-      error = "tcp:" + host::clipped(where) + ": expected tcp:HOST:PORT";
+      error = "tcp:" + host::printable(where) + ": expected tcp:HOST:PORT";
       return false;
     }
     std::string host_name = where.substr(0, colon);
@@ -167,7 +167,7 @@ class endpoint {
     addrinfo* found = nullptr;
     const int status = ::getaddrinfo(host_name.c_str(), std::to_string(port).c_str(), &hints, &found);
     if (status != 0) {
-      error = "cannot resolve " + host::clipped(host_name) + ": " + ::gai_strerror(status);
+      error = "cannot resolve " + host::printable(host_name) + ": " + ::gai_strerror(status);
       return false;
     }
     std::unique_ptr<addrinfo, void (*)(addrinfo*)> addresses(found, ::freeaddrinfo);
@@ -223,7 +223,7 @@ class endpoint {
     if (!link.empty()) {
       (void)::unlink(link.c_str());  // a link left by an earlier run
       if (::symlink(name, link.c_str()) != 0) {
-        error = "cannot link " + host::clipped(link) + " to " + pty_path_ + ": " + std::strerror(errno);
+        error = "cannot link " + host::printable(link) + " to " + pty_path_ + ": " + std::strerror(errno);
         return false;
       }
       symlink_ = link;
@@ -266,14 +266,14 @@ bool parse_probability(const std::string& text, std::size_t links, int& link, do
   if (colon != std::string::npos) {
     long long l = 0;
     if (!parse_integer(text.substr(0, colon), 0, static_cast<long long>(links) - 1, l)) {
-      error = "no link " + host::clipped(text.substr(0, colon)) + " (links 0.." + std::to_string(links - 1) + ")";
+      error = "no link " + host::printable(text.substr(0, colon)) + " (links 0.." + std::to_string(links - 1) + ")";
       return false;
     }
     link = static_cast<int>(l);
     value = text.substr(colon + 1);
   }
   if (!host::parse_real(value, 0.0, 1.0, p)) {
-    error = "a probability is a number 0..1, got '" + host::clipped(value) + "'";
+    error = "a probability is a number 0..1, got '" + host::printable(value) + "'";
     return false;
   }
   return true;
@@ -297,7 +297,7 @@ bool parse_cut(const std::string& text, std::size_t links, scheduled_cut& cut, s
       !parse_integer(text.substr(at + 1, plus - at - 1), 0, 86400000, t) ||
       !parse_integer(text.substr(plus + 1), 1, 86400000, d)) {
     error = "--cut takes L@T+D (link 0.." + std::to_string(links - 1) +
-            ", T and D in milliseconds), got '" + host::clipped(text) + "'";
+            ", T and D in milliseconds), got '" + host::printable(text) + "'";
     return false;
   }
   cut = {static_cast<std::size_t>(l), static_cast<std::uint64_t>(t), static_cast<std::uint64_t>(d)};
@@ -753,7 +753,7 @@ int ring_wire_main(const words& given) {
     if (!args.has(name)) return true;
     if (!parse_integer(args.options.at(name), min, max, number)) {
       error = std::string(name) + " must be " + std::to_string(min) + ".." + std::to_string(max) + ", got '" +
-              host::clipped(args.options.at(name)) + "'";
+              host::printable(args.options.at(name)) + "'";
       return false;
     }
     out = static_cast<std::remove_reference_t<decltype(out)>>(number);
