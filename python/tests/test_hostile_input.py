@@ -1,0 +1,122 @@
+"""Bad input raises the documented exceptions (docs/python.md: TypeError for a wrong type, trionet.StatusError
+or ValueError for a value out of range), and never crashes the interpreter: random calls and random bytes
+run in a child interpreter that must exit normally."""
+
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+import trionet
+from trionet import basic, can as tcan, genius, learn, ring
+
+HUGE = 10**30
+
+
+@pytest.mark.parametrize("call,exception", [
+    (lambda: ring.encode_print(HUGE, "A"), trionet.StatusError),
+    (lambda: ring.encode_print(10, None), TypeError),
+    (lambda: ring.encode_var(10, HUGE, 1), trionet.StatusError),
+    (lambda: ring.encode_var(10, 1, "1"), TypeError),
+    (lambda: ring.encode(ring.Message(ring.MessageType.character, HUGE, b"A")), trionet.StatusError),
+    (lambda: ring.encode(ring.Message(99, 1, b"A")), ValueError),
+    (lambda: ring.MotionCoordinator().send(HUGE, 1, 1), trionet.StatusError),
+    (lambda: ring.MotionCoordinator().send(10, HUGE, 1), trionet.StatusError),
+    (lambda: ring.MotionCoordinator().send("10", 1, 1), TypeError),
+    (lambda: ring.MotionCoordinator().print(-HUGE, "A"), trionet.StatusError),
+    (lambda: ring.MotionCoordinator().get(HUGE), trionet.StatusError),
+    (lambda: ring.MotionCoordinator().receive(12), TypeError),
+    (lambda: ring.MotionCoordinator(vr=HUGE), ValueError),
+    (lambda: ring.Keypad().press(HUGE), ValueError),
+    (lambda: ring.Keypad().press(None), (TypeError, ValueError)),
+    (lambda: ring.Simulator(idle_byte_times=-1), TypeError),
+    (lambda: ring.Decoder().feed([1, 2, 3]), TypeError),
+    (lambda: tcan.encode_vr(HUGE, 1), trionet.StatusError),
+    (lambda: tcan.encode_vr(1, 1, byte_order=7), ValueError),
+    (lambda: tcan.base_identifier(HUGE), trionet.StatusError),
+    (lambda: tcan.route_of(10, nodes=HUGE), trionet.StatusError),
+    (lambda: tcan.route_of("10"), TypeError),
+    (lambda: tcan.decode_vr("0100"), TypeError),
+    (lambda: genius.encode_character(HUGE), ValueError),
+    (lambda: genius.decode_character(-1), ValueError),
+    (lambda: genius.decode_character(1.5), TypeError),
+    (lambda: genius.encode_transmission(genius.Transmission(HUGE, (genius.Segment(b"1"),))), trionet.StatusError),
+    (lambda: genius.bus_scan_time("153.6s", [HUGE]), ValueError),
+    (lambda: genius.analyse_turns([genius.Device(HUGE, 0)], "153.6s", 1), trionet.StatusError),
+    (lambda: learn.learn_ring_crc([b"x" * 13]), ValueError),
+    (lambda: learn.learn_ring_layout([], [(HUGE, 1.0)]), (ValueError, TypeError)),
+    (lambda: basic.simulate(["mc", "mc"], keys=None), TypeError),
+    (lambda: basic.simulate([basic.Program("\x00\xff" * 1000), "mc"]), ValueError),
+    (lambda: trionet.Profile.from_json("[" * 100000), trionet.ProfileError),
+])
+def test_bad_input_raises_the_documented_exception(call, exception):
+    with pytest.raises(exception):
+        call()
+
+
+FUZZ = textwrap.dedent("""
+    import random, sys
+    import trionet
+    from trionet import basic, can as tcan, genius, learn, ring
+
+    rnd = random.Random(int(sys.argv[1]))
+    values = [0, 1, -1, 2**31, -2**31, 2**63, 10**30, 255, 256, 65535, 16384, 10, 24, 25, 0.5, float("nan"),
+              float("inf"), -1e300, None, "", "x" * 300, b"", b"\\x80" * 300, bytearray(20), "up", [], ()]
+    def any_value():
+        return rnd.choice(values) if rnd.random() < 0.8 else rnd.randbytes(rnd.randrange(40))
+    calls = [ring.encode_print, ring.encode_var, ring.encode_offset, ring.encode_mode, ring.hops_from_basic_address,
+             ring.q32_from_float, ring.q32_to_float, tcan.encode_vr, tcan.decode_vr, tcan.base_identifier,
+             tcan.exchange_identifier, tcan.route_of, tcan.receive_identifier, tcan.transmit_identifier,
+             genius.encode_character, genius.decode_character, genius.crc6, genius.device_scan_time_ns,
+             genius.bus_scan_time, genius.rate_from_name, learn.learn_ring_crc, learn.variable_transfers,
+             lambda *a: ring.Message.characters(*a), lambda *a: ring.VrTable(*a),
+             lambda *a: genius.analyse_turns(*a), lambda *a: genius.simulate_scan(*a),
+             lambda *a: learn.learn_genius_crc(*a), lambda *a: trionet.Profile.from_json(*a)]
+    mc, keypad = ring.MotionCoordinator(), ring.Keypad()
+    methods = [mc.print, mc.send, mc.send_keypad_offset, mc.send_keypad_mode, mc.get, mc.key, mc.receive,
+               mc.transmit, keypad.press, keypad.release, keypad.receive]
+    decoder = ring.Decoder()
+    for i in range(20000):
+        f = rnd.choice(calls + methods)
+        args = [any_value() for _ in range(rnd.randrange(4))]
+        try:
+            f(*args)
+        except (TypeError, ValueError, OverflowError, IndexError, KeyError, OSError):
+            pass
+        decoder.feed(rnd.randbytes(rnd.randrange(64)))
+    sim = ring.Simulator([mc, keypad, ring.MotionCoordinator()])
+    sim.run(2000)
+    print("done")
+""")
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_random_calls_never_crash_the_interpreter(seed):
+    done = subprocess.run([sys.executable, "-c", FUZZ, str(seed)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout.strip() == "done"
+
+
+def test_numbers_too_large_for_any_field_are_refused_as_out_of_range():
+    assert tcan.route_of(HUGE) is None
+    assert genius.decode_character(HUGE).status is not genius.CharacterStatus.ok
+
+
+def test_random_bytes_never_crash_a_node_or_the_decoder():
+    import random
+
+    rnd = random.Random(9)
+    nodes = [ring.MotionCoordinator(), ring.Keypad(), ring.MotionCoordinator()]
+    decoder = ring.Decoder()
+    for _ in range(2000):
+        data = rnd.randbytes(rnd.randrange(100))
+        for node in nodes:
+            node.receive(data)
+            node.transmit()
+            if rnd.random() < 0.1:
+                node.line_idle()
+        for event in decoder.feed(data):
+            assert event.event in ("message", "frame_error", "crc_error", "no_room")
+            event.to_dict()
+    assert decoder.position > 0
