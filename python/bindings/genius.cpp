@@ -130,7 +130,9 @@ class parser {
 void bind_genius(py::module_& m) {
   py::dict enums;
   enums["CharacterStatus"] = enum_members<genius::character_status>();
-  enums["ControlKind"] = enum_members<genius::control_kind>();
+  py::list control_kinds = enum_members<genius::control_kind>();  // "unknown" is also to_string's fallback
+  control_kinds.append(py::make_tuple("unknown", static_cast<unsigned>(genius::control_kind::unknown)));
+  enums["ControlKind"] = control_kinds;
   enums["EncodeStatus"] = enum_members<genius::encode_status>();
   enums["ParseStatus"] = enum_members<genius::parse_status>();
   enums["Rate"] = enum_members<genius::rate>();

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import enum
-from typing import Iterable, Optional, Tuple
+from collections.abc import Iterable
+from typing import Optional, Tuple
 
 
 class TrionetError(Exception):

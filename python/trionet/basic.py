@@ -13,7 +13,8 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from collections.abc import Sequence
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 from . import _trionet
 from ._profile import Profile, _data_of
@@ -32,9 +33,14 @@ class Program:
     name: str = "program.bas"
 
 
-@dataclass(frozen=True)
 class Keypad:
     """A membrane keypad."""
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Keypad)
+
+    def __hash__(self) -> int:
+        return hash(Keypad)
 
 
 @dataclass(frozen=True)
@@ -112,7 +118,6 @@ class Network:
             raise ValueError("the simulated ring is built for ring.max_characters and ring.receive_buffer 256")
         self._net = _core.Network(specs, statements_per_byte_time, float(bit_rate), key_gap, data)
         self._net.set_keys(keys)
-        self.events: List[NetworkEvent] = []
         if on_event is not None or trace:
             traced_only = {"message", "frame_error", "display"}
 
