@@ -23,8 +23,9 @@
 
 namespace trionet::cli {
 
-/// The keyboard map as one help line.
-extern const char* const keyboard_map;
+/// The keyboard map as help lines that fit `columns` (two lines from 80 columns up, shorter below);
+/// `several_keypads` adds Tab.
+std::vector<std::string> keyboard_help(std::size_t columns, bool several_keypads);
 
 /// A terminal on `fd` put into raw keyboard mode: no echo, no line buffering, each key at once; Ctrl-C
 /// still a signal. Restored by `restore` or on destruction.
@@ -86,10 +87,26 @@ struct keypad_panel {
   bool selected = false;  ///< marked when several keypads share the keyboard
 };
 
-/// The text lines of a panel: title, the boxed display, status.
-std::vector<std::string> panel_lines(const keypad_panel& panel);
+/// The text lines of a panel: title, the boxed display, status (6 lines); `compact`: the title and status on
+/// one line, then the display's two lines (3 lines).
+std::vector<std::string> panel_lines(const keypad_panel& panel, bool compact = false);
 
-/// Draws panels and footer lines on a terminal, in place: each draw goes back over the previous one.
+/// A terminal's size in character cells.
+struct screen_size {
+  std::size_t columns = 80;
+  std::size_t rows = 24;
+  bool operator==(const screen_size& other) const { return columns == other.columns && rows == other.rows; }
+  bool operator!=(const screen_size& other) const { return !(*this == other); }
+};
+
+/// `text` as one terminal line of at most `columns` - 1 cells: control characters shown as `\xNN`, a longer
+/// line cut and ended with "..." (a UTF-8 sequence counts as one cell and is never split).
+std::string fit_line(const std::string& text, std::size_t columns);
+
+/// Draws panels and footer lines on a terminal, in place: each draw goes back over the previous one. A
+/// drawing never wraps or scrolls, so that going back over it is exact: every line is cut to the terminal's
+/// width less one column, and the drawing to its height less one line (events first, oldest first, then
+/// compact panels, then what is left at the bottom).
 class terminal_screen {
  public:
   explicit terminal_screen(std::FILE* out = stdout) : out_(out) {}
@@ -97,13 +114,22 @@ class terminal_screen {
   terminal_screen(const terminal_screen&) = delete;
   terminal_screen& operator=(const terminal_screen&) = delete;
 
-  void draw(const std::vector<keypad_panel>& panels, const std::vector<std::string>& footer);
+  /// The terminal's size now (80 x 24 when the output is not a terminal).
+  [[nodiscard]] screen_size size() const;
+  /// True when the terminal's size is not that of the last drawing (draw again).
+  [[nodiscard]] bool resized() const { return drawn_ && size() != drawn_size_; }
+
+  /// Panels, then `footer` (help and status lines), then as many of `events` (oldest first) as fit, the
+  /// newest kept. After a change of size the screen is cleared and the drawing starts at its top.
+  void draw(const std::vector<keypad_panel>& panels, const std::vector<std::string>& footer,
+            const std::vector<std::string>& events = {});
   /// Shows the cursor again, below the drawing.
   void leave();
 
  private:
   std::FILE* out_;
   std::size_t drawn_lines_ = 0;
+  screen_size drawn_size_;
   bool drawn_ = false;
 };
 

@@ -619,9 +619,8 @@ int join_keypad_with(const join_settings& settings) {
       panel.status = status + "; keys sent " + std::to_string(keypad->counters().keys_sent) + ", lost " +
                      std::to_string(keypad->counters().keys_lost);
       log.flush();
-      std::vector<std::string> footer = {keyboard_map};
-      footer.insert(footer.end(), log.kept().begin(), log.kept().end());
-      screen.draw({panel}, footer);
+      screen.draw({panel}, keyboard_help(screen.size().columns, false),
+                  std::vector<std::string>(log.kept().begin(), log.kept().end()));
     }
   };
 

@@ -99,6 +99,7 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
     const auto due = start_time + static_cast<std::uint64_t>(elapsed * bit_rate / 10.0);
     for (int i = 0; i < 100000 && net.now() < due && net.now() < max_byte_times; ++i) net.step();
     if (net.now() >= max_byte_times) break;
+    if (interactive && screen.resized()) changed = true;
     if (changed && interactive) {
       std::vector<keypad_panel> panels;
       for (std::size_t k = 0; k < keypad_nodes.size(); ++k) {
@@ -111,9 +112,9 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
         panel.selected = keypad_nodes.size() > 1 && k == selected;
         panels.push_back(panel);
       }
-      std::vector<std::string> footer = {keyboard_map, "Tab: next keypad; t=" + std::to_string(net.now()) + " byte-times"};
-      footer.insert(footer.end(), recent.begin(), recent.end());
-      screen.draw(panels, footer);
+      std::vector<std::string> footer = keyboard_help(screen.size().columns, keypad_nodes.size() > 1);
+      footer.push_back("t=" + std::to_string(net.now()) + " byte-times");
+      screen.draw(panels, footer, std::vector<std::string>(recent.begin(), recent.end()));
       changed = false;
     }
     pollfd p{STDIN_FILENO, POLLIN, 0};
