@@ -35,7 +35,8 @@ class Pane:
     """A detached tmux session of its own (own server socket, no configuration) running one command."""
 
     def __init__(self, command, columns, rows, pass_fds=()):
-        self.socket = tempfile.mktemp(prefix="trionet-tmux-")
+        self.directory = tempfile.mkdtemp(prefix="trionet-tmux-")
+        self.socket = os.path.join(self.directory, "socket")
         self.size = (columns, rows)
         self.tmux(["-f", "/dev/null", "new-session", "-d", "-s", "keypad", "-x", str(columns), "-y", str(rows),
                    command], pass_fds=pass_fds)
@@ -73,10 +74,7 @@ class Pane:
 
     def close(self):
         subprocess.run(["tmux", "-S", self.socket, "kill-server"], capture_output=True)
-        try:
-            os.unlink(self.socket)
-        except FileNotFoundError:
-            pass
+        shutil.rmtree(self.directory, ignore_errors=True)
 
 
 def check_screen(name, pane, titles, must_show, history=True):
