@@ -10,6 +10,7 @@
 #include <cstring>
 #include <memory>
 #include <string_view>
+#include <utility>
 
 #include "common.hpp"
 #include "learn/profile.hpp"
@@ -63,6 +64,25 @@ PyObject* new_str(std::string_view text) {
   return PyUnicode_FromStringAndSize(text.data(), static_cast<Py_ssize_t>(text.size()));
 }
 
+// The str of one of the program's own names (an event kind, a message type, a frame error's reason: string
+// literals, so their address identifies them), made once and shared: reading `event.type` of millions of
+// events makes no new strings.
+PyObject* name_str(const char* name) {
+  static std::pair<const char*, PyObject*> made[64];
+  for (auto& [text, str] : made) {
+    if (text == nullptr) {
+      str = PyUnicode_InternFromString(name);
+      if (str == nullptr) return nullptr;
+      text = name;
+    }
+    if (text == name) {
+      Py_INCREF(str);
+      return str;
+    }
+  }
+  return PyUnicode_FromString(name);  // not expected: more names than the table holds
+}
+
 // Field visitors over host::ring_event_fields.
 
 // Finds one field: `found` is a new reference to its value, or stays null.
@@ -70,7 +90,9 @@ struct field_finder {
   std::string_view key;
   PyObject* found = nullptr;
   void name(std::string_view k, std::string_view v) {
-    if (k == key) found = new_str(v);
+    if (k != key) return;
+    // "type" and "reason" are string literals (ring_event_fields); any other name field is made for the event.
+    found = k == "type" || k == "reason" ? name_str(v.data()) : new_str(v);
   }
   void text(std::string_view k, std::string_view v) {
     if (k == key) found = new_str(v);
@@ -120,7 +142,7 @@ void event_dealloc(PyObject* self) {
   Py_DECREF(type);
 }
 
-PyObject* get_event(PyObject* self, void*) { return PyUnicode_FromString(kind_of(reinterpret_cast<event_object*>(self))); }
+PyObject* get_event(PyObject* self, void*) { return name_str(kind_of(reinterpret_cast<event_object*>(self))); }
 PyObject* get_position(PyObject* self, void*) {
   return PyLong_FromUnsignedLongLong(reinterpret_cast<event_object*>(self)->position);
 }
