@@ -128,7 +128,7 @@ class endpoint {
     for (;;) {
       fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
       if (fd_ < 0) {
-        error = "cannot make a socket for " + spec_ + ": " + std::strerror(errno);
+        error = "cannot make a socket for " + host::printable(spec_) + ": " + std::strerror(errno);
         return false;
       }
       // sockaddr_un is the address type connect() expects for AF_UNIX; the cast is the socket API's contract.
@@ -137,7 +137,7 @@ class endpoint {
       ::close(fd_);
       fd_ = -1;
       if ((cause != ENOENT && cause != ECONNREFUSED) || monotonic_ns() >= until) {
-        error = "cannot connect to " + spec_ + ": " + std::strerror(cause);
+        error = "cannot connect to " + host::printable(spec_) + ": " + std::strerror(cause);
         return false;
       }
       ::usleep(20000);
@@ -158,7 +158,7 @@ class endpoint {
     }
     long long port = 0;
     if (!parse_integer(where.substr(colon + 1), 1, 65535, port)) {
-      error = spec_.substr(0, 40) + ": the port must be 1..65535";
+      error = host::printable(spec_) + ": the port must be 1..65535";
       return false;
     }
     addrinfo hints{};
@@ -193,7 +193,7 @@ class endpoint {
       if (cause != ECONNREFUSED || monotonic_ns() >= until) break;
       ::usleep(20000);
     }
-    error = "cannot connect to " + spec_ + ": " + std::strerror(cause);
+    error = "cannot connect to " + host::printable(spec_) + ": " + std::strerror(cause);
     return false;
   }
 
@@ -524,6 +524,7 @@ class wire {
   explicit wire(wire_settings settings) : settings_(std::move(settings)), log_(settings_.json) {}
 
   int run() {
+    live::signal_watch signals;  // before anything is printed: a signal then already ends the wire in order
     std::string error;
     if (!settings_.pcap.empty() && !capture_.open(settings_.pcap, error)) return fail("ring wire: " + error);
     const std::size_t n = settings_.endpoints.size();
@@ -554,7 +555,6 @@ class wire {
     started_ = monotonic_ns();
     log_.flush();
 
-    live::signal_watch signals;
     live::line_reader input(STDIN_FILENO);
     bool input_open = true;
     std::string ended;
@@ -587,18 +587,18 @@ class wire {
           if (got > 0) {
             links_[i]->carry(in, static_cast<std::size_t>(got), time, after, log_.text(), settings_.trace);
           } else if (got == 0) {
-            ended = endpoints_[i]->spec() + " closed";
+            ended = host::printable(endpoints_[i]->spec()) + " closed";
           } else if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
-            ended = endpoints_[i]->spec() + ": " + std::strerror(errno);
+            ended = host::printable(endpoints_[i]->spec()) + ": " + std::strerror(errno);
           }
         } else if ((fds[i].revents & (POLLHUP | POLLERR | POLLNVAL)) != 0) {
-          ended = endpoints_[i]->spec() + " closed";
+          ended = host::printable(endpoints_[i]->spec()) + " closed";
         }
       }
       for (std::size_t i = 0; i < n && ended.empty(); ++i) {
         int cause = 0;
         if (!links_[i]->deliver(endpoints_[links_[i]->to()]->fd(), cause)) {
-          ended = endpoints_[links_[i]->to()]->spec() + ": " + std::strerror(cause);
+          ended = host::printable(endpoints_[links_[i]->to()]->spec()) + ": " + std::strerror(cause);
         }
       }
       if (!ended.empty()) break;
