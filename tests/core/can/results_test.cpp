@@ -42,6 +42,12 @@ TEST(CanResults, AQuestionWithoutAnAnswerCarriesNone) {
             EXPECT_EQ(channel.channel, 0U) << int(nodes) << " " << int(node) << " " << int(other);
           }
         }
+        const route_result route = route_of(nodes, std::uint32_t{node} * 10U + other);
+        if (!route) {
+          EXPECT_EQ(route.value.sender, 0U);
+          EXPECT_EQ(route.value.receiver, 0U);
+          EXPECT_EQ(route.value.receive_channel, 0U);
+        }
         const node_result destination = destination_of(nodes, node, other);
         if (!destination) {
           EXPECT_EQ(destination.node, 0U);
@@ -49,6 +55,19 @@ TEST(CanResults, AQuestionWithoutAnAnswerCarriesNone) {
       }
     }
   }
+}
+
+TEST(CanResults, AResultMadeByTheCallerStartsEmpty) {
+  EXPECT_EQ(identifier_result{}.identifier, 0U);
+  EXPECT_EQ(node_result{}.node, 0U);
+  EXPECT_EQ(channel_result{}.channel, 0U);
+  const route nowhere{};
+  EXPECT_EQ(nowhere.sender, 0U);
+  EXPECT_EQ(nowhere.receiver, 0U);
+  EXPECT_EQ(nowhere.receive_channel, 0U);
+  EXPECT_EQ(receive_result{}.status, receive_status::foreign);
+  EXPECT_EQ(receive_result{}.sender, 0U);
+  EXPECT_EQ(receive_result{}.receive_channel, 0U);
 }
 
 class silent_port final : public port {
