@@ -241,10 +241,25 @@ struct axis_poll {
 axis_poll polls[max_axes];
 std::uint32_t poll_period_ticks = 0;
 std::uint32_t poll_last = 0;
-constexpr std::uint32_t poll_timeout_ticks = 20;  // 200 ms: the request or its answer was lost
+constexpr std::uint32_t poll_timeout_ticks = 30;  // 300 ms: the request or its answer was lost (or is late)
 
 std::uint16_t poll_vr(unsigned axis, std::uint32_t sequence) {
   return static_cast<std::uint16_t>(poll_base_vr + 100 * axis + sequence % 100);
+}
+
+// An answer that came after its request's timeout: the request was counted lost, and was only late.
+void late_answer(axis_poll& p, std::int64_t value) {
+  ++p.late;
+  if (p.lost == 0 || value <= 0 || value % one != 0) return;
+  const auto sequence = static_cast<std::uint32_t>((value / one - 1) / 2);
+  const std::uint32_t logged = p.lost < 8 ? p.lost : 8;
+  for (std::uint32_t i = 0; i < logged; ++i) {
+    if (p.lost_log[i] != sequence) continue;
+    for (std::uint32_t j = i; j + 1 < logged; ++j) p.lost_log[j] = p.lost_log[j + 1];
+    --p.lost;
+    return;
+  }
+  if (p.lost > 8) --p.lost;  // lost after the log was full: it was one of those
 }
 
 void take_answers() {
@@ -260,7 +275,7 @@ void take_answers() {
     } else if (p.open && w.vr == poll_vr(axis, p.sequence)) {
       ++p.wrong;
     } else {
-      ++p.late;
+      late_answer(p, w.value);
     }
   }
 }
