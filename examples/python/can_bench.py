@@ -42,7 +42,7 @@ def main() -> int:
         wrong = 0
         got = 0
         started = time.perf_counter()
-        incoming = receiver.received(timeout=2.0)
+        incoming = receiver.received(timeout=10.0)  # a VR missing for 10 s is lost
         for vr, value in expected:
             sender.send(args.receiver, vr, value)
         for (vr, value), received in zip(expected, incoming):

@@ -121,7 +121,7 @@ def test_a_node_in_its_own_thread_hands_vrs_to_an_iterator():
             b.start()
             for i in range(100):
                 a.send(2, i % 256, float(i))
-            values = [r.value for _, r in zip(range(100), b.received(2.0))]
+            values = [r.value for _, r in zip(range(100), b.received(10.0))]
             assert values == [float(i) for i in range(100)]
             with pytest.raises(RuntimeError):
                 b.poll()
