@@ -48,9 +48,13 @@ constexpr const char* table_usage =
     "Prints the note's receive-identifier table, a blank line, then its transmit-identifier table, in aligned\n"
     "columns.\n";
 
-bool parse_args(const words& all, const std::set<std::string>& options, const std::set<std::string>& flags,
-                arguments& parsed, std::string& error) {
-  if (!parse_arguments(all, options, flags, parsed, error)) return false;
+const option_list decode_options = joined(node_count_option(), {
+    {"--pcap", "FILE", "@file", "read the CAN records of a pcapng capture (else candump text from standard input)"},
+    {"--json", nullptr, "", "with --pcap: each record as the fields Wireshark shows"},
+});
+
+bool parse_args(const words& all, const option_list& options, arguments& parsed, std::string& error) {
+  if (!parse_arguments(all, options, parsed, error)) return false;
   if (!parsed.positionals.empty()) {
     error = "unexpected argument '" + host::printable(parsed.positionals.front()) + "'";
     return false;
@@ -61,7 +65,7 @@ bool parse_args(const words& all, const std::set<std::string>& options, const st
 int encode_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(all, can_message_options(), {}, parsed, error)) return fail(error);
+  if (!parse_args(all, can_message_options(), parsed, error)) return fail(error);
   can::frame out;
   if (!can_message_frame(parsed, out, error)) return fail(error);
   std::printf("%s\n", host::format_candump_frame(out).c_str());
@@ -181,7 +185,7 @@ bool record_of(const host::pcapng_record& record, host::candump_record& out, hos
 int decode_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(all, {"--nodes", "--pcap"}, {"--json"}, parsed, error)) return fail(error);
+  if (!parse_args(all, decode_options, parsed, error)) return fail(error);
   std::uint8_t nodes = 0;
   if (!parse_node_count(parsed, nodes, error)) return fail(error);
   if (parsed.has("--pcap")) {
@@ -230,7 +234,7 @@ std::string aligned(const std::vector<std::vector<std::string>>& rows) {
 int table_command(const words& all) {
   arguments parsed;
   std::string error;
-  if (!parse_args(all, {"--nodes"}, {}, parsed, error)) return fail(error);
+  if (!parse_args(all, node_count_option(), parsed, error)) return fail(error);
   std::uint8_t nodes = 0;
   if (!parse_node_count(parsed, nodes, error)) return fail(error);
   std::vector<std::vector<std::string>> receive(1, {"Node Base address"});
@@ -256,13 +260,17 @@ int table_command(const words& all) {
 }
 
 const command can_commands[] = {
-    {"encode", "print the frame that sets a VR on another node, as candump text", encode_usage, encode_command},
-    {"decode", "read candump text or a capture; print one JSON event per frame", decode_usage, decode_command},
-    {"table", "print the note's receive and transmit identifier tables", table_usage, table_command},
+    {"encode", "print the frame that sets a VR on another node, as candump text", encode_usage, encode_command,
+     can_message_options()},
+    {"decode", "read candump text or a capture; print one JSON event per frame", decode_usage, decode_command,
+     decode_options},
+    {"table", "print the note's receive and transmit identifier tables", table_usage, table_command,
+     node_count_option()},
     {"monitor", "watch a live bus (SocketCAN, or candump text with -): one event per frame", can_live_usage,
-     can_monitor_main},
-    {"send", "put one VR message on a live bus", can_live_usage, can_send_main},
-    {"node", "be a TN20-17 VR-exchange node on a live bus, commands on stdin", can_live_usage, can_node_main},
+     can_monitor_main, can_monitor_options()},
+    {"send", "put one VR message on a live bus", can_live_usage, can_send_main, can_send_options()},
+    {"node", "be a TN20-17 VR-exchange node on a live bus, commands on stdin", can_live_usage, can_node_main,
+     can_node_options()},
 };
 
 }  // namespace
@@ -279,8 +287,19 @@ bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& e
   return true;
 }
 
-const std::set<std::string>& can_message_options() {
-  static const std::set<std::string> options = {"--nodes", "--from", "--to", "--vr", "--value"};
+const option_list& node_count_option() {
+  static const option_list options = {
+      {"--nodes", "K", "2 3 4 5 6 7 8 9 10 11", "the number of controllers, 2..11 (default 5, the note's limit)"}};
+  return options;
+}
+
+const option_list& can_message_options() {
+  static const option_list options = joined(node_count_option(), {
+      {"--from", "I", "1 2 3 4 5 6 7 8 9 10 11", "the node that sends, 1..K"},
+      {"--to", "J", "1 2 3 4 5 6 7 8 9 10 11", "the node that receives, 1..K"},
+      {"--vr", "V", "", "the VR number"},
+      {"--value", "X", "", "the value"},
+  });
   return options;
 }
 

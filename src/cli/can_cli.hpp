@@ -15,8 +15,11 @@ namespace trionet::cli {
 /// `--nodes K` (2..11), else the profile's node count (by default 5). False with `error` set for anything else.
 bool parse_node_count(const arguments& parsed, std::uint8_t& out, std::string& error);
 
+/// `--nodes K`, an option table of its own (`can table`), part of every other command's.
+const option_list& node_count_option();
+
 /// The options that describe one VR frame (`can encode`, `can send`): --nodes --from --to --vr --value.
-const std::set<std::string>& can_message_options();
+const option_list& can_message_options();
 
 /// The frame node --from sends to node --to to set VR(--vr) = --value in an exchange of --nodes controllers.
 /// False with `error` saying what is wrong.
@@ -78,5 +81,8 @@ int can_monitor_main(const words& args);
 int can_send_main(const words& args);
 int can_node_main(const words& args);
 extern const char* const can_live_usage;
+const option_list& can_monitor_options();
+const option_list& can_send_options();
+const option_list& can_node_options();
 
 }  // namespace trionet::cli

@@ -39,7 +39,28 @@ const char* const can_live_usage =
 
 namespace {
 
-const std::set<std::string> common_values = {"--nodes", "--pcap", "--interface-name"};
+const option_list& interface_option() {
+  static const option_list options = {
+      {"IFACE", nullptr, "@interface", "a SocketCAN interface (can0, vcan0), or - for candump text"}};
+  return options;
+}
+
+// Functions, not globals: the command table in can_cli.cpp uses these tables while it is initialised.
+const option_list& pcap_option() {
+  static const option_list options = {{"--pcap", "FILE", "@file", "also write every frame to a pcapng capture"}};
+  return options;
+}
+
+const option_list& json_option() {
+  static const option_list options = {{"--json", nullptr, "", "events as JSON lines"}};
+  return options;
+}
+
+const option_list& interface_name_option() {
+  static const option_list options = {
+      {"--interface-name", "NAME", "", "with -: the interface name written in the log lines (default can0)"}};
+  return options;
+}
 
 // Where frames come from and go to: a SocketCAN socket, or candump text on standard input and output.
 class bus {
@@ -137,7 +158,7 @@ void syntax_event(std::string& out, std::uint64_t line_number, host::candump_sta
 int monitor_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, common_values, {"--json"}, args, error)) return fail("can monitor: " + error);
+  if (!parse_arguments(given, can_monitor_options(), args, error)) return fail("can monitor: " + error);
   if (args.positionals.size() != 1) return fail("can monitor takes one IFACE (or - for candump text)");
   std::uint8_t nodes = 0;
   if (!parse_node_count(args, nodes, error)) return fail("can monitor: " + error);
@@ -216,9 +237,7 @@ int monitor_main(const words& given) {
 int send_main(const words& given) {
   arguments args;
   std::string error;
-  std::set<std::string> values = can_message_options();
-  values.insert("--interface-name");
-  if (!parse_arguments(given, values, {}, args, error)) return fail("can send: " + error);
+  if (!parse_arguments(given, can_send_options(), args, error)) return fail("can send: " + error);
   if (args.positionals.size() != 1) return fail("can send takes one IFACE (or - for candump text)");
   can::frame frame;
   if (!can_message_frame(args, frame, error)) return fail("can send: " + error);
@@ -257,9 +276,7 @@ class node_port final : public can::port {
 int node_main(const words& given) {
   arguments args;
   std::string error;
-  std::set<std::string> values = common_values;
-  values.insert("--node");
-  if (!parse_arguments(given, values, {"--json", "--trace"}, args, error)) return fail("can node: " + error);
+  if (!parse_arguments(given, can_node_options(), args, error)) return fail("can node: " + error);
   if (args.positionals.size() != 1) return fail("can node takes one IFACE (or - for candump text)");
   std::uint8_t nodes = 0;
   if (!parse_node_count(args, nodes, error)) return fail("can node: " + error);
@@ -400,6 +417,27 @@ int node_main(const words& given) {
 }
 
 }  // namespace
+
+const option_list& can_monitor_options() {
+  static const option_list options = joined(joined(joined(interface_option(), node_count_option()), json_option()),
+                                             pcap_option());
+  return options;
+}
+
+const option_list& can_send_options() {
+  static const option_list options = joined(joined(interface_option(), can_message_options()), interface_name_option());
+  return options;
+}
+
+const option_list& can_node_options() {
+  static const option_list options = joined(
+      joined(joined(joined(interface_option(),
+                           {{"--node", "I", "1 2 3 4 5 6 7 8 9 10 11", "the node to be, 1..K"}}),
+                    node_count_option()),
+             joined(json_option(), {{"--trace", nullptr, "", "also every frame the node sends and every frame between other nodes"}})),
+      joined(pcap_option(), interface_name_option()));
+  return options;
+}
 
 int can_monitor_main(const words& args) {
   return monitor_main(args);

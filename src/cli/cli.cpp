@@ -161,6 +161,31 @@ bool parse_arguments(const words& args, const std::set<std::string>& value_optio
   return true;
 }
 
+bool parse_arguments(const words& args, const option_list& options, arguments& out, std::string& error) {
+  std::set<std::string> values;
+  std::set<std::string> flags;
+  std::set<std::string> repeatable;
+  for (const option& o : options) {
+    if (o.name[0] != '-') continue;  // an operand
+    (o.value != nullptr ? values : flags).insert(o.name);
+    if (o.repeatable) repeatable.insert(o.name);
+  }
+  return parse_arguments(args, values, flags, out, error, repeatable);
+}
+
+option_list joined(option_list a, const option_list& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+const option_list& common_options() {
+  static const option_list options = {
+      {"--profile", "FILE", "@file", "the wire parameters to use, a profile (JSON; trionet-profile(1))"},
+      {"--help", nullptr, "", "print the help text and exit (also -h)"},
+  };
+  return options;
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // output, input
 

@@ -42,6 +42,29 @@ inline bool parse_real(std::string_view text, double& out) {
 /// The words after a command's name.
 using words = std::vector<std::string>;
 
+/// One option of a command, or one of its operands: an entry of the command's option table, which
+/// `parse_arguments` reads and from which the man pages and the shell completion are written
+/// (`trionet --man`, `trionet --completion`: manual.cpp).
+struct option {
+  const char* name;        ///< "--pcap", "-o"; an operand (a word that is not an option): its name, "PORT"
+  const char* value;       ///< the name of the option's value, "FILE"; nullptr for a flag and for an operand
+  const char* completion;  ///< what the shell offers for the value or operand: "" nothing, "@file" file names,
+                           ///< "@port" serial ports and files, "@interface" network interfaces, "@keys" key
+                           ///< script words, else the words themselves ("none rtscts xonxoff"); "mc:@file" is
+                           ///< "mc:" followed by a file name
+  const char* help;        ///< one line for the man page
+  bool repeatable = false;  ///< may be given more than once (parse_arguments joins the values with '\n')
+};
+
+/// A command's option table: its options and operands, in the order its man page lists them.
+using option_list = std::vector<option>;
+
+/// `a` followed by the entries of `b`.
+option_list joined(option_list a, const option_list& b);
+
+/// The options the dispatcher takes for every command (`--profile FILE`, `--help`).
+const option_list& common_options();
+
 /// One command of a part: `trionet <part> <name> ...`. A part lists its commands in one table; adding a
 /// command is adding one entry.
 struct command {
@@ -49,6 +72,7 @@ struct command {
   const char* summary;  ///< one line for the part's usage ("read ring bytes, print one JSON event per ...")
   const char* usage;    ///< the whole help text, printed by `trionet <part> <name> --help`
   int (*run)(const words& args);  ///< runs with the words after the name; returns the exit status
+  const option_list& options;     ///< the command's option table: what `run` parses, its man page and completion
 };
 
 /// A part of the tool (ring, can, genius) and its command table.
@@ -95,6 +119,9 @@ struct arguments {
 bool parse_arguments(const words& args, const std::set<std::string>& value_options,
                      const std::set<std::string>& flag_options, arguments& out, std::string& error,
                      const std::set<std::string>& repeatable = {});
+
+/// As above, with the options of a command's option table (its operands are positionals).
+bool parse_arguments(const words& args, const option_list& options, arguments& out, std::string& error);
 
 // ---------------------------------------------------------------------------------------------------------
 // streaming input and output

@@ -56,6 +56,42 @@ constexpr const char* scan_time_usage =
     "time is the sum over its devices. --device is repeatable and takes a comma-separated list. The results\n"
     "are exact (GE's figures in milliseconds); the computed 11-bit character time is shown beside them.\n";
 
+const char* const rate_names = "153.6s 153.6e 76.8 38.4";
+
+const option_list encode_options = {
+    {"SEGMENT", nullptr, "", "plain data as hex bytes (\"1122\"), or a block \"block:D:HEX\""},
+    {"--from", "S", "", "the SBA that sends, 0..31"},
+    {"--to", "D", "", "the SBA the transmission is directed to, 0..31"},
+    {"--broadcast", nullptr, "", "a broadcast transmission (instead of --to)"},
+    {"--words", nullptr, "", "print 11-bit words \"w:XXX\" instead of characters"},
+};
+
+const option_list decode_options = {
+    {"TOKEN", nullptr, "", "a data character \"XX\", a control character \"c:XX\", an 11-bit word \"w:XXX\""},
+    {"--raw", nullptr, "", "2-byte words from standard input, the 11-bit word big-endian"},
+    {"--pcap", "FILE", "@file", "read the Genius records of a pcapng capture"},
+    {"--json", nullptr, "", "with --pcap: each record as the fields Wireshark shows"},
+    {"--write-pcap", "FILE", "@file", "also write every character to a capture, one record per transmission"},
+    {"--rate", "R", rate_names, "with --write-pcap: the bit rate the records are timed at (default 153.6s)"},
+};
+
+const option_list timing_options = {
+    {"--rate", "R", rate_names, "the bus's bit rate: 153.6s, 153.6e, 76.8 or 38.4"},
+    {"--after", "S", "", "the SBA whose Stop just ended, 0..31"},
+    {"--device", "SBA@FEET", "", "a device and its position on the cable, 0..1000000 feet", true},
+    {"--skip-us", "U", "", "the skip time in microseconds"},
+    {"--prop-us-per-2000ft", "P", "", "the propagation delay per 2000 feet in microseconds"},
+    {"--detect-us", "D", "", "the detection time in microseconds"},
+    {"--json", nullptr, "", "the results as JSON"},
+    {"--check", nullptr, "", "exit status 3 when a margin is below the detection time"},
+};
+
+const option_list scan_time_options = {
+    {"--rate", "R", rate_names, "the bus's bit rate: 153.6s, 153.6e, 76.8 or 38.4"},
+    {"--device", "BYTES[,BYTES...]", "", "devices with their bytes of inputs and outputs together", true},
+    {"--json", nullptr, "", "the results as JSON"},
+};
+
 std::string hex2(unsigned value) {
   char text[8];
   std::snprintf(text, sizeof text, "%02x", value & 0xffu);
@@ -107,7 +143,7 @@ const genius::control_layout& profile_control() {
 int encode_main(const std::vector<std::string>& words) {
   arguments args;
   std::string error;
-  if (!parse_arguments(words, {"--from", "--to"}, {"--broadcast", "--words"}, args, error))
+  if (!parse_arguments(words, encode_options, args, error))
     return fail(error);
   if (!args.has("--from")) return fail("encode needs --from SBA");
   genius::transmission t;
@@ -390,7 +426,7 @@ int decode_capture(const arguments& args) {
 int decode_main(const std::vector<std::string>& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all, {"--pcap", "--write-pcap", "--rate"}, {"--raw", "--json"}, args, error)) return fail(error);
+  if (!parse_arguments(all, decode_options, args, error)) return fail(error);
   const bool raw = args.flag("--raw");
   if (args.has("--pcap")) {
     if (raw || !args.positionals.empty() || args.has("--write-pcap") || args.has("--rate")) {
@@ -519,11 +555,7 @@ bool parse_bounded(const std::string& text, double min, double max, double& out)
 int timing_main(const std::vector<std::string>& words) {
   arguments args;
   std::string error;
-  if (!parse_arguments(words,
-                       {"--rate", "--after", "--device", "--skip-us", "--prop-us-per-2000ft", "--detect-us"},
-                       {"--json", "--check"}, args, error, {"--device"})) {
-    return fail(error);
-  }
+  if (!parse_arguments(words, timing_options, args, error)) return fail(error);
   if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
   if (!args.has("--rate")) return fail("timing needs --rate 153.6s|153.6e|76.8|38.4");
   genius::rate rate{};
@@ -643,7 +675,7 @@ int timing_main(const std::vector<std::string>& words) {
 int scan_time_main(const std::vector<std::string>& words) {
   arguments args;
   std::string error;
-  if (!parse_arguments(words, {"--rate", "--device"}, {"--json"}, args, error, {"--device"})) return fail(error);
+  if (!parse_arguments(words, scan_time_options, args, error)) return fail(error);
   if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
   if (!args.has("--rate")) return fail("scan-time needs --rate 153.6s|153.6e|76.8|38.4");
   genius::rate rate{};
@@ -716,14 +748,14 @@ int scan_time_main(const std::vector<std::string>& words) {
 }
 
 const command genius_commands[] = {
-    {"encode", "encode a transmission as characters", encode_usage, encode_main},
+    {"encode", "encode a transmission as characters", encode_usage, encode_main, encode_options},
     {"decode", "read characters, raw words or a capture; print transmissions and errors", decode_usage,
-     decode_main},
-    {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main},
+     decode_main, decode_options},
+    {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main, timing_options},
     {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
-     scan_time_main},
+     scan_time_main, scan_time_options},
     {"learn", "crc: find the CRC-6 from captured transmissions, write it into a profile", genius_learn_usage,
-     genius_learn_main},
+     genius_learn_main, genius_learn_options()},
 };
 
 }  // namespace

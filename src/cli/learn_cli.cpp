@@ -59,6 +59,34 @@ const char* const genius_learn_usage =
 
 namespace {
 
+// The options every kind of learning shares, after the kind and the input.
+option_list learn_options(const char* kinds) {
+  return {
+      {"KIND", nullptr, kinds, "what to learn"},
+      {"FILE", nullptr, "@file", "the input (else standard input)"},
+      {"--raw", nullptr, "", "raw bytes, not text"},
+      {"--pcap", "CAPTURE", "@file", "the records of a pcapng capture"},
+      {"--even", nullptr, "", "also try polynomials without the x^0 term"},
+      {"-o", "PROFILE", "@file", "write the profile in effect, with what was found, to PROFILE"},
+  };
+}
+
+}  // namespace
+
+const option_list& ring_learn_options() {
+  static const option_list options = joined(
+      learn_options("crc layout"),
+      {{"--sent", "LIST", "@file", "layout: the VR numbers and values the program sent, one \"VR VALUE\" a line"}});
+  return options;
+}
+
+const option_list& genius_learn_options() {
+  static const option_list options = learn_options("crc");
+  return options;
+}
+
+namespace {
+
 // Learning needs a few frames: more input than this is refused rather than held in memory.
 constexpr std::size_t max_input = std::size_t{64} << 20U;
 
@@ -317,21 +345,20 @@ int genius_learn_crc(const arguments& args) {
 }
 
 // `<part> learn KIND ...`: the kind, then the options every kind shares.
-int learn_main(const words& all, const char* part_name, const char* kinds,
+int learn_main(const words& all, const char* part_name, const char* kinds, const option_list& options,
                int (*run)(const std::string& kind, const arguments& args)) {
   if (all.empty()) return fail(std::string(part_name) + " learn needs what to learn: " + kinds);
   arguments args;
   std::string error;
   const words rest(all.begin() + 1, all.end());
-  if (!parse_arguments(rest, {"--pcap", "--sent", "-o"}, {"--raw", "--even"}, args, error))
-    return fail(error);
+  if (!parse_arguments(rest, options, args, error)) return fail(error);
   return run(all[0], args);
 }
 
 }  // namespace
 
 int ring_learn_main(const words& all) {
-  return learn_main(all, "ring", "crc or layout", [](const std::string& kind, const arguments& args) {
+  return learn_main(all, "ring", "crc or layout", ring_learn_options(), [](const std::string& kind, const arguments& args) {
     if (kind == "crc") return ring_learn_crc(args);
     if (kind == "layout") return ring_learn_layout(args);
     return fail("unknown ring learn kind '" + host::printable(kind) + "' (expected crc or layout)");
@@ -339,7 +366,7 @@ int ring_learn_main(const words& all) {
 }
 
 int genius_learn_main(const words& all) {
-  return learn_main(all, "genius", "crc", [](const std::string& kind, const arguments& args) {
+  return learn_main(all, "genius", "crc", genius_learn_options(), [](const std::string& kind, const arguments& args) {
     if (kind == "crc") return genius_learn_crc(args);
     return fail("unknown genius learn kind '" + host::printable(kind) + "' (expected crc)");
   });

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "manual.hpp"
 
 namespace {
 
@@ -38,6 +39,26 @@ int main(int argc, char** argv) {
   if (words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
     std::fputs(usage().c_str(), stdout);
     return trionet::cli::exit_ok;
+  }
+  // The man pages and the completion script, written from the command tables (manual.hpp).
+  const trionet::cli::part_list all{parts, sizeof parts / sizeof parts[0]};
+  if (words[0] == "--man" && words.size() <= 2) {
+    std::string page = trionet::cli::manual_page_names(all);
+    if (words.size() == 2 && !trionet::cli::manual_page(all, words[1], page))
+    {
+      std::string names = trionet::cli::manual_page_names(all);
+      names.pop_back();
+      for (char& c : names) c = c == '\n' ? ' ' : c;
+      return trionet::cli::fail("no man page '" + trionet::host::printable(words[1]) + "' (expected one of: " + names +
+                                ")");
+    }
+    std::fputs(page.c_str(), stdout);
+    return std::fflush(stdout) == 0 ? trionet::cli::exit_ok : trionet::cli::fail_io("cannot write standard output");
+  }
+  if (words[0] == "--completion") {
+    if (words.size() != 2 || words[1] != "bash") return trionet::cli::fail("--completion takes one shell: bash");
+    std::fputs(trionet::cli::bash_completion(all).c_str(), stdout);
+    return std::fflush(stdout) == 0 ? trionet::cli::exit_ok : trionet::cli::fail_io("cannot write standard output");
   }
   if (words[0] == "--version") {
     std::printf("%s\n", trionet::cli::version_line().c_str());

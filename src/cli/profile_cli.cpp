@@ -39,6 +39,15 @@ constexpr const char* header_usage =
     "default. To standard output, or to OUT. Exit status 0, 1 when reading or writing failed, 2 for bad\n"
     "arguments or a profile that is not valid.\n";
 
+const option_list show_options = {
+    {"FILE", nullptr, "@file", "the profile to print (else the one --profile names, else the default)"}};
+
+const option_list header_options = {
+    {"FILE", nullptr, "@file", "the profile (else the one --profile names, else the default)"},
+    {"--namespace", "NS", "", "the C++ namespace of the policies (default trionet_profile)"},
+    {"-o", "OUT", "@file", "write the header to OUT (else to standard output)"},
+};
+
 // The profile a `profile` command works on: FILE if given, else the one in effect.
 int profile_argument(const arguments& args, learn::profile& out) {
   if (args.positionals.size() > 1)
@@ -56,7 +65,7 @@ int profile_argument(const arguments& args, learn::profile& out) {
 int show_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all, {}, {}, args, error)) return fail(error);
+  if (!parse_arguments(all, show_options, args, error)) return fail(error);
   learn::profile p;
   const int status = profile_argument(args, p);
   if (status != exit_ok) return status;
@@ -66,7 +75,7 @@ int show_main(const words& all) {
 int header_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all, {"--namespace", "-o"}, {}, args, error)) return fail(error);
+  if (!parse_arguments(all, header_options, args, error)) return fail(error);
   learn::profile p;
   const int status = profile_argument(args, p);
   if (status != exit_ok) return status;
@@ -88,8 +97,9 @@ int header_main(const words& all) {
 
 const command profile_commands[] = {
     {"show", "print a profile (a file's, the one --profile names, or the default) with every key", show_usage,
-     show_main},
-    {"header", "write a C++ header of constexpr policies for a firmware build", header_usage, header_main},
+     show_main, show_options},
+    {"header", "write a C++ header of constexpr policies for a firmware build", header_usage, header_main,
+     header_options},
 };
 
 }  // namespace

@@ -40,6 +40,20 @@ constexpr const char* decode_usage =
     "With --pcap, --json prints each record as the fields Wireshark's dissector shows (docs/wireshark.md).\n"
     "Exit status 0 when the input was read, 1 when reading or writing failed, 2 for bad arguments.\n";
 
+const option_list encode_options = joined(
+    {
+        {"KIND", nullptr, "print var offset mode", "the message: print (characters), var (a VR), offset, mode"},
+        {"TEXT", nullptr, "", "print: the characters, 1..256 of 7 bits"},
+    },
+    ring_message_options());
+
+const option_list decode_options = {
+    {"HEX", nullptr, "", "hex bytes (else standard input is read)"},
+    {"--raw", nullptr, "", "read raw bytes from standard input (a serial port, a file)"},
+    {"--pcap", "FILE", "@file", "read the ring records of a pcapng capture"},
+    {"--json", nullptr, "", "with --pcap: each record as the fields Wireshark's dissector shows"},
+};
+
 int encode_main(const words& all) {
   if (all.empty()) return fail("ring encode needs a message kind: print, var, offset or mode");
   const int capacities = check_ring_capacities("ring encode", ring_capacity_use::text_limit);
@@ -47,7 +61,7 @@ int encode_main(const words& all) {
   const words rest(all.begin() + 1, all.end());
   arguments args;
   std::string error;
-  if (!parse_arguments(rest, ring_message_options(), {}, args, error)) return fail(error);
+  if (!parse_arguments(rest, encode_options, args, error)) return fail(error);
   std::vector<std::uint8_t> frame;
   if (!ring_message_frame(all[0], args, frame, error)) return fail(error);
   std::printf("%s\n", hex_line(frame.data(), frame.size()).c_str());
@@ -163,7 +177,7 @@ int decode_capture(const arguments& args) {
 int decode_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all, {"--pcap"}, {"--raw", "--json"}, args, error)) return fail(error);
+  if (!parse_arguments(all, decode_options, args, error)) return fail(error);
   const int capacities = check_ring_capacities("ring decode", ring_capacity_use::decoder);
   if (capacities != exit_ok) return capacities;
   const bool raw = args.flag("--raw");
@@ -202,18 +216,20 @@ int decode_main(const words& all) {
 }
 
 const command ring_commands[] = {
-    {"encode", "print, var, offset or mode: print one frame as hex bytes", encode_usage, encode_main},
+    {"encode", "print, var, offset or mode: print one frame as hex bytes", encode_usage, encode_main, encode_options},
     {"decode", "read hex, raw bytes or a capture; print one JSON event per message or error", decode_usage,
-     decode_main},
+     decode_main, decode_options},
     {"simulate", "a ring of Motion Coordinators running BASIC programs and keypads", simulate_usage,
-     ring_simulate_main},
-    {"monitor", "watch a live ring port: one event per message as it arrives", ring_live_usage, ring_monitor_main},
-    {"send", "put one message on a live ring port", ring_live_usage, ring_send_main},
+     ring_simulate_main, ring_simulate_options()},
+    {"monitor", "watch a live ring port: one event per message as it arrives", ring_live_usage, ring_monitor_main,
+     ring_monitor_options()},
+    {"send", "put one message on a live ring port", ring_live_usage, ring_send_main, ring_send_options()},
     {"join", "be a node on a live ring: a Motion Coordinator (--as mc) or a keypad (--as keypad)", ring_live_usage,
-     ring_join_main},
-    {"wire", "connect byte endpoints (ports, sockets, ptys) into one ring, with faults on its links", ring_wire_usage, ring_wire_main},
+     ring_join_main, ring_join_options()},
+    {"wire", "connect byte endpoints (ports, sockets, ptys) into one ring, with faults on its links", ring_wire_usage, ring_wire_main,
+     ring_wire_options()},
     {"learn", "crc or layout: find the wire parameters from captured frames, write them into a profile",
-     ring_learn_usage, ring_learn_main},
+     ring_learn_usage, ring_learn_main, ring_learn_options()},
 };
 
 }  // namespace

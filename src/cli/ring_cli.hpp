@@ -28,8 +28,9 @@ void append_ring_event(std::string& out, const ring::decode_result& result, Wher
   append_ring_event_body(e, result);
 }
 
-/// `trionet ring simulate --help`.
+/// `trionet ring simulate --help`, and its option table.
 extern const char* const simulate_usage;
+const option_list& ring_simulate_options();
 
 /// `trionet ring simulate ...`.
 int ring_simulate_main(const words& args);

@@ -21,6 +21,9 @@ int ring_monitor_main(const words& args);
 int ring_send_main(const words& args);
 int ring_join_main(const words& args);
 extern const char* const ring_live_usage;
+const option_list& ring_monitor_options();
+const option_list& ring_send_options();
+const option_list& ring_join_options();
 
 /// One direction of a ring link as this host sees it: every byte is decoded (a receiver's view of every
 /// message, whatever its hops), cut into capture records, and counted.

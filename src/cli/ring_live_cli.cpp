@@ -97,11 +97,23 @@ bool port_arguments_of(const arguments& args, port_arguments& out, std::string& 
   return true;
 }
 
-const std::set<std::string> port_value_options = {"--baud", "--flow", "--idle-ms", "--pcap"};
+// The options every live ring command takes: the port's, and the capture.
+const option_list& port_options() {
+  static const option_list options = {
+      {"PORT", nullptr, "@port", "a serial port or pty, a FIFO, a Unix socket, or - (standard input)"},
+      {"--baud", "B", "9600 19200 38400 57600 115200 125000 250000 500000 1000000",
+       "serial ports: bits per second, any rate 50..4000000 (default 125000)"},
+      {"--flow", "F", "none rtscts xonxoff", "serial ports: none (default), rtscts or xonxoff"},
+      {"--idle-ms", "T", "", "no byte for T ms with a message open is the idle line (default 50)"},
+      {"--pcap", "FILE", "@file", "also write what the port carries to a pcapng capture"},
+  };
+  return options;
+}
 
-std::set<std::string> with(std::set<std::string> a, const std::set<std::string>& b) {
-  a.insert(b.begin(), b.end());
-  return a;
+// Functions, not globals: the command tables of other files use these tables while they are initialised.
+const option_list& json_option() {
+  static const option_list options = {{"--json", nullptr, "", "events as JSON lines"}};
+  return options;
 }
 
 // ---- ring monitor ----
@@ -109,7 +121,7 @@ std::set<std::string> with(std::set<std::string> a, const std::set<std::string>&
 int monitor_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, port_value_options, {"--json"}, args, error)) return fail("ring monitor: " + error);
+  if (!parse_arguments(given, ring_monitor_options(), args, error)) return fail("ring monitor: " + error);
   if (args.positionals.size() != 1) return fail("ring monitor takes one PORT");
   const int capacities = check_ring_capacities("ring monitor", ring_capacity_use::decoder);
   if (capacities != exit_ok) return capacities;
@@ -164,8 +176,7 @@ int monitor_main(const words& given) {
 int send_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, with(port_value_options, ring_message_options()), {}, args, error))
-    return fail("ring send: " + error);
+  if (!parse_arguments(given, ring_send_options(), args, error)) return fail("ring send: " + error);
   if (args.positionals.size() < 2) return fail("ring send needs PORT and a message kind: print, var, offset or mode");
   const int capacities = check_ring_capacities("ring send", ring_capacity_use::text_limit);
   if (capacities != exit_ok) return capacities;
@@ -210,6 +221,34 @@ int send_main(const words& given) {
 
 }  // namespace
 
+const option_list& ring_monitor_options() {
+  static const option_list options = joined(port_options(), json_option());
+  return options;
+}
+
+const option_list& ring_send_options() {
+  static const option_list options = joined(
+      joined(port_options(), {{"KIND", nullptr, "print var offset mode", "the message, as `trionet ring encode` takes it"},
+                              {"TEXT", nullptr, "", "print: the characters"}}),
+      ring_message_options());
+  return options;
+}
+
+const option_list& ring_join_options() {
+  static const option_list options = joined(
+      joined(port_options(), json_option()),
+      {
+          {"--as", "mc|keypad", "mc keypad", "the node to be: a Motion Coordinator or a membrane keypad"},
+          {"--trace", nullptr, "", "also every message the node forwards"},
+          {"--learn-keypad", "N", "10 11 12 13 14 15 16 17 18 19 20 21 22 23 24",
+           "with --as mc: learn the codes of the keypad at BASIC address N"},
+          {"--keypad-offset", "M", "10 11 12 13 14 15 16 17 18 19 20 21 22 23 24",
+           "with --learn-keypad: the BASIC address the keypad sends its keys to (default N)"},
+          {"-o", "PROFILE", "@file", "with --learn-keypad: where the profile with the codes found is written"},
+      });
+  return options;
+}
+
 int ring_monitor_main(const words& args) {
   return monitor_main(args);
 }
@@ -221,9 +260,7 @@ int ring_send_main(const words& args) {
 int ring_join_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, with(port_value_options, {"--as", "--learn-keypad", "--keypad-offset", "-o"}),
-                       {"--json", "--trace"}, args, error))
-    return fail("ring join: " + error);
+  if (!parse_arguments(given, ring_join_options(), args, error)) return fail("ring join: " + error);
   if (args.positionals.size() != 1) return fail("ring join takes one PORT");
   if (!args.has("--as")) return fail("ring join needs --as mc or --as keypad");
   port_arguments options;

@@ -106,8 +106,16 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
 
 }  // namespace
 
-const std::set<std::string>& ring_message_options() {
-  static const std::set<std::string> options = {"--to", "--vr", "--value", "--offset", "--mode"};
+const option_list& ring_message_options() {
+  static const option_list options = {
+      {"--to", "N", "10 11 12 13 14 15 16 17 18 19 20 21 22 23 24",
+       "the BASIC address the message goes to, 10..24 (hops + 9)"},
+      {"--vr", "V", "", "var: the VR number, 0..16383"},
+      {"--value", "X", "", "var: the value, a real number in the Q32.32 range"},
+      {"--offset", "M", "10 11 12 13 14 15 16 17 18 19 20 21 22 23 24",
+       "offset: the keypad offset, a BASIC address 10..24"},
+      {"--mode", "0|127", "0 127", "mode: the keypad mode, 0 or 127"},
+  };
   return options;
 }
 
@@ -125,7 +133,9 @@ bool ring_message_frame(const std::string& kind, const arguments& args, std::vec
     return false;
   }
   for (const auto& option : args.options) {
-    if (ring_message_options().count(option.first) == 0) continue;  // the command's own options
+    bool message_option = false;
+    for (const cli::option& o : ring_message_options()) message_option = message_option || option.first == o.name;
+    if (!message_option) continue;  // the command's own options
     bool allowed = false;
     for (const auto& name : allowed_for) allowed = allowed || option.first == name;
     if (!allowed) {

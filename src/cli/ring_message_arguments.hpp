@@ -11,8 +11,8 @@
 
 namespace trionet::cli {
 
-/// The options of every message kind (for `parse_arguments`).
-const std::set<std::string>& ring_message_options();
+/// The options of every message kind (for a command's option table).
+const option_list& ring_message_options();
 
 /// The frame that `kind` and the parsed `args` describe (the options of another kind are refused; a print
 /// takes exactly one positional, TEXT). False with `error` saying what is wrong.

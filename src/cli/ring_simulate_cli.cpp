@@ -45,6 +45,24 @@ const char* const simulate_usage =
     "Exit status 0 when the run ended without a program failing, 1 when a program failed or the capture\n"
     "could not be written, 2 for bad arguments.\n";
 
+const option_list& ring_simulate_options() {
+  static const option_list options = {
+      {"NETWORK", nullptr, "example1 example2 example3 example3-fixed", "a network built into the tool"},
+      {"--node", "mc:FILE.bas|mc|keypad", "mc:@file mc keypad",
+       "the next node in ring order: a Motion Coordinator running FILE.bas, an idle one, or a keypad", true},
+      {"--keys", "SCRIPT", "@keys", "key presses, e.g. \"wait=500 1:7 1:up 1:Y wait=2000 2:start\""},
+      {"--byte-times", "N", "", "stop after N byte-times (default 1000000)"},
+      {"--bit-rate", "B", "", "bits per second on every link (default 125000; 10 bits per byte)"},
+      {"--statements-per-byte-time", "S", "", "BASIC statements each program runs per byte-time (default 1)"},
+      {"--key-gap", "N", "", "byte-times each key press takes (default 1000)"},
+      {"--trace", nullptr, "", "also every message on every link and every display change"},
+      {"--json", nullptr, "", "a JSON summary as the last line"},
+      {"--pcap", "FILE", "@file", "write every byte of every link to a pcapng capture, one interface per link"},
+      {"--interactive", nullptr, "", "run in real time with the keypads on the terminal"},
+  };
+  return options;
+}
+
 namespace {
 
 bool read_program(const std::string& path, std::string& text, std::string& error) {
@@ -151,11 +169,7 @@ void print_summary(const host::ring_network& net) {
 int ring_simulate_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all,
-                       {"--pcap", "--node", "--keys", "--byte-times", "--bit-rate", "--statements-per-byte-time", "--key-gap"},
-                       {"--trace", "--json", "--interactive"}, args, error, {"--node"})) {
-    return fail(error);
-  }
+  if (!parse_arguments(all, ring_simulate_options(), args, error)) return fail(error);
   const int capacities = check_ring_capacities("ring simulate", ring_capacity_use::receive_buffer);
   if (capacities != exit_ok) return capacities;
   const host::builtin_network* builtin = nullptr;

@@ -64,6 +64,25 @@ const char* const ring_wire_usage =
     "Exit status: 0 stopped by quit, Ctrl-C or SIGTERM; 1 an endpoint could not be opened, or it closed or\n"
     "failed while the wire ran (the ring is broken); 2 bad arguments.\n";
 
+const option_list& ring_wire_options() {
+  static const option_list options = {
+      {"ENDPOINT", nullptr, "@port unix:@file tcp: pty pty:@file",
+       "PATH (a serial port or pty, a FIFO, a Unix socket), unix:PATH, tcp:HOST:PORT, or pty[:LINK]"},
+      {"--drop", "[L:]P", "", "lose each byte with probability P: on link L, else on every link", true},
+      {"--flip", "[L:]P", "", "flip one bit of each byte with probability P", true},
+      {"--cut", "L@T+D", "", "link L carries nothing from T ms after the start for D ms", true},
+      {"--seed", "S", "", "seed of the faults (default 1)"},
+      {"--pcap", "FILE", "@file", "every link's bytes as its next endpoint receives them"},
+      {"--json", nullptr, "", "events as JSON lines"},
+      {"--trace", nullptr, "", "also an event for every message on every link"},
+      {"--idle-ms", "T", "", "a link with a message open that carries nothing for T ms is idle (default 50)"},
+      {"--connect-ms", "T", "", "keep trying to connect unix: and tcp: endpoints for T ms (default 5000)"},
+      {"--baud", "B", "9600 19200 38400 57600 115200 125000 250000 500000 1000000",
+       "serial ports: bits per second (default 125000)"},
+  };
+  return options;
+}
+
 namespace {
 
 constexpr std::size_t link_buffer = 1U << 16U;  // bytes waiting for the next endpoint, per link
@@ -733,10 +752,7 @@ class wire {
 int ring_wire_main(const words& given) {
   arguments args;
   std::string error;
-  if (!parse_arguments(given, {"--drop", "--flip", "--cut", "--seed", "--pcap", "--idle-ms", "--connect-ms", "--baud"},
-                       {"--json", "--trace"}, args, error, {"--drop", "--flip", "--cut"})) {
-    return fail("ring wire: " + error);
-  }
+  if (!parse_arguments(given, ring_wire_options(), args, error)) return fail("ring wire: " + error);
   if (args.positionals.size() < 2) return fail("ring wire needs at least two endpoints (a ring of two nodes)");
   if (args.positionals.size() > 15) return fail("ring wire: a ring holds at most 15 nodes (docs/protocol.md 1.1)");
   for (const std::string& e : args.positionals) {

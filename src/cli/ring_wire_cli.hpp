@@ -5,8 +5,9 @@
 
 namespace trionet::cli {
 
-/// `trionet ring wire`, an entry of the ring part's command table, and its help text.
+/// `trionet ring wire`, an entry of the ring part's command table, its help text and option table.
 int ring_wire_main(const words& args);
 extern const char* const ring_wire_usage;
+const option_list& ring_wire_options();
 
 }  // namespace trionet::cli
