@@ -19,7 +19,7 @@ constexpr exit_status_entry exit_statuses[] = {
     {exit_ok, "the work was done: the input was read (wire errors are events in the output, not failures)"},
     {exit_io, "reading or writing failed: a missing or unreadable file, port or program, a capture that is not "
               "pcapng, an output that cannot be written, a live link that was lost"},
-    {exit_usage, "bad arguments: one line \\(lqtrionet: PROBLEM\\(rq on standard error, nothing on standard output"},
+    {exit_usage, "bad arguments: one line \"trionet: PROBLEM\" on standard error, nothing on standard output"},
     {exit_check, "a --check found a problem (genius timing --check), or a learn command found no single answer"},
 };
 
