@@ -1,12 +1,17 @@
 // Trio BASIC text -> program (program.hpp): a lexer, then one recursive-descent pass that emits statements
-// and reverse-Polish expressions, resolving block ends as they close and labels at the end.
+// and reverse-Polish expressions, resolving block ends as they close and labels at the end. Every name is
+// looked up in the reserved-word table (reserved_words.hpp) first: a word Trio BASIC reserves is either
+// compiled as modelled or refused with a message that names it, never taken as a user variable.
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <utility>
 
 #include "basic/program.hpp"
+#include "basic/reserved_words.hpp"
+#include "trionet/host/text.hpp"
 
 namespace trionet::basic {
 namespace {
@@ -30,10 +35,7 @@ bool is_digit(char c) {
   return c >= '0' && c <= '9';
 }
 int hex_value(char c) {
-  if (is_digit(c)) return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
+  return host::hex_digit(c);
 }
 char upper(char c) {
   return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
@@ -47,14 +49,17 @@ std::string to_lower(std::string_view s) {
   return out;
 }
 
-std::string shown(char c) {
+// Untrusted text echoed in a message: at most `limit` characters, control characters escaped.
+std::string shown(std::string_view text, std::size_t limit = 40) {
+  const std::string cut = host::clipped(text, limit);
+  return host::escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
+}
+
+std::string shown_character(char c) {
   const auto byte = static_cast<unsigned char>(c);
+  if (byte >= 32 && byte < 127) return std::string("'") + c + "'";
   char text[16];
-  if (byte >= 32 && byte < 127) {
-    std::snprintf(text, sizeof text, "'%c'", c);
-  } else {
-    std::snprintf(text, sizeof text, "byte 0x%02x", byte);
-  }
+  std::snprintf(text, sizeof text, "byte 0x%02x", byte);
   return text;
 }
 
@@ -80,7 +85,7 @@ class lexer {
       } else if (c == '\'') {
         skip_to_end_of_line();
       } else if (is_letter(c)) {
-        if (!name(out)) return false;
+        name(out);
       } else if (is_digit(c) || (c == '.' && i_ + 1 < s_.size() && is_digit(s_[i_ + 1]))) {
         if (!number(out, error)) return false;
       } else if (c == '$') {
@@ -88,7 +93,7 @@ class lexer {
       } else if (c == '"') {
         if (!string(out, error)) return false;
       } else if (!symbol(out)) {
-        error = {here(i_), "unexpected character " + shown(c)};
+        error = {here(i_), "unexpected character " + shown_character(c) + unexpected_hint(c)};
         return false;
       }
     }
@@ -98,6 +103,21 @@ class lexer {
   }
 
  private:
+  static std::string unexpected_hint(char c) {
+    switch (c) {
+      case '|':
+        return " (Trio BASIC writes OR)";
+      case '!':
+        return " (Trio BASIC writes NOT, and <> for not equal)";
+      case '%':
+        return " (Trio BASIC writes MOD)";
+      case '{':
+      case '}':
+        return " (Trio BASIC has no braces)";
+      default:
+        return "";
+    }
+  }
   source_position here(std::size_t at) const {
     return {line_, static_cast<std::uint32_t>(at - line_start_ + 1)};
   }
@@ -113,21 +133,22 @@ class lexer {
     while (i_ < s_.size() && s_[i_] != '\n' && s_[i_] != '\r') ++i_;
   }
 
-  bool name(std::vector<token>& out) {
+  void name(std::vector<token>& out) {
     const std::size_t start = i_;
     while (i_ < s_.size() && (is_letter(s_[i_]) || is_digit(s_[i_]) || s_[i_] == '_')) ++i_;
+    if (i_ < s_.size() && s_[i_] == '$') ++i_;  // DATE$ ... or a string variable, which the compiler refuses
     std::string text(s_.substr(start, i_ - start));
     std::string raw = text;
     for (char& c : text) c = upper(c);
     if (text == "REM") {  // a comment to the end of the line
       skip_to_end_of_line();
-      return true;
+      return;
     }
     emit(out, token_kind::name, std::move(text), start);
     out.back().raw = std::move(raw);
-    return true;
   }
 
+  // Digits, an optional fraction, an optional exponent (1e3, 2.5E-2).
   bool number(std::vector<token>& out, lex_error& error) {
     const std::size_t start = i_;
     while (i_ < s_.size() && is_digit(s_[i_])) ++i_;
@@ -135,11 +156,19 @@ class lexer {
       ++i_;
       while (i_ < s_.size() && is_digit(s_[i_])) ++i_;
     }
+    if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
+      std::size_t j = i_ + 1;
+      if (j < s_.size() && (s_[j] == '+' || s_[j] == '-')) ++j;
+      if (j < s_.size() && is_digit(s_[j])) {
+        i_ = j;
+        while (i_ < s_.size() && is_digit(s_[i_])) ++i_;
+      }
+    }
     const std::string_view text = s_.substr(start, i_ - start);
     double value = 0;
-    const auto parsed = std::from_chars(text.data(), text.data() + text.size(), value, std::chars_format::fixed);
-    if (parsed.ec != std::errc() || parsed.ptr != text.data() + text.size()) {
-      error = {here(start), "the number " + std::string(text) + " is out of range"};
+    const auto parsed = std::from_chars(text.data(), text.data() + text.size(), value, std::chars_format::general);
+    if (parsed.ec != std::errc() || parsed.ptr != text.data() + text.size() || !std::isfinite(value)) {
+      error = {here(start), "the number " + shown(text) + " is out of range"};
       return false;
     }
     emit(out, token_kind::number, std::string(text), start, value);
@@ -154,8 +183,12 @@ class lexer {
       value = value * 16 + static_cast<double>(hex_value(s_[i_++]));
       ++digits;
     }
-    if (digits == 0 || digits > 13) {  // 13 hex digits are exact in a double
-      error = {here(start), digits == 0 ? "expected hex digits after '$'" : "the hex number is out of range"};
+    if (digits == 0) {
+      error = {here(start), "expected hex digits after '$' (a hex number is written $1F)"};
+      return false;
+    }
+    if (digits > 13) {  // 13 hex digits are exact in a double
+      error = {here(start), "the hex number " + shown(s_.substr(start, i_ - start)) + " is out of range"};
       return false;
     }
     emit(out, token_kind::number, std::string(s_.substr(start, i_ - start)), start, value);
@@ -167,7 +200,7 @@ class lexer {
     std::string text;
     while (i_ < s_.size() && s_[i_] != '"' && s_[i_] != '\n' && s_[i_] != '\r') {
       if (static_cast<unsigned char>(s_[i_]) > 127) {
-        error = {here(i_), shown(s_[i_]) + " in a string: the ring carries characters 0..127"};
+        error = {here(i_), shown_character(s_[i_]) + " in a string: the ring carries characters 0..127"};
         return false;
       }
       text += s_[i_++];
@@ -191,7 +224,7 @@ class lexer {
         return true;
       }
     }
-    static constexpr std::string_view one = "(),;:#[]=<>+-*/&";
+    static constexpr std::string_view one = "(),;:#[]=<>+-*/&^?";
     if (one.find(s_[i_]) == std::string_view::npos) return false;
     emit(out, token_kind::symbol, std::string(1, s_[i_]), i_);
     ++i_;
@@ -206,46 +239,71 @@ class lexer {
 
 // ---- words ----
 
-constexpr const char* statement_words[] = {"PRINT",  "GET",  "SEND", "IF",    "ELSE", "ENDIF", "GOTO",
-                                           "GOSUB",  "RETURN", "REPEAT", "UNTIL", "WHILE", "WEND", "FOR",
-                                           "NEXT",   "WAIT", "WA",   "STOP"};
-constexpr const char* other_words[] = {"THEN", "TO",  "STEP",  "VR",    "NETSTAT", "KEY", "CHR", "CURSOR", "NOT",
-                                       "AND",  "OR",  "XOR",   "MOD",   "TRUE",    "FALSE", "ABS", "INT", "DEFKEY"};
-
-bool in(const char* const* first, const char* const* last, const std::string& word) {
-  return std::any_of(first, last, [&](const char* w) { return word == w; });
-}
-int axis_parameter_index(const std::string& word) {
-  for (std::size_t i = 0; i < axis_parameter_count; ++i) {
-    if (word == axis_parameter_names[i]) return static_cast<int>(i);
-  }
-  return -1;
-}
-bool reserved(const std::string& word) {
-  return in(std::begin(statement_words), std::end(statement_words), word) ||
-         in(std::begin(other_words), std::end(other_words), word) || axis_parameter_index(word) >= 0;
-}
-bool block_word(const std::string& word) {
-  return word == "ELSE" || word == "ENDIF" || word == "REPEAT" || word == "UNTIL" || word == "WHILE" ||
-         word == "WEND" || word == "FOR" || word == "NEXT";
-}
-
 std::string found(const token& t) {
   switch (t.kind) {
     case token_kind::end_of_line:
       return "the end of the line";
     case token_kind::end_of_file:
       return "the end of the file";
-    case token_kind::name:
-      return "'" + t.raw + "'";
+    case token_kind::name: {
+      const reserved_word* w = find_reserved_word(t.text);
+      if (w != nullptr) return std::string("the ") + to_string(w->kind) + " " + w->name;
+      return "'" + shown(t.raw) + "'";
+    }
     case token_kind::number:
-      return "the number " + t.text;
+      return "the number " + shown(t.text);
     case token_kind::string:
-      return "the string \"" + t.text + "\"";
+      return "the string \"" + shown(t.text) + "\"";
     case token_kind::symbol:
       return "'" + t.text + "'";
   }
   return "?";
+}
+
+// The one-argument functions and what they compile to.
+struct function_word {
+  const char* name;
+  expr_op op;
+};
+constexpr function_word functions[] = {
+    {"ABS", expr_op::absolute},     {"INT", expr_op::integer_part}, {"FRAC", expr_op::fraction},
+    {"SGN", expr_op::sign},         {"SQR", expr_op::square_root},  {"SIN", expr_op::sine},
+    {"COS", expr_op::cosine},       {"TAN", expr_op::tangent},      {"ASIN", expr_op::arc_sine},
+    {"ACOS", expr_op::arc_cosine},  {"ATAN", expr_op::arc_tangent}, {"EXP", expr_op::exponential},
+    {"LN", expr_op::logarithm},     {"READ_OP", expr_op::read_op},
+};
+
+struct system_word {
+  const char* name;
+  system_value value;
+};
+constexpr system_word system_words[] = {
+    {"NETSTAT", system_value::netstat},           {"WDOG", system_value::wdog},
+    {"SERVO_PERIOD", system_value::servo_period}, {"CONTROL", system_value::control},
+    {"MOTION_ERROR", system_value::motion_error}, {"SYSTEM_ERROR", system_value::system_error},
+    {"ERROR_LINE", system_value::error_line},
+};
+
+struct motion_word {
+  const char* name;
+  motion_command command;
+};
+constexpr motion_word motion_words[] = {
+    {"MOVE", motion_command::move},       {"MOVEABS", motion_command::moveabs},
+    {"FORWARD", motion_command::forward}, {"REVERSE", motion_command::reverse},
+    {"CANCEL", motion_command::cancel},   {"RAPIDSTOP", motion_command::rapidstop},
+    {"DATUM", motion_command::datum},     {"DEFPOS", motion_command::defpos},
+};
+
+// Words that start a statement (and so may be followed by ':' without being a label).
+bool starts_statement(const std::string& word) {
+  static constexpr const char* words[] = {"PRINT", "GET",  "SEND",  "IF",     "ELSE",    "ELSEIF", "ENDIF",
+                                          "GOTO",  "GOSUB", "RETURN", "STOP", "HALT",    "REPEAT", "UNTIL",
+                                          "WHILE", "WEND", "FOR",   "NEXT",   "WAIT",    "WA",     "ON",
+                                          "OP",    "TABLE", "BASE", "CONSTANT", "GLOBAL"};
+  if (std::any_of(std::begin(words), std::end(words), [&](const char* w) { return word == w; })) return true;
+  return std::any_of(std::begin(motion_words), std::end(motion_words),
+                     [&](const motion_word& m) { return word == m.name; });
 }
 
 // ---- parser and code generator ----
@@ -253,8 +311,9 @@ std::string found(const token& t) {
 struct block {
   enum class kind : std::uint8_t { if_block, else_block, repeat, while_loop, for_loop } what;
   source_position at;
-  std::uint32_t statement;  // if: its branch; else: the jump over it; repeat: the body's first; while, for: theirs
+  std::uint32_t statement;  // if: its open branch; else: unused; repeat: the body's first; while, for: theirs
   std::uint32_t slot;       // for: the loop variable
+  std::vector<std::uint32_t> ends;  // if: the jumps to ENDIF over each ELSEIF and ELSE part
 };
 
 const char* opening_word(block::kind k) {
@@ -289,11 +348,19 @@ const char* closing_word(block::kind k) {
 struct label_use {
   std::string name;
   std::uint32_t statement;
+  std::uint32_t jump_index;  // index into jump_targets, or no_expression for the statement's own target
   source_position at;
 };
 
 struct label_definition {
   std::uint32_t statement;
+  std::uint32_t line;
+};
+
+// A CONSTANT or GLOBAL name.
+struct declared_name {
+  bool global;  // GLOBAL: VR(number); CONSTANT: number
+  double number;
   std::uint32_t line;
 };
 
@@ -313,8 +380,12 @@ class compiler {
     for (const label_use& use : label_uses_) {
       const auto found_label = labels_.find(use.name);
       if (found_label == labels_.end())
-        return fail(compile_status::unknown_label, use.at, "no label '" + use.name + "' in the program");
-      p_.statements[use.statement].target = found_label->second.statement;
+        return fail(compile_status::unknown_label, use.at, "no label '" + shown(use.name) + "' in the program");
+      if (use.jump_index == no_expression) {
+        p_.statements[use.statement].target = found_label->second.statement;
+      } else {
+        p_.jump_targets[use.jump_index] = found_label->second.statement;
+      }
     }
     // FOR's hidden end and step values go after the named variables.
     const auto named = static_cast<std::uint32_t>(p_.variable_names.size());
@@ -371,17 +442,37 @@ class compiler {
     next();
     return true;
   }
+  bool refuse(const reserved_word& w, source_position where) {
+    return fail(compile_status::not_modelled, where, refusal_message(w));
+  }
+  // A reserved word where the program needs a name of its own (a variable, a label, a FOR variable).
+  bool reserved_here(const token& t, const char* as) {
+    const reserved_word* w = find_reserved_word(t.text);
+    if (w == nullptr) return false;
+    if (!w->modelled) return refuse(*w, t.at);
+    return fail(compile_status::syntax_error, t.at,
+                std::string("`") + w->name + "` is a Trio BASIC " + to_string(w->kind) + " and cannot be " + as);
+  }
+  // A name with '$': a reserved word (DATE$ ...) or a string variable, which Trio BASIC does not have.
+  bool dollar_name(const token& t) {
+    if (t.text.empty() || t.text.back() != '$') return false;
+    if (const reserved_word* w = find_reserved_word(t.text)) return refuse(*w, t.at);
+    return fail(compile_status::syntax_error, t.at,
+                "'" + shown(t.raw) + "': Trio BASIC has no string variables (strings are only items of PRINT)");
+  }
 
   // ---- lines and statements ----
 
   bool line() {
-    if (peek().kind == token_kind::name && !reserved(peek().text) && is_symbol(":", 1)) {
-      const token& label = next();
+    if (peek().kind == token_kind::name && is_symbol(":", 1) && !starts_statement(peek().text)) {
+      const token& label = peek();
+      if (dollar_name(label) || reserved_here(label, "a label")) return false;
+      next();
       const std::string name = to_lower(label.raw);
       const auto [where, added] = labels_.emplace(name, label_definition{here(), label.at.line});
       if (!added) {
         return fail(compile_status::duplicate_label, label.at,
-                    "label '" + name + "' is already defined at line " + std::to_string(where->second.line));
+                    "label '" + shown(name) + "' is already defined at line " + std::to_string(where->second.line));
       }
       next();  // ':'
     }
@@ -427,12 +518,33 @@ class compiler {
     return slot;
   }
 
+  // A user variable where one is needed (FOR, NEXT, GET): not reserved, not declared CONSTANT or GLOBAL.
+  bool variable_name(const token& t, const std::string& what) {
+    if (t.kind != token_kind::name) return expected(what);
+    if (dollar_name(t) || reserved_here(t, "a variable")) return false;
+    if (const auto d = declared_.find(to_lower(t.raw)); d != declared_.end()) {
+      return fail(compile_status::syntax_error, t.at,
+                  "'" + shown(t.raw) + "' is declared " + (d->second.global ? "GLOBAL" : "CONSTANT") + " at line " +
+                      std::to_string(d->second.line) + " and cannot be " + what);
+    }
+    return true;
+  }
+
   bool one_statement(bool one_line_if) {
     const token& first = peek();
     const source_position where = first.at;
+    if (first.kind == token_kind::symbol && first.text == "?") return print_statement(where);
     if (first.kind != token_kind::name) return expected("a statement");
     const std::string word = first.text;
-    if (one_line_if && block_word(word)) {
+    const reserved_word* reserved = find_reserved_word(word);
+    if (reserved != nullptr && !reserved->modelled) return refuse(*reserved, where);
+    if (reserved != nullptr && is_symbol("=", 1) && !assignable(word)) {
+      return fail(compile_status::syntax_error, where,
+                  std::string("`") + reserved->name + "` is a Trio BASIC " + to_string(reserved->kind) +
+                      " and cannot be assigned");
+    }
+    if (one_line_if && (word == "ELSEIF" || word == "ENDIF" || word == "REPEAT" || word == "UNTIL" ||
+                        word == "WHILE" || word == "WEND" || word == "FOR" || word == "NEXT")) {
       return fail(compile_status::syntax_error, where,
                   word + " cannot be part of a one-line IF (write IF ... THEN at the end of a line, then ENDIF)");
     }
@@ -441,24 +553,21 @@ class compiler {
     if (word == "SEND") return send_statement(where);
     if (word == "IF") return if_statement(where, one_line_if);
     if (word == "ELSE") return else_statement(where);
+    if (word == "ELSEIF") return elseif_statement(where);
     if (word == "ENDIF") return endif_statement(where);
     if (word == "GOTO" || word == "GOSUB") {
       next();
-      const token& label = peek();
-      if (label.kind != token_kind::name || reserved(label.text)) return expected("a label after " + word);
       const std::uint32_t s = emit(word == "GOTO" ? statement_kind::jump : statement_kind::gosub, where);
-      label_uses_.push_back({to_lower(label.raw), s, label.at});
-      next();
-      return true;
+      return label_reference(s, no_expression, "a label after " + word);
     }
-    if (word == "RETURN" || word == "STOP") {
+    if (word == "RETURN" || word == "STOP" || word == "HALT") {
       next();
       emit(word == "RETURN" ? statement_kind::return_from_gosub : statement_kind::stop, where);
       return true;
     }
     if (word == "REPEAT") {
       next();
-      return open_block({block::kind::repeat, where, here(), 0});
+      return open_block({block::kind::repeat, where, here(), 0, {}});
     }
     if (word == "UNTIL") return until_statement(where);
     if (word == "WHILE") {
@@ -467,19 +576,12 @@ class compiler {
       if (!expression(condition)) return false;
       const std::uint32_t s = emit(statement_kind::branch_unless, where);
       at_index(s).expr[0] = condition;
-      return open_block({block::kind::while_loop, where, s, 0});
+      return open_block({block::kind::while_loop, where, s, 0, {}});
     }
     if (word == "WEND") return wend_statement(where);
     if (word == "FOR") return for_statement(where);
     if (word == "NEXT") return next_statement(where);
-    if (word == "WAIT") {
-      next();
-      if (!expect_word("UNTIL", "UNTIL after WAIT (WAIT UNTIL condition)")) return false;
-      std::uint32_t condition = 0;
-      if (!expression(condition)) return false;
-      at_index(emit(statement_kind::wait_until, where)).expr[0] = condition;
-      return true;
-    }
+    if (word == "WAIT") return wait_statement(where);
     if (word == "WA") {
       next();
       std::uint32_t ms = 0;
@@ -490,47 +592,359 @@ class compiler {
       at_index(emit(statement_kind::wait_ms, where)).expr[0] = ms;
       return true;
     }
+    if (word == "ON") return on_statement(where);
+    if (word == "OP") return op_statement(where);
+    if (word == "BASE") return base_statement(where);
+    if (word == "CONSTANT" || word == "GLOBAL") return declaration(where, word == "GLOBAL");
+    if (word == "TABLE" && is_symbol("(", 1)) return table_statement(where);
+    for (const motion_word& m : motion_words) {
+      if (word == m.name) return motion_statement(where, m.command);
+    }
+    if (word == "DIM" && peek(1).kind == token_kind::name) {
+      return fail(compile_status::syntax_error, where,
+                  "DIM is not part of Trio BASIC on the MC206/MC224 (use VR() or TABLE() for arrays)");
+    }
     return assignment(where);
   }
 
+  // Reserved words a program may assign: `WORD = value`.
+  static bool assignable(const std::string& word) {
+    if (word == "NETSTAT" || word == "WDOG" || word == "TICKS") return true;
+    axis_parameter p{};
+    return find_axis_parameter(word, p);  // a read-only one gets its own message in assignment()
+  }
+
+  // A label name after GOTO, GOSUB or in an ON list: resolved at the end.
+  bool label_reference(std::uint32_t statement_index, std::uint32_t jump_index, const std::string& what) {
+    const token& label = peek();
+    if (label.kind != token_kind::name) return expected(what);
+    if (dollar_name(label) || reserved_here(label, "a label")) return false;
+    label_uses_.push_back({to_lower(label.raw), statement_index, jump_index, label.at});
+    next();
+    return true;
+  }
+
+  // `AXIS(n)` after a command or parameter, or nothing: the expression id, or no_expression.
+  bool axis_modifier(std::uint32_t& axis) {
+    axis = no_expression;
+    if (!is_word("AXIS")) return true;
+    next();
+    return expect_symbol("(", "'(' after AXIS (AXIS(n))") && expression(axis) &&
+           expect_symbol(")", "')' to close AXIS(");
+  }
+
   bool assignment(source_position where) {
-    const token& target = next();
+    const token& target = peek();
     const std::string word = target.text;
     statement s;
     s.line = where.line;
-    if (word == "VR") {
-      s.kind = statement_kind::assign_vr;
-      if (!expect_symbol("(", "'(' after VR") || !expression(s.expr[0]) ||
-          !expect_symbol(")", "')' to close VR(")) {
+    std::uint32_t value_slot = 0;
+    if (word == "VR" || word == "TABLE") {
+      next();
+      s.kind = word == "VR" ? statement_kind::assign_vr : statement_kind::assign_table;
+      if (!expect_symbol("(", "'(' after " + word) || !expression(s.expr[0]) ||
+          !expect_symbol(")", "')' to close " + word + "(")) {
         return false;
       }
-    } else if (word == "NETSTAT") {
-      s.kind = statement_kind::assign_netstat;
-    } else if (const int parameter = axis_parameter_index(word); parameter >= 0) {
-      s.kind = statement_kind::assign_parameter;
-      s.slot = static_cast<std::uint32_t>(parameter);
-    } else if (word == "DEFKEY") {
+      value_slot = 1;
+    } else if (word == "NETSTAT" || word == "WDOG" || word == "TICKS") {
+      next();
+      s.kind = word == "NETSTAT" ? statement_kind::assign_netstat
+               : word == "WDOG"  ? statement_kind::assign_wdog
+                                 : statement_kind::assign_ticks;
+    } else if (axis_parameter p{}; find_axis_parameter(word, p)) {
+      next();
+      if (info(p).read_only) {
+        return fail(compile_status::syntax_error, where,
+                    std::string("`") + info(p).name + "` is a read-only axis parameter: the axis sets it" +
+                        (p == axis_parameter::dpos || p == axis_parameter::mpos ? " (DEFPOS sets the position)" : ""));
+      }
+      s.kind = statement_kind::assign_axis;
+      s.slot = static_cast<std::uint32_t>(p);
+      if (!axis_modifier(s.expr[1])) return false;
+    } else if (const reserved_word* w = find_reserved_word(word)) {
       return fail(compile_status::syntax_error, where,
-                  "DEFKEY is not supported: GET #3 translates through the default DEFKEY table (docs/basic.md)");
-    } else if (reserved(word)) {
-      return fail(compile_status::syntax_error, where, "expected a statement, found " + found(target));
+                  std::string("expected a statement, found ") + found(target) +
+                      (w->kind == word_kind::constant || w->kind == word_kind::system_parameter ||
+                               w->kind == word_kind::mathematical
+                           ? " (it cannot be assigned)"
+                           : ""));
     } else {
-      if (is_symbol("(")) {
-        return fail(compile_status::syntax_error, where,
-                    "'" + target.raw + "' is not a command this interpreter knows (docs/basic.md lists them)");
+      if (dollar_name(target)) return false;
+      next();
+      if (const auto d = declared_.find(to_lower(target.raw)); d != declared_.end()) {
+        if (!d->second.global) {
+          return fail(compile_status::syntax_error, where,
+                      "'" + shown(target.raw) + "' is a CONSTANT (line " + std::to_string(d->second.line) +
+                          ") and cannot be assigned");
+        }
+        s.kind = statement_kind::assign_vr;
+        s.expr[0] = constant_expression(d->second.number);
+        value_slot = 1;
+      } else {
+        if (is_symbol("(")) {
+          return fail(compile_status::syntax_error, where,
+                      "'" + shown(target.raw) + "' is not a Trio BASIC command (docs/basic.md lists the words)");
+        }
+        if (is_symbol(":")) {
+          return fail(compile_status::syntax_error, where,
+                      "a label must start its line ('" + shown(target.raw) + ":' follows another statement)");
+        }
+        s.kind = statement_kind::assign_variable;
+        s.slot = slot_of(target.raw);
       }
-      if (is_symbol(":")) {
-        return fail(compile_status::syntax_error, where,
-                    "a label must start its line ('" + target.raw + ":' follows another statement)");
-      }
-      s.kind = statement_kind::assign_variable;
-      s.slot = slot_of(target.raw);
     }
     if (!expect_symbol("=", "'=' after " + found(target))) return false;
-    const std::uint32_t value_expr = s.kind == statement_kind::assign_vr ? 1 : 0;
-    if (!expression(s.expr[value_expr])) return false;
+    if (!expression(s.expr[value_slot])) return false;
     p_.statements.push_back(s);
     return true;
+  }
+
+  std::uint32_t constant_expression(double value) {
+    const auto begin = static_cast<std::uint32_t>(p_.code.size());
+    p_.code.push_back({expr_op::constant, 0, value});
+    p_.expressions.push_back({begin, begin + 1, 0});
+    return static_cast<std::uint32_t>(p_.expressions.size() - 1);
+  }
+
+  // CONSTANT "name", value / GLOBAL "name", vr: a name for a number or for VR(vr) from here on.
+  bool declaration(source_position where, bool global) {
+    const char* word = global ? "GLOBAL" : "CONSTANT";
+    next();
+    const token& name = peek();
+    if (name.kind != token_kind::string)
+      return expected(std::string("the name in quotes after ") + word + " (" + word + " \"name\", " +
+                      (global ? "vr" : "value") + ")");
+    std::string text = name.text;
+    const source_position name_at = name.at;
+    next();
+    bool valid = !text.empty() && is_letter(text[0]);
+    for (char c : text) valid = valid && (is_letter(c) || is_digit(c) || c == '_');
+    if (!valid)
+      return fail(compile_status::syntax_error, name_at,
+                  "'" + shown(text) + "' is not a name (a letter, then letters, digits and '_')");
+    std::string upper_name = text;
+    for (char& c : upper_name) c = upper(c);
+    if (const reserved_word* w = find_reserved_word(upper_name)) {
+      return fail(compile_status::syntax_error, name_at,
+                  std::string("`") + w->name + "` is a Trio BASIC " + to_string(w->kind) + " and cannot be declared");
+    }
+    const std::string key = to_lower(text);
+    if (slots_.count(key) != 0)
+      return fail(compile_status::syntax_error, name_at,
+                  "'" + shown(text) + "' is already used as a variable before this " + word);
+    if (!expect_symbol(",", std::string("',' and the ") + (global ? "VR number" : "value") + " after " + word +
+                                " \"name\"")) {
+      return false;
+    }
+    double value = 0;
+    if (!constant_value(value)) return false;
+    if (global && !(value >= 0 && value == std::floor(value) && value < 65536))
+      return fail(compile_status::syntax_error, where, "GLOBAL takes a VR number (0, 1, 2 ...)");
+    const auto [existing, added] = declared_.emplace(key, declared_name{global, value, where.line});
+    if (!added) {
+      return fail(compile_status::syntax_error, name_at,
+                  "'" + shown(text) + "' is already declared at line " + std::to_string(existing->second.line));
+    }
+    return true;
+  }
+
+  // A number, a declared CONSTANT or a constant (TRUE, PI ...), with an optional sign.
+  bool constant_value(double& out) {
+    double sign = 1;
+    while (is_symbol("-") || is_symbol("+")) {
+      if (next().text == "-") sign = -sign;
+    }
+    const token& t = peek();
+    if (t.kind == token_kind::number) {
+      out = sign * next().value;
+      return true;
+    }
+    if (t.kind == token_kind::name) {
+      if (t.text == "TRUE" || t.text == "FALSE" || t.text == "ON" || t.text == "OFF" || t.text == "PI") {
+        out = sign * named_constant(next().text);
+        return true;
+      }
+      if (const auto d = declared_.find(to_lower(t.raw)); d != declared_.end() && !d->second.global) {
+        next();
+        out = sign * d->second.number;
+        return true;
+      }
+    }
+    return expected("a number");
+  }
+
+  static double named_constant(const std::string& word) {
+    if (word == "TRUE") return -1;
+    if (word == "ON") return 1;
+    if (word == "PI") return 3.14159265358979323846;
+    return 0;  // FALSE, OFF
+  }
+
+  // A list of expressions in parentheses (the '(' is next), at most max_arguments, into program::arguments.
+  bool argument_list(const std::string& word, std::uint32_t& extra, std::uint32_t& count,
+                     std::size_t at_least = 1) {
+    if (!expect_symbol("(", "'(' after " + word)) return false;
+    std::vector<std::uint32_t> ids;
+    for (;;) {
+      std::uint32_t id = 0;
+      if (!expression(id)) return false;
+      ids.push_back(id);
+      if (ids.size() > max_arguments)
+        return fail(compile_status::too_large, peek().at,
+                    word + " takes at most " + std::to_string(max_arguments) + " values");
+      if (!is_symbol(",")) break;
+      next();
+    }
+    if (!expect_symbol(")", "')' to close " + word + "(")) return false;
+    if (ids.size() < at_least)
+      return expected(word + " with at least " + std::to_string(at_least) + " values");
+    extra = static_cast<std::uint32_t>(p_.arguments.size());
+    count = static_cast<std::uint32_t>(ids.size());
+    p_.arguments.insert(p_.arguments.end(), ids.begin(), ids.end());
+    return true;
+  }
+
+  bool motion_statement(source_position where, motion_command command) {
+    const std::string word = next().text;
+    statement s;
+    s.kind = statement_kind::motion;
+    s.line = where.line;
+    s.slot = static_cast<std::uint32_t>(command);
+    switch (command) {
+      case motion_command::move:
+      case motion_command::moveabs:
+      case motion_command::defpos:
+        if (!argument_list(word, s.extra, s.count)) return false;
+        break;
+      case motion_command::datum:
+        if (!argument_list(word, s.extra, s.count)) return false;
+        if (s.count != 1) return fail(compile_status::syntax_error, where, "DATUM takes one value: DATUM(mode)");
+        break;
+      case motion_command::cancel:
+        if (is_symbol("(")) {
+          if (!argument_list(word, s.extra, s.count)) return false;
+          if (s.count != 1) return fail(compile_status::syntax_error, where, "CANCEL takes at most one value");
+        }
+        break;
+      case motion_command::forward:
+      case motion_command::reverse:
+      case motion_command::rapidstop:
+        break;
+    }
+    if (command != motion_command::rapidstop && !axis_modifier(s.expr[3])) return false;
+    p_.statements.push_back(s);
+    return true;
+  }
+
+  bool base_statement(source_position where) {
+    next();
+    statement s;
+    s.kind = statement_kind::base;
+    s.line = where.line;
+    if (!argument_list("BASE", s.extra, s.count)) return false;
+    p_.statements.push_back(s);
+    return true;
+  }
+
+  // TABLE(n, v1 [, v2 ...]) writes v1 to TABLE(n), v2 to TABLE(n+1) ...; TABLE(n) = v writes one.
+  bool table_statement(source_position where) {
+    const std::size_t start = pos_;
+    next();
+    next();  // '('
+    int depth = 1;
+    bool list = false;
+    for (std::size_t i = pos_; i < t_.size() && depth > 0; ++i) {  // a ',' at the top level: the list form
+      const token& t = t_[i];
+      if (t.kind == token_kind::end_of_line || t.kind == token_kind::end_of_file) break;
+      if (t.kind != token_kind::symbol) continue;
+      if (t.text == "(") ++depth;
+      if (t.text == ")") --depth;
+      if (t.text == "," && depth == 1) list = true;
+    }
+    pos_ = start;
+    if (!list) return assignment(where);
+    next();
+    statement s;
+    s.kind = statement_kind::table_write;
+    s.line = where.line;
+    if (!argument_list("TABLE", s.extra, s.count, 2)) return false;
+    p_.statements.push_back(s);
+    return true;
+  }
+
+  bool op_statement(source_position where) {
+    next();
+    statement s;
+    s.kind = statement_kind::output;
+    s.line = where.line;
+    if (!expect_symbol("(", "'(' after OP (OP(output, ON|OFF) or OP(bits))") || !expression(s.expr[0])) return false;
+    if (is_symbol(",")) {
+      next();
+      if (!expression(s.expr[1])) return false;
+    } else {
+      s.flag = true;
+    }
+    if (!expect_symbol(")", "')' to close OP(")) return false;
+    p_.statements.push_back(s);
+    return true;
+  }
+
+  // ON n GOTO|GOSUB label1, label2 ... / ON BASICERROR GOTO label
+  bool on_statement(source_position where) {
+    next();
+    if (is_word("BASICERROR")) {
+      next();
+      if (!expect_word("GOTO", "GOTO after ON BASICERROR (ON BASICERROR GOTO label)")) return false;
+      const std::uint32_t s = emit(statement_kind::on_error, where);
+      return label_reference(s, no_expression, "a label after ON BASICERROR GOTO");
+    }
+    std::uint32_t selector = 0;
+    if (!expression(selector)) return false;
+    if (!is_word("GOTO") && !is_word("GOSUB")) return expected("GOTO or GOSUB after ON expression");
+    const bool gosub = next().text == "GOSUB";
+    statement s;
+    s.kind = statement_kind::on_jump;
+    s.flag = gosub;
+    s.line = where.line;
+    s.expr[0] = selector;
+    s.extra = static_cast<std::uint32_t>(p_.jump_targets.size());
+    p_.statements.push_back(s);
+    const std::uint32_t index = here() - 1;
+    for (;;) {
+      if (at_index(index).count >= max_arguments)
+        return fail(compile_status::too_large, peek().at,
+                    "ON ... GOTO takes at most " + std::to_string(max_arguments) + " labels");
+      p_.jump_targets.push_back(0);
+      ++at_index(index).count;
+      if (!label_reference(index, static_cast<std::uint32_t>(p_.jump_targets.size() - 1),
+                           std::string("a label after ON ... ") + (gosub ? "GOSUB" : "GOTO"))) {
+        return false;
+      }
+      if (!is_symbol(",")) return true;
+      next();
+    }
+  }
+
+  bool wait_statement(source_position where) {
+    next();
+    if (is_word("UNTIL")) {
+      next();
+      std::uint32_t condition = 0;
+      if (!expression(condition)) return false;
+      at_index(emit(statement_kind::wait_until, where)).expr[0] = condition;
+      return true;
+    }
+    if (is_word("IDLE") || is_word("LOADED")) {
+      const bool idle = next().text == "IDLE";
+      statement s;
+      s.kind = idle ? statement_kind::wait_idle : statement_kind::wait_loaded;
+      s.line = where.line;
+      if (!axis_modifier(s.expr[3])) return false;
+      p_.statements.push_back(s);
+      return true;
+    }
+    return expected("UNTIL, IDLE or LOADED after WAIT");
   }
 
   bool print_statement(source_position where) {
@@ -569,9 +983,11 @@ class compiler {
       p_.texts.push_back(next().text);
       return true;
     }
-    if (is_word("CHR") || is_word("CURSOR")) {
+    if (is_word("CHR") || is_word("CURSOR") || is_word("HEX")) {
       const std::string word = next().text;
-      item.what = word == "CHR" ? print_item::kind::character : print_item::kind::cursor;
+      item.what = word == "CHR"      ? print_item::kind::character
+                  : word == "CURSOR" ? print_item::kind::cursor
+                                     : print_item::kind::hex;
       return expect_symbol("(", "'(' after " + word) && expression(item.source) &&
              expect_symbol(")", "')' to close " + word + "(");
     }
@@ -641,10 +1057,14 @@ class compiler {
           !expect_symbol(")", "')' to close VR(")) {
         return false;
       }
-    } else if (target.kind == token_kind::name && !reserved(target.text)) {
-      s.slot = slot_of(next().raw);
+    } else if (target.kind == token_kind::name && declared_.count(to_lower(target.raw)) != 0 &&
+               declared_.at(to_lower(target.raw)).global) {
+      next();
+      s.flag = true;
+      s.expr[1] = constant_expression(declared_.at(to_lower(target.raw)).number);
     } else {
-      return expected("a variable or VR(n) to hold the character");
+      if (!variable_name(target, "a variable or VR(n) to hold the character")) return false;
+      s.slot = slot_of(next().raw);
     }
     p_.statements.push_back(s);
     return true;
@@ -682,7 +1102,7 @@ class compiler {
         return fail(compile_status::syntax_error, where, "a block IF (THEN at the end of the line) cannot be "
                                                          "part of a one-line IF");
       }
-      return open_block({block::kind::if_block, where, branch, 0});
+      return open_block({block::kind::if_block, where, branch, 0, {}});
     }
     if (!statements(true)) return false;
     if (is_word("ELSE")) {
@@ -698,18 +1118,17 @@ class compiler {
     return true;
   }
 
-  bool open_block(const block& b) {
+  bool open_block(block b) {
     if (blocks_.size() >= static_cast<std::size_t>(max_nesting))
       return fail(compile_status::too_large, b.at, "blocks nested more than " + std::to_string(max_nesting) + " deep");
-    blocks_.push_back(b);
+    blocks_.push_back(std::move(b));
     return true;
   }
 
   // The innermost open block, which `word` must close (one of `kinds`).
   bool close_block(source_position where, const std::string& word, std::initializer_list<block::kind> kinds) {
     if (blocks_.empty()) {
-      return fail(compile_status::unmatched_block, where,
-                  word + " without " + opening_word(*kinds.begin()));
+      return fail(compile_status::unmatched_block, where, word + " without " + opening_word(*kinds.begin()));
     }
     const block& b = blocks_.back();
     if (std::find(kinds.begin(), kinds.end(), b.what) == kinds.end()) {
@@ -720,22 +1139,43 @@ class compiler {
     return true;
   }
 
+  // Ends the part of an IF block that is open: a jump to ENDIF, and its branch goes to what follows.
+  void end_if_part(block& b, source_position where) {
+    const std::uint32_t over = emit(statement_kind::jump, where);
+    at_index(over).counted = false;
+    b.ends.push_back(over);
+    at_index(b.statement).target = here();
+  }
+
+  bool elseif_statement(source_position where) {
+    if (!close_block(where, "ELSEIF", {block::kind::if_block})) return false;
+    next();
+    block& b = blocks_.back();
+    end_if_part(b, where);
+    std::uint32_t condition = 0;
+    if (!expression(condition) || !expect_word("THEN", "THEN after the ELSEIF condition")) return false;
+    if (!at_end_of_line()) return expected("the end of the line after ELSEIF ... THEN");
+    const std::uint32_t branch = emit(statement_kind::branch_unless, where);
+    at_index(branch).expr[0] = condition;
+    blocks_.back().statement = branch;
+    return true;
+  }
+
   bool else_statement(source_position where) {
     if (!close_block(where, "ELSE", {block::kind::if_block})) return false;
     next();
     block& b = blocks_.back();
-    const std::uint32_t over = emit(statement_kind::jump, where);
-    at_index(over).counted = false;
-    at_index(b.statement).target = here();
+    end_if_part(b, where);
     b.what = block::kind::else_block;
-    b.statement = over;
     return true;
   }
 
   bool endif_statement(source_position where) {
     if (!close_block(where, "ENDIF", {block::kind::if_block, block::kind::else_block})) return false;
     next();
-    at_index(blocks_.back().statement).target = here();
+    block& b = blocks_.back();
+    if (b.what == block::kind::if_block) at_index(b.statement).target = here();
+    for (std::uint32_t end : b.ends) at_index(end).target = here();
     blocks_.pop_back();
     return true;
   }
@@ -765,8 +1205,7 @@ class compiler {
   bool for_statement(source_position where) {
     next();
     const token& variable = peek();
-    if (variable.kind != token_kind::name || reserved(variable.text))
-      return expected("a variable after FOR (FOR i=first TO last [STEP step])");
+    if (!variable_name(variable, "a variable after FOR (FOR i=first TO last [STEP step])")) return false;
     statement s;
     s.kind = statement_kind::for_start;
     s.line = where.line;
@@ -781,27 +1220,31 @@ class compiler {
     }
     s.extra = 2 * for_loops_++;  // the hidden end and step values; moved past the named variables at the end
     p_.statements.push_back(s);
-    return open_block({block::kind::for_loop, where, here() - 1, s.slot});
+    return open_block({block::kind::for_loop, where, here() - 1, s.slot, {}});
   }
 
   bool next_statement(source_position where) {
     if (!close_block(where, "NEXT", {block::kind::for_loop})) return false;
     next();
-    const block b = blocks_.back();
-    if (peek().kind == token_kind::name && !reserved(peek().text)) {
-      const token& variable = next();
+    const std::uint32_t loop = blocks_.back().statement;
+    const std::uint32_t loop_slot = blocks_.back().slot;
+    const source_position loop_at = blocks_.back().at;
+    if (peek().kind == token_kind::name) {
+      const token& variable = peek();
+      if (!variable_name(variable, "the FOR variable after NEXT")) return false;
+      next();
       const auto found_slot = slots_.find(to_lower(variable.raw));
-      if (found_slot == slots_.end() || found_slot->second != b.slot) {
+      if (found_slot == slots_.end() || found_slot->second != loop_slot) {
         return fail(compile_status::unmatched_block, variable.at,
-                    "NEXT " + variable.raw + " does not match the FOR " + p_.variable_names[b.slot] + " at line " +
-                        std::to_string(b.at.line));
+                    "NEXT " + shown(variable.raw) + " does not match the FOR " + p_.variable_names[loop_slot] +
+                        " at line " + std::to_string(loop_at.line));
       }
     }
     const std::uint32_t s = emit(statement_kind::for_next, where);
-    at_index(s).slot = b.slot;
-    at_index(s).extra = at_index(b.statement).extra;
-    at_index(s).target = b.statement + 1;
-    at_index(b.statement).target = here();
+    at_index(s).slot = loop_slot;
+    at_index(s).extra = at_index(loop).extra;
+    at_index(s).target = loop + 1;
+    at_index(loop).target = here();
     blocks_.pop_back();
     return true;
   }
@@ -813,7 +1256,9 @@ class compiler {
   //   comparison: sum { (= <> < > <= >=) sum }
   //   sum:   product { (+ | -) product }
   //   product: unary { (* | / | MOD) unary }
-  //   unary: - unary | + unary | value         highest
+  //   unary: - unary | + unary | power
+  //   power: value { ^ exponent }               left to right: 2^3^2 is 64
+  //   exponent: - exponent | + exponent | value  highest
 
   // One more level of nesting (a parenthesis, an operator, a one-line IF) while it lives; ok() says whether
   // that is still within max_nesting, so that no text can recurse the compiler deeper.
@@ -837,9 +1282,11 @@ class compiler {
   bool expression(std::uint32_t& id) {
     const auto begin = static_cast<std::uint32_t>(p_.code.size());
     depth_ = 0;
+    reads_ = 0;
     if (!or_expression()) return false;
     id = static_cast<std::uint32_t>(p_.expressions.size());
-    p_.expressions.push_back({begin, static_cast<std::uint32_t>(p_.code.size())});
+    p_.expressions.push_back({begin, static_cast<std::uint32_t>(p_.code.size()), reads_});
+    if ((reads_ & reads_clock) != 0) p_.reads_clock = true;
     return true;
   }
 
@@ -848,20 +1295,37 @@ class compiler {
     switch (op) {
       case expr_op::constant:
       case expr_op::variable:
-      case expr_op::parameter:
-      case expr_op::netstat:
+      case expr_op::axis:
+      case expr_op::system:
+      case expr_op::ticks:
+      case expr_op::in_all:
         ++depth_;
         p_.stack_depth = std::max(p_.stack_depth, depth_);
         break;
       case expr_op::vr:
+      case expr_op::table:
+      case expr_op::axis_of:
       case expr_op::key:
+      case expr_op::in_one:
+      case expr_op::read_op:
       case expr_op::negate:
       case expr_op::logical_not:
       case expr_op::absolute:
       case expr_op::integer_part:
+      case expr_op::fraction:
+      case expr_op::sign:
+      case expr_op::square_root:
+      case expr_op::sine:
+      case expr_op::cosine:
+      case expr_op::tangent:
+      case expr_op::arc_sine:
+      case expr_op::arc_cosine:
+      case expr_op::arc_tangent:
+      case expr_op::exponential:
+      case expr_op::logarithm:
         break;
       default:
-        --depth_;  // binary
+        --depth_;  // binary, and in_range
         break;
     }
   }
@@ -931,28 +1395,61 @@ class compiler {
     return true;
   }
 
+  bool signed_operand(bool (compiler::*operand)()) {
+    nesting guard(*this);
+    if (!guard.ok()) return false;
+    const bool minus = next().text == "-";
+    if (!(this->*operand)()) return false;
+    if (!minus) return true;
+    if (p_.code.back().op == expr_op::constant && depth_ > 0 && last_was_constant_) {
+      p_.code.back().value = -p_.code.back().value;  // a negative constant
+    } else {
+      push(expr_op::negate);
+    }
+    return true;
+  }
+
   bool unary() {
-    if (is_symbol("-") || is_symbol("+")) {
+    if (is_symbol("-") || is_symbol("+")) return signed_operand(&compiler::unary);
+    return power();
+  }
+
+  bool power() {
+    if (!value()) return false;
+    while (is_symbol("^")) {
       nesting guard(*this);
       if (!guard.ok()) return false;
-      const bool minus = next().text == "-";
-      if (!unary()) return false;
-      if (!minus) return true;
-      if (p_.code.back().op == expr_op::constant && depth_ > 0) {
-        p_.code.back().value = -p_.code.back().value;  // a negative constant
-      } else {
-        push(expr_op::negate);
-      }
-      return true;
+      next();
+      if (!exponent()) return false;
+      push(expr_op::power);
     }
+    return true;
+  }
+
+  bool exponent() {
+    if (is_symbol("-") || is_symbol("+")) return signed_operand(&compiler::exponent);
     return value();
   }
 
+  // `(expr)` after a function name, or two for ATAN2.
+  bool call(const std::string& word, int arguments) {
+    nesting guard(*this);
+    if (!guard.ok()) return false;
+    next();
+    if (!expect_symbol("(", "'(' after " + word) || !or_expression()) return false;
+    for (int i = 1; i < arguments; ++i) {
+      if (!expect_symbol(",", "',' and the next value of " + word + "(") || !or_expression()) return false;
+    }
+    return expect_symbol(")", "')' to close " + word + "(");
+  }
+
   bool value() {
+    last_was_constant_ = false;
     const token& t = peek();
     switch (t.kind) {
       case token_kind::number:
         push(expr_op::constant, 0, next().value);
+        last_was_constant_ = true;
         return true;
       case token_kind::string:
         return fail(compile_status::syntax_error, t.at, "a string can only be an item of PRINT");
@@ -972,20 +1469,66 @@ class compiler {
         break;
     }
     const std::string word = t.text;
-    if (word == "TRUE" || word == "FALSE") {
-      next();
-      push(expr_op::constant, 0, word == "TRUE" ? -1.0 : 0.0);
+    if (dollar_name(t)) return false;
+    const reserved_word* reserved = find_reserved_word(word);
+    if (reserved == nullptr) {
+      if (const auto d = declared_.find(to_lower(t.raw)); d != declared_.end()) {
+        next();
+        if (d->second.global) {
+          push(expr_op::constant, 0, d->second.number);
+          push(expr_op::vr);
+        } else {
+          push(expr_op::constant, 0, d->second.number);
+          last_was_constant_ = true;
+        }
+        return true;
+      }
+      if (is_symbol("(", 1)) {
+        return fail(compile_status::syntax_error, t.at,
+                    "'" + shown(t.raw) + "' is not a Trio BASIC function (docs/basic.md lists the words)");
+      }
+      push(expr_op::variable, slot_of(next().raw));
       return true;
     }
-    if (word == "VR" || word == "ABS" || word == "INT") {
+    if (!reserved->modelled) return refuse(*reserved, t.at);
+    if (word == "TRUE" || word == "FALSE" || word == "ON" || word == "OFF" || word == "PI") {
+      next();
+      push(expr_op::constant, 0, named_constant(word));
+      last_was_constant_ = true;
+      return true;
+    }
+    if (word == "VR" || word == "TABLE") {
+      if (!call(word, 1)) return false;
+      push(word == "VR" ? expr_op::vr : expr_op::table);
+      return true;
+    }
+    for (const function_word& f : functions) {
+      if (word != f.name) continue;
+      if (!call(word, 1)) return false;
+      push(f.op);
+      return true;
+    }
+    if (word == "ATAN2") {
+      if (!call(word, 2)) return false;
+      push(expr_op::arc_tangent2);
+      return true;
+    }
+    if (word == "IN") {
+      reads_ |= reads_inputs;
+      if (!is_symbol("(", 1)) {
+        next();
+        push(expr_op::in_all);
+        return true;
+      }
       nesting guard(*this);
       if (!guard.ok()) return false;
       next();
-      if (!expect_symbol("(", "'(' after " + word) || !or_expression() ||
-          !expect_symbol(")", "')' to close " + word + "(")) {
-        return false;
-      }
-      push(word == "VR" ? expr_op::vr : word == "ABS" ? expr_op::absolute : expr_op::integer_part);
+      next();  // '('
+      if (!or_expression()) return false;
+      const bool range = is_symbol(",");
+      if (range && (!expect_symbol(",", "','") || !or_expression())) return false;
+      if (!expect_symbol(")", "')' to close IN(")) return false;
+      push(range ? expr_op::in_range : expr_op::in_one);
       return true;
     }
     if (word == "KEY") {
@@ -996,25 +1539,49 @@ class compiler {
       push(expr_op::key);
       return true;
     }
-    if (word == "NETSTAT") {
+    if (word == "TICKS") {
       next();
-      push(expr_op::netstat);
+      reads_ |= reads_clock;
+      push(expr_op::ticks);
       return true;
     }
-    if (const int parameter = axis_parameter_index(word); parameter >= 0) {
+    if (word == "BASE") {
       next();
-      push(expr_op::parameter, static_cast<std::uint32_t>(parameter));
+      push(expr_op::system, static_cast<std::uint32_t>(system_value::base_axis));
       return true;
     }
-    if (word == "CHR" || word == "CURSOR")
+    for (const system_word& s : system_words) {
+      if (word != s.name) continue;
+      next();
+      push(expr_op::system, static_cast<std::uint32_t>(s.value));
+      return true;
+    }
+    if (axis_parameter p{}; find_axis_parameter(word, p)) {
+      next();
+      reads_ |= reads_axes;
+      std::uint32_t axis = no_expression;
+      if (is_word("AXIS")) {
+        nesting guard(*this);
+        if (!guard.ok()) return false;
+        next();
+        if (!expect_symbol("(", "'(' after AXIS (AXIS(n))") || !or_expression() ||
+            !expect_symbol(")", "')' to close AXIS(")) {
+          return false;
+        }
+        axis = 0;
+      }
+      push(axis == no_expression ? expr_op::axis : expr_op::axis_of, static_cast<std::uint32_t>(p));
+      return true;
+    }
+    if (word == "CHR" || word == "CURSOR" || word == "HEX")
       return fail(compile_status::syntax_error, t.at, word + "(...) can only be an item of PRINT");
-    if (reserved(word)) return expected("a value");
-    if (is_symbol("(", 1)) {
-      return fail(compile_status::syntax_error, t.at,
-                  "'" + t.raw + "' is not a function this interpreter knows (docs/basic.md lists them)");
-    }
-    push(expr_op::variable, slot_of(next().raw));
-    return true;
+    return fail(compile_status::syntax_error, t.at,
+                "expected a value, found " + found(t) + (reserved->kind == word_kind::program_structure ||
+                                                                 reserved->kind == word_kind::motion_command ||
+                                                                 reserved->kind == word_kind::io_command ||
+                                                                 reserved->kind == word_kind::system_command
+                                                             ? " (a command, not a value)"
+                                                             : ""));
   }
 
   const std::vector<token>& t_;
@@ -1023,16 +1590,20 @@ class compiler {
   std::vector<block> blocks_;
   std::map<std::string, std::uint32_t> slots_;
   std::map<std::string, label_definition> labels_;
+  std::map<std::string, declared_name> declared_;
   std::vector<label_use> label_uses_;
   std::uint32_t for_loops_ = 0;
   std::uint32_t depth_ = 0;
+  std::uint8_t reads_ = 0;
+  bool last_was_constant_ = false;
   int nesting_ = 0;
 };
 
 }  // namespace
 
 std::string compile_result::located_message() const {
-  return compiled.name + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + message;
+  return shown(compiled.name, 80) + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
+         ": " + message;
 }
 
 compile_result compile(std::string_view name, std::string_view text) {

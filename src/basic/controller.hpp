@@ -2,13 +2,14 @@
 // so a program runs the same on a simulated ring node (src/sim/ring_network.cpp), on a test double, or on
 // anything else that implements this interface.
 //
-//   PRINT #n,...        print(n, text)              n = 0: the controller's terminal; 10..24: the network
+//   PRINT #n,...        print(n, text)              n = 0: the terminal; 1, 2: serial ports; 5..7: Motion
+//                                                   Perfect's channels; 10..24: the network
 //   SEND(n,1,vr,value)  send_variable(n, vr, value)
 //   SEND(n,2,offset)    send_keypad_offset(n, offset)
 //   KEY#n, GET #n,x     key(n), get(n)              n = 3 (through DEFKEY) or 4 (raw)
 //   NETSTAT, NETSTAT=0  netstat(), clear_netstat()
 //   VR(i), VR(i)=x      vr(i), set_vr(i, x)         i < vr_count()
-//   SPEED, SPEED=x ...  parameter(p), set_parameter(p, x)   p indexes axis_parameter_names (program.hpp)
+//   axes, IN, OP, TABLE, WDOG, TICKS' clock        hardware(): the controller's machine (machine.hpp)
 //
 // A call never blocks: `busy` (or a PRINT that queued only part of its text) makes the statement wait and try
 // again at the next byte-time, while the ring goes on.
@@ -17,6 +18,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+
+#include "basic/machine.hpp"
 
 namespace trionet::basic {
 
@@ -95,8 +98,8 @@ class controller {
   virtual double vr(std::size_t index) const = 0;
   virtual void set_vr(std::size_t index, double value) = 0;
 
-  virtual double parameter(std::size_t index) const = 0;
-  virtual void set_parameter(std::size_t index, double value) = 0;
+  /// The axes, digital I/O, TABLE, watchdog and servo clock of this controller.
+  virtual machine& hardware() = 0;
 
  protected:
   controller() = default;

@@ -1,6 +1,8 @@
 #include "basic/task.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -10,6 +12,7 @@ namespace trionet::basic {
 namespace {
 
 constexpr double true_value = -1.0;  // TRUE in Trio BASIC; FALSE is 0
+constexpr std::size_t in_bits = 24;  // IN without a channel, and IN(first,last) at most: inputs 0..23
 
 double truth(bool b) {
   return b ? true_value : 0.0;
@@ -39,7 +42,28 @@ bool same_bits(double a, double b) {
 }
 
 std::string text_of(double v) {
-  return format_number(v);
+  return format_value(v);
+}
+
+const char* function_name(expr_op op) {
+  switch (op) {
+    case expr_op::square_root:
+      return "SQR";
+    case expr_op::arc_sine:
+      return "ASIN";
+    case expr_op::arc_cosine:
+      return "ACOS";
+    case expr_op::logarithm:
+      return "LN";
+    case expr_op::exponential:
+      return "EXP";
+    case expr_op::tangent:
+      return "TAN";
+    case expr_op::power:
+      return "^";
+    default:
+      return "the calculation";
+  }
 }
 
 }  // namespace
@@ -49,12 +73,18 @@ task::task(const program& code, controller& io, const task_config& config)
       io_(&io),
       config_(config),
       vars_(code.slots, 0.0),
-      stack_(static_cast<std::size_t>(code.stack_depth) + 1, 0.0) {}
+      stack_(static_cast<std::size_t>(code.stack_depth) + 1, 0.0),
+      ticks_base_(io.hardware().ticks()) {}
 
 std::uint32_t task::line() const noexcept {
   if (state_ == task_state::ended || state_ == task_state::failed) return line_;
   if (pc_ < code_->statements.size()) return code_->statements[pc_].line;
   return line_;
+}
+
+std::uint8_t task::waiting_reads() const noexcept {
+  if (wait_ != wait_reason::wait_until || pc_ >= code_->statements.size()) return 0;
+  return code_->expressions[code_->statements[pc_].expr[0]].reads;
 }
 
 const double* task::find_variable(std::string_view name) const {
@@ -100,12 +130,20 @@ void task::jumped() {
   }
 }
 
+// A runtime error: the task stops, unless ON BASICERROR GOTO named a label, where it goes on.
 bool task::fail(const std::string& message) {
-  state_ = task_state::failed;
-  wait_ = wait_reason::none;
   error_ = message;
+  wait_ = wait_reason::none;
   pending_ = false;
   ++effects_;
+  if (error_handler_ != no_expression) {
+    error_line_ = line_;
+    ++handled_errors_;
+    pc_ = error_handler_;
+    state_ = task_state::running;
+    return false;
+  }
+  state_ = task_state::failed;
   return false;
 }
 
@@ -134,11 +172,64 @@ bool task::vr_address(double value, std::size_t& index) {
   return true;
 }
 
+bool task::table_address(double value, std::size_t& index) {
+  const std::size_t count = io_->hardware().table_size();
+  if (!(value >= 0) || value >= static_cast<double>(count)) {
+    return fail("TABLE(" + text_of(value) + "): bad address (this controller has TABLE(0) to TABLE(" +
+                std::to_string(count == 0 ? 0 : count - 1) + "))");
+  }
+  index = static_cast<std::size_t>(value);
+  return true;
+}
+
+bool task::axis_number(double value, std::size_t& axis) {
+  const std::size_t count = io_->hardware().axis_count();
+  if (!(value >= 0) || value >= static_cast<double>(count)) {
+    return fail("AXIS(" + text_of(value) + "): this controller has axes 0 to " + std::to_string(count - 1));
+  }
+  axis = static_cast<std::size_t>(value);
+  return true;
+}
+
+bool task::io_number(double value, std::size_t& n, bool output) {
+  const std::size_t count = io_->hardware().io_count();
+  const double first = output ? 8 : 0;
+  if (!(value >= first) || value >= static_cast<double>(count)) {
+    return fail(std::string(output ? "OP(" : "IN(") + text_of(value) + "): this controller has " +
+                (output ? "outputs 8 to " : "inputs 0 to ") + std::to_string(count - 1));
+  }
+  n = static_cast<std::size_t>(value);
+  return true;
+}
+
+double task::system(system_value which) const {
+  machine& hw = io_->hardware();
+  switch (which) {
+    case system_value::netstat:
+      return static_cast<double>(io_->netstat());
+    case system_value::wdog:
+      return hw.wdog() ? 1.0 : 0.0;
+    case system_value::servo_period:
+      return hw.servo_period_us();
+    case system_value::control:
+      return hw.control();
+    case system_value::motion_error:
+    case system_value::system_error:
+      return 0;  // a simulated axis never loses its position, and nothing else goes wrong in the hardware
+    case system_value::error_line:
+      return error_line_;
+    case system_value::base_axis:
+      return base_axis();
+  }
+  return 0;
+}
+
 bool task::eval(std::uint32_t id, double& out) {
   const expression e = code_->expressions[id];
   const expr_instr* ip = code_->code.data() + e.begin;
   const expr_instr* const end = code_->code.data() + e.end;
   double* sp = stack_.data();
+  machine& hw = io_->hardware();
   for (; ip != end; ++ip) {
     switch (ip->op) {
       case expr_op::constant:
@@ -153,8 +244,26 @@ bool task::eval(std::uint32_t id, double& out) {
         sp[-1] = io_->vr(index);
         break;
       }
-      case expr_op::parameter:
-        *sp++ = io_->parameter(ip->index);
+      case expr_op::table: {
+        std::size_t index = 0;
+        if (!table_address(sp[-1], index)) return false;
+        sp[-1] = hw.table(index);
+        break;
+      }
+      case expr_op::axis:
+        *sp++ = hw.axis_value(base_.front(), static_cast<axis_parameter>(ip->index));
+        break;
+      case expr_op::axis_of: {
+        std::size_t axis = 0;
+        if (!axis_number(sp[-1], axis)) return false;
+        sp[-1] = hw.axis_value(axis, static_cast<axis_parameter>(ip->index));
+        break;
+      }
+      case expr_op::system:
+        *sp++ = system(static_cast<system_value>(ip->index));
+        break;
+      case expr_op::ticks:
+        *sp++ = ticks_value_ - static_cast<double>(hw.ticks() - ticks_base_);
         break;
       case expr_op::key: {
         int channel = 0;
@@ -163,9 +272,36 @@ bool task::eval(std::uint32_t id, double& out) {
         sp[-1] = truth(k.waiting);
         break;
       }
-      case expr_op::netstat:
-        *sp++ = static_cast<double>(io_->netstat());
+      case expr_op::in_all: {
+        double bits = 0;
+        for (std::size_t i = std::min(in_bits, hw.io_count()); i-- > 0;) bits = bits * 2 + (hw.input(i) ? 1 : 0);
+        *sp++ = bits;
         break;
+      }
+      case expr_op::in_one: {
+        std::size_t n = 0;
+        if (!io_number(sp[-1], n, false)) return false;
+        sp[-1] = hw.input(n) ? 1.0 : 0.0;
+        break;
+      }
+      case expr_op::in_range: {
+        std::size_t first = 0;
+        std::size_t last = 0;
+        if (!io_number(sp[-2], first, false) || !io_number(sp[-1], last, false)) return false;
+        if (last < first || last - first >= in_bits)
+          return fail("IN(" + text_of(sp[-2]) + "," + text_of(sp[-1]) + "): at most 24 inputs, first to last");
+        double bits = 0;
+        for (std::size_t i = last + 1; i-- > first;) bits = bits * 2 + (hw.input(i) ? 1 : 0);
+        sp[-2] = bits;
+        --sp;
+        break;
+      }
+      case expr_op::read_op: {
+        std::size_t n = 0;
+        if (!io_number(sp[-1], n, true)) return false;
+        sp[-1] = hw.output(n) ? 1.0 : 0.0;
+        break;
+      }
       case expr_op::negate:
         sp[-1] = -sp[-1];
         break;
@@ -177,6 +313,41 @@ bool task::eval(std::uint32_t id, double& out) {
         break;
       case expr_op::integer_part:
         sp[-1] = std::trunc(sp[-1]);
+        break;
+      case expr_op::fraction:
+        sp[-1] = sp[-1] - std::trunc(sp[-1]);
+        break;
+      case expr_op::sign:
+        sp[-1] = sp[-1] > 0 ? 1.0 : (sp[-1] < 0 ? -1.0 : 0.0);
+        break;
+      case expr_op::square_root:
+        if (sp[-1] < 0) return fail("SQR(" + text_of(sp[-1]) + "): the square root of a negative number");
+        sp[-1] = std::sqrt(sp[-1]);
+        break;
+      case expr_op::sine:
+        sp[-1] = std::sin(sp[-1]);
+        break;
+      case expr_op::cosine:
+        sp[-1] = std::cos(sp[-1]);
+        break;
+      case expr_op::tangent:
+        sp[-1] = std::tan(sp[-1]);
+        break;
+      case expr_op::arc_sine:
+      case expr_op::arc_cosine:
+        if (!(sp[-1] >= -1 && sp[-1] <= 1))
+          return fail(std::string(function_name(ip->op)) + "(" + text_of(sp[-1]) + "): the value must be -1 to 1");
+        sp[-1] = ip->op == expr_op::arc_sine ? std::asin(sp[-1]) : std::acos(sp[-1]);
+        break;
+      case expr_op::arc_tangent:
+        sp[-1] = std::atan(sp[-1]);
+        break;
+      case expr_op::exponential:
+        sp[-1] = std::exp(sp[-1]);
+        break;
+      case expr_op::logarithm:
+        if (!(sp[-1] > 0)) return fail("LN(" + text_of(sp[-1]) + "): the logarithm of a number 0 or below");
+        sp[-1] = std::log(sp[-1]);
         break;
       case expr_op::add:
         sp[-2] = sp[-2] + sp[-1];
@@ -193,6 +364,19 @@ bool task::eval(std::uint32_t id, double& out) {
       case expr_op::divide:
         if (sp[-1] == 0) return fail("division by zero");
         sp[-2] = sp[-2] / sp[-1];
+        --sp;
+        break;
+      case expr_op::power: {
+        const double r = std::pow(sp[-2], sp[-1]);
+        if (std::isnan(r) || (sp[-2] == 0 && sp[-1] < 0)) {
+          return fail(text_of(sp[-2]) + "^" + text_of(sp[-1]) + ": no real result");
+        }
+        sp[-2] = r;
+        --sp;
+        break;
+      }
+      case expr_op::arc_tangent2:
+        sp[-2] = std::atan2(sp[-2], sp[-1]);
         --sp;
         break;
       case expr_op::modulo: {
@@ -242,14 +426,103 @@ bool task::eval(std::uint32_t id, double& out) {
     }
   }
   out = sp[-1];
+  if (!std::isfinite(out)) return fail("a value out of range (the calculation overflows)");
   return true;
 }
 
-std::uint32_t task::run(std::uint64_t now, std::uint32_t budget) {
+// The axes a motion command with `count` values moves: the base axes (BASE, or AXIS(n) for this command
+// alone), followed by every other axis in order, the first `count` of them.
+std::vector<std::size_t> task::base_group(std::size_t count, std::uint32_t axis_expression, bool& ok) {
+  ok = false;
+  std::vector<std::size_t> order;
+  const std::size_t axes = io_->hardware().axis_count();
+  if (axis_expression != no_expression) {
+    double v = 0;
+    std::size_t axis = 0;
+    if (!eval(axis_expression, v) || !axis_number(v, axis)) return {};
+    order.push_back(axis);
+  } else {
+    order = base_;
+  }
+  for (std::size_t a = 0; a < axes && order.size() < count; ++a) {
+    if (std::find(order.begin(), order.end(), a) == order.end()) order.push_back(a);
+  }
+  if (count > order.size()) {
+    fail(std::to_string(count) + " values for " + std::to_string(axes) + " axes");
+    return {};
+  }
+  order.resize(count);
+  ok = true;
+  return order;
+}
+
+bool task::motion(const statement& s) {
+  machine& hw = io_->hardware();
+  const auto command = static_cast<motion_command>(s.slot);
+  if (!pending_) {
+    motion_args_.assign(s.count, 0.0);
+    for (std::uint32_t i = 0; i < s.count; ++i) {
+      if (!eval(code_->arguments[s.extra + i], motion_args_[i])) return false;
+    }
+    const bool group = command == motion_command::move || command == motion_command::moveabs ||
+                       command == motion_command::defpos;
+    bool ok = true;
+    if (command != motion_command::rapidstop) motion_axes_ = base_group(group ? s.count : 1, s.expr[3], ok);
+    if (!ok) return false;
+    pending_ = true;
+  }
+  motion_status status = motion_status::ok;
+  switch (command) {
+    case motion_command::move:
+    case motion_command::moveabs:
+      status = hw.move(motion_axes_, motion_args_, command == motion_command::move ? move_type::move : move_type::moveabs);
+      break;
+    case motion_command::defpos:
+      status = hw.defpos(motion_axes_, motion_args_);
+      break;
+    case motion_command::forward:
+    case motion_command::reverse:
+      status = hw.forward(motion_axes_.front(), command == motion_command::forward ? 1 : -1);
+      break;
+    case motion_command::cancel: {
+      const double mode = motion_args_.empty() ? 0 : motion_args_.front();
+      if (mode != 0 && mode != 1) return fail("CANCEL(" + text_of(mode) + "): the mode is 0 (the running move) or 1 (the buffered one)");
+      hw.cancel(motion_axes_.front(), mode == 1);
+      break;
+    }
+    case motion_command::rapidstop:
+      hw.rapidstop();
+      break;
+    case motion_command::datum: {
+      const double mode = motion_args_.front();
+      if (!(mode >= 0 && mode <= 6) || mode != std::trunc(mode))
+        return fail("DATUM(" + text_of(mode) + "): the mode is 0 to 6");
+      status = hw.datum(motion_axes_.front(), static_cast<int>(mode));
+      break;
+    }
+  }
+  if (status == motion_status::busy) {
+    state_ = task_state::waiting;
+    wait_ = wait_reason::motion;
+    return false;
+  }
+  if (status == motion_status::bad_axis) return fail("the same axis twice in one move");
+  pending_ = false;
+  ++effects_;
+  return true;
+}
+
+bool task::waits_for_motion() {
+  state_ = task_state::waiting;
+  wait_ = wait_reason::motion;
+  return true;
+}
+
+std::uint32_t task::run(std::uint32_t budget) {
   if (state_ == task_state::ended || state_ == task_state::failed) return 0;
-  now_ = now;
   state_ = task_state::running;
   wait_ = wait_reason::none;
+  machine& hw = io_->hardware();
   const statement* const all = code_->statements.data();
   const auto size = static_cast<std::uint32_t>(code_->statements.size());
   std::uint32_t done = 0;
@@ -278,14 +551,51 @@ std::uint32_t task::run(std::uint64_t now, std::uint32_t budget) {
         ++pc_;
         break;
       }
-      case statement_kind::assign_parameter:
-        if (!eval(s.expr[0], v)) goto out;
-        if (!same_bits(io_->parameter(s.slot), v)) {
-          io_->set_parameter(s.slot, v);
+      case statement_kind::assign_table: {
+        std::size_t index = 0;
+        double value = 0;
+        if (!eval(s.expr[0], v) || !table_address(v, index) || !eval(s.expr[1], value)) goto out;
+        if (!same_bits(hw.table(index), value)) {
+          hw.set_table(index, value);
           ++effects_;
         }
         ++pc_;
         break;
+      }
+      case statement_kind::table_write: {
+        std::size_t first = 0;
+        if (!eval(code_->arguments[s.extra], v) || !table_address(v, first)) goto out;
+        for (std::uint32_t i = 1; i < s.count; ++i) {
+          std::size_t index = 0;
+          double value = 0;
+          if (!table_address(static_cast<double>(first + i - 1), index) ||
+              !eval(code_->arguments[s.extra + i], value)) {
+            goto out;
+          }
+          if (!same_bits(hw.table(index), value)) {
+            hw.set_table(index, value);
+            ++effects_;
+          }
+        }
+        ++pc_;
+        break;
+      }
+      case statement_kind::assign_axis: {
+        std::size_t axis = base_.front();
+        double a = 0;
+        if (s.expr[1] != no_expression && (!eval(s.expr[1], a) || !axis_number(a, axis))) goto out;
+        if (!eval(s.expr[0], v)) goto out;
+        const auto p = static_cast<axis_parameter>(s.slot);
+        if (!same_bits(hw.axis_value(axis, p), v)) {
+          if (hw.set_axis_value(axis, p, v) != machine::set_status::ok) {
+            fail(std::string(info(p).name) + "=" + text_of(v) + ": out of range (UNITS must be above 0)");
+            goto out;
+          }
+          ++effects_;
+        }
+        ++pc_;
+        break;
+      }
       case statement_kind::assign_netstat:
         if (!eval(s.expr[0], v)) goto out;
         if (v != 0) {
@@ -296,6 +606,21 @@ std::uint32_t task::run(std::uint64_t now, std::uint32_t budget) {
           io_->clear_netstat();
           ++effects_;
         }
+        ++pc_;
+        break;
+      case statement_kind::assign_wdog:
+        if (!eval(s.expr[0], v)) goto out;
+        if (hw.wdog() != (v != 0)) {
+          hw.set_wdog(v != 0);
+          ++effects_;
+        }
+        ++pc_;
+        break;
+      case statement_kind::assign_ticks:
+        if (!eval(s.expr[0], v)) goto out;
+        ticks_value_ = v;
+        ticks_base_ = hw.ticks();
+        ++effects_;
         ++pc_;
         break;
       case statement_kind::jump:
@@ -328,6 +653,28 @@ std::uint32_t task::run(std::uint64_t now, std::uint32_t budget) {
         pc_ = gosub_.back();
         gosub_.pop_back();
         jumped();
+        break;
+      case statement_kind::on_jump: {
+        if (!eval(s.expr[0], v)) goto out;
+        const double k = std::trunc(v);
+        if (!(k >= 1 && k <= static_cast<double>(s.count))) {  // out of range: on to the next statement
+          ++pc_;
+          break;
+        }
+        if (s.flag) {
+          if (gosub_.size() >= config_.max_gosub_depth) {
+            fail("GOSUB nested more than " + std::to_string(config_.max_gosub_depth) + " deep");
+            goto out;
+          }
+          gosub_.push_back(pc_ + 1);
+        }
+        pc_ = code_->jump_targets[s.extra + static_cast<std::uint32_t>(k) - 1];
+        jumped();
+        break;
+      }
+      case statement_kind::on_error:
+        error_handler_ = s.target;
+        ++pc_;
         break;
       case statement_kind::for_start: {
         double last = 0;
@@ -374,17 +721,75 @@ std::uint32_t task::run(std::uint64_t now, std::uint32_t budget) {
             fail("WA(" + text_of(v) + "): the time must be 0 ms or more");
             goto out;
           }
-          const double ticks = std::ceil(v * config_.ticks_per_ms);
-          wake_at_ = ticks >= 1e18 ? std::numeric_limits<std::uint64_t>::max() - now_ : static_cast<std::uint64_t>(ticks);
-          wake_at_ += now_;
+          // Servo ticks, as the controller counts them: WA(t) resumes at the t-th tick (at the default period)
+          // after the one it started in.
+          const double ticks = std::ceil(v * 1000.0 / hw.servo_period_us() - 1e-9);
+          wake_at_ = hw.ticks() + (ticks >= 1e18 ? static_cast<std::uint64_t>(1e18) : static_cast<std::uint64_t>(ticks));
           pending_ = true;
         }
-        if (now_ < wake_at_) {
+        if (hw.ticks() < wake_at_) {
           state_ = task_state::waiting;
           wait_ = wait_reason::wa;
           goto out;
         }
         pending_ = false;
+        ++pc_;
+        break;
+      case statement_kind::wait_idle:
+      case statement_kind::wait_loaded: {
+        std::size_t axis = base_.front();
+        if (s.expr[3] != no_expression && (!eval(s.expr[3], v) || !axis_number(v, axis))) goto out;
+        const bool ready = s.kind == statement_kind::wait_idle ? hw.idle(axis) : hw.loaded(axis);
+        if (!ready) {
+          waits_for_motion();
+          goto out;
+        }
+        ++pc_;
+        break;
+      }
+      case statement_kind::output: {
+        if (!eval(s.expr[0], v)) goto out;
+        if (s.flag) {  // OP(bits): outputs 8 up, one bit each
+          const std::int64_t bits = integer_of(v);
+          for (std::size_t n = 8; n < hw.io_count() && n < 8 + in_bits; ++n) {
+            const bool on = ((bits >> (n - 8)) & 1) != 0;
+            if (hw.output(n) != on) {
+              (void)hw.set_output(n, on);
+              ++effects_;
+            }
+          }
+        } else {
+          std::size_t n = 0;
+          double state = 0;
+          if (!io_number(v, n, true) || !eval(s.expr[1], state)) goto out;
+          if (hw.output(n) != (state != 0)) {
+            (void)hw.set_output(n, state != 0);
+            ++effects_;
+          }
+        }
+        ++pc_;
+        break;
+      }
+      case statement_kind::base: {
+        std::vector<std::size_t> axes;
+        for (std::uint32_t i = 0; i < s.count; ++i) {
+          std::size_t axis = 0;
+          if (!eval(code_->arguments[s.extra + i], v) || !axis_number(v, axis)) goto out;
+          if (std::find(axes.begin(), axes.end(), axis) != axes.end()) {
+            fail("BASE names axis " + std::to_string(axis) + " twice");
+            goto out;
+          }
+          axes.push_back(axis);
+        }
+        if (axes != base_) {
+          base_ = std::move(axes);
+          ++effects_;
+        }
+        ++pc_;
+        break;
+      }
+      case statement_kind::motion:
+        if (!motion(s)) goto out;
         ++pc_;
         break;
       case statement_kind::print:
@@ -433,13 +838,23 @@ bool task::build_print_text(const statement& s) {
         text_ += 'H';
         text_ += static_cast<char>(c);
         break;
+      case print_item::kind::hex: {
+        if (!eval(item.source, v)) return false;
+        const double whole = std::trunc(v);
+        if (!(whole >= 0 && whole < 4294967296.0))
+          return fail("HEX(" + text_of(v) + "): HEX prints whole numbers 0 to $FFFFFFFF");
+        char digits[16];
+        std::snprintf(digits, sizeof digits, "%llX", static_cast<unsigned long long>(whole));
+        text_ += digits;
+        break;
+      }
       case print_item::kind::number:
         if (!eval(item.source, v)) return false;
-        append_number(text_, v);
+        append_print_number(text_, v);
         break;
       case print_item::kind::formatted_number:
         if (!eval(item.source, v)) return false;
-        append_number(text_, v, item.width, item.decimals);
+        append_print_number(text_, v, item.width, item.decimals);
         break;
     }
     if (item.separator == ',') text_ += '\t';
@@ -477,7 +892,8 @@ bool task::print(const statement& s) {
       case io_status::character_out_of_range:
         return fail(where() + ": a character above 127 (the ring carries 0..127)");
       default:
-        return fail(where() + ": bad channel (#0 is the terminal, #10..#24 the network)");
+        return fail(where() + ": bad channel (#0 is the terminal, #1 and #2 the serial ports, #5 to #7 Motion "
+                              "Perfect's channels, #10 to #24 the network)");
     }
     if (r.queued == 0) {
       state_ = task_state::waiting;

@@ -1,12 +1,14 @@
 // A running BASIC program: the interpreter. One `task` runs one compiled program (program.hpp) against one
 // controller (controller.hpp), a budget of statements at a time, on a clock the caller supplies:
 //
-//   for each byte-time t:  task.run(t, statements_per_byte_time);  ring.step();
+//   for each byte-time:  the servo ticks due -> task.run(statements_per_byte_time) -> ring.step()
 //
 // A statement that cannot complete yet (PRINT #n or SEND without room, GET #n with nothing received, WAIT UNTIL
-// with a false condition, WA before its time) ends the task's turn and is tried again at its next turn; the
-// rest of the ring goes on. A runtime error stops the task with its line and a message; the controller and
-// every other task go on. Deterministic: the same program, controller behaviour and clock give the same run.
+// with a false condition, WA before its time, a move with the axes' buffers full, WAIT IDLE while the axis
+// moves) ends the task's turn and is tried again at its next turn; the rest of the ring goes on. WA and TICKS
+// count the controller's servo ticks (machine.hpp). A runtime error stops the task with its line and a message
+// (or goes to its ON BASICERROR label); the controller and every other task go on. Deterministic: the same
+// program, controller behaviour and clock give the same run.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +51,7 @@ enum class wait_reason : std::uint8_t {
   get,         ///< a character for GET #n
   wait_until,  ///< WAIT UNTIL's condition
   wa,          ///< WA's time
+  motion,      ///< room in the axes' move buffers, or the axes to stop (WAIT IDLE, WAIT LOADED, DEFPOS)
 };
 
 constexpr const char* to_string(wait_reason reason) noexcept {
@@ -65,14 +68,13 @@ constexpr const char* to_string(wait_reason reason) noexcept {
       return "wait_until";
     case wait_reason::wa:
       return "wa";
+    case wait_reason::motion:
+      return "motion";
   }
   return "unknown";
 }
 
 struct task_config {
-  /// Clock ticks per millisecond, for WA(ms): byte-times per ms = bit rate / (1000 x bits per byte).
-  /// Default: 125 kbit/s with 10 line bits per byte.
-  double ticks_per_ms = 12.5;
   /// GOSUB nesting beyond this stops the task with an error.
   std::size_t max_gosub_depth = 64;
 };
@@ -82,16 +84,20 @@ class task {
   /// `code` and `io` must outlive the task.
   task(const program& code, controller& io, const task_config& config = {});
 
-  /// Runs statements at clock time `now` (ticks, never decreasing) until `budget` statements have run, one
-  /// waits, or the program ends or fails. Returns the number of statements run.
-  std::uint32_t run(std::uint64_t now, std::uint32_t budget);
+  /// Runs statements until `budget` statements have run, one waits, or the program ends or fails. Returns the
+  /// number of statements run.
+  std::uint32_t run(std::uint32_t budget);
 
   task_state state() const noexcept { return state_; }
   wait_reason waiting_for() const noexcept { return wait_; }
+  /// What the condition of the WAIT UNTIL the task waits in reads (expression_reads bits; 0 otherwise).
+  std::uint8_t waiting_reads() const noexcept;
   /// The line of the statement that runs next or waits; once ended or failed, of the last one run.
   std::uint32_t line() const noexcept;
-  /// The runtime error that stopped the task ("" unless failed).
+  /// The runtime error that stopped the task, or the last one its ON BASICERROR label took ("" if none).
   const std::string& error() const noexcept { return error_; }
+  /// Runtime errors the ON BASICERROR label took so far.
+  std::uint64_t handled_errors() const noexcept { return handled_errors_; }
   const program& code() const noexcept { return *code_; }
 
   /// Statements run so far.
@@ -120,10 +126,18 @@ class task {
   bool fail(const std::string& message);
   void jumped();
   bool vr_address(double value, std::size_t& index);
+  bool table_address(double value, std::size_t& index);
+  bool axis_number(double value, std::size_t& axis);
+  bool io_number(double value, std::size_t& n, bool output);
+  double system(system_value which) const;
+  double base_axis() const { return static_cast<double>(base_.front()); }
+  std::vector<std::size_t> base_group(std::size_t count, std::uint32_t axis_expression, bool& ok);
   bool build_print_text(const statement& s);
   bool print(const statement& s);
   bool send(const statement& s);
   bool get(const statement& s);
+  bool motion(const statement& s);
+  bool waits_for_motion();
   void end_here(std::uint32_t line) noexcept;
 
   const program* code_;
@@ -137,7 +151,6 @@ class task {
   task_state state_ = task_state::running;
   wait_reason wait_ = wait_reason::none;
   std::string error_;
-  std::uint64_t now_ = 0;
   std::uint64_t statements_ = 0;
   std::uint64_t effects_ = 0;
 
@@ -148,6 +161,16 @@ class task {
   int channel_ = 0;
   double send_args_[4] = {};
   std::uint64_t wake_at_ = 0;
+
+  // Per process, as on the controller: the base axes, TICKS, the ON BASICERROR label and ERROR_LINE.
+  std::vector<std::size_t> base_{0};
+  double ticks_value_ = 0;
+  std::uint64_t ticks_base_ = 0;
+  std::uint32_t error_handler_ = no_expression;
+  double error_line_ = 0;
+  std::uint64_t handled_errors_ = 0;
+  std::vector<double> motion_args_;
+  std::vector<std::size_t> motion_axes_;
 
   // Idle-loop detection (Brent's cycle finding over the states after taken jumps).
   bool idle_ = false;

@@ -21,6 +21,8 @@
 #include "simulation.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/pcapng.hpp"
+#include "trionet/host/text.hpp"
+#include "trionet/ring.hpp"
 
 namespace trionet::cli {
 
@@ -28,11 +30,14 @@ const char* const simulate_usage =
     "usage: trionet ring simulate example1|example2|example3|example3-fixed [options]\n"
     "       trionet ring simulate --node mc:FILE.bas|mc|keypad ... [options]   (nodes in ring order)\n"
     "options:\n"
-    "  --keys SCRIPT            key presses, e.g. \"wait=500 1:7 1:up 1:Y wait=2000 2:start\" (docs/basic.md)\n"
+    "  --keys SCRIPT            key presses and inputs, e.g. \"wait=500 1:7 1:up node1:in3=on 2:start\"\n"
+    "                           (docs/basic.md)\n"
     "  --byte-times N           stop after N byte-times (default 1000000)\n"
     "  --bit-rate B             bits per second on every link (default 125000; 10 bits per byte)\n"
     "  --statements-per-byte-time S   BASIC statements each program runs per byte-time (default 1)\n"
     "  --key-gap N              byte-times each key press takes (default 1000)\n"
+    "  --servo-period US        every controller's SERVO_PERIOD in microseconds: its axes, TICKS and WA\n"
+    "                           (default 1000)\n"
     "  --trace                  also every message on every link and every display change\n"
     "  --json                   a JSON summary as the last line (alone, unless --trace)\n"
     "  --pcap FILE              write every byte of every link to a pcapng capture: one interface per link\n"
@@ -55,6 +60,7 @@ const option_list& ring_simulate_options() {
       {"--bit-rate", "B", "", "bits per second on every link (default 125000; 10 bits per byte)"},
       {"--statements-per-byte-time", "S", "", "BASIC statements each program runs per byte-time (default 1)"},
       {"--key-gap", "N", "", "byte-times each key press takes (default 1000)"},
+      {"--servo-period", "US", "", "every controller's SERVO_PERIOD in microseconds (default 1000)"},
       {"--trace", nullptr, "", "also every message on every link and every display change"},
       {"--json", nullptr, "", "a JSON summary as the last line"},
       {"--pcap", "FILE", "@file", "write every byte of every link to a pcapng capture, one interface per link"},
@@ -104,6 +110,12 @@ bool node_of(const std::string& spec, bool builtin, host::node_spec& node, std::
   return true;
 }
 
+// An argument echoed in a message: cut and escaped.
+std::string shown_argument(const std::string& text) {
+  const std::string cut = host::clipped(text, 40);
+  return host::escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
+}
+
 std::string box(const std::vector<std::string>& lines, const char* indent) {
   std::string out = std::string(indent) + "+--------------------+\n";
   for (const std::string& line : lines) out += std::string(indent) + "|" + line + "|\n";
@@ -115,54 +127,70 @@ std::string basic_address_text(unsigned hops) {
   return std::to_string(hops) + (hops == 1 ? " hop" : " hops") + " along (BASIC " + std::to_string(hops + 9) + ")";
 }
 
-void print_summary(const host::ring_network& net) {
+std::string list_of(const std::vector<std::size_t>& numbers) {
+  std::string out;
+  for (std::size_t n : numbers) out += " " + std::to_string(n);
+  return out;
+}
+
+void append_summary(std::string& out, const host::ring_network& net) {
+  const auto line = [&out](const std::string& text) { out += text + "\n"; };
   for (std::size_t i = 1; i <= net.size(); ++i) {
     const host::node_report r = net.report(i);
     if (r.what == host::node_spec::kind::keypad) {
-      std::printf("node %zu  keypad %zu: ", i, r.keypad_number);
-      if (r.network_mode) {
-        std::printf("network mode, keys go %s\n", basic_address_text(r.offset).c_str());
-      } else {
-        std::printf("local mode (no keypad offset received)\n");
-      }
-      std::fputs(box(r.display, "        ").c_str(), stdout);
+      line("node " + std::to_string(i) + "  keypad " + std::to_string(r.keypad_number) + ": " +
+           (r.network_mode ? "network mode, keys go " + basic_address_text(r.offset)
+                           : std::string("local mode (no keypad offset received)")));
+      out += box(r.display, "        ");
       if (r.dropped != 0 || r.keys_lost != 0) {
-        std::printf("        dropped in local mode: %u message(s); keys lost: %u\n", static_cast<unsigned>(r.dropped),
-                    static_cast<unsigned>(r.keys_lost));
+        line("        dropped in local mode: " + std::to_string(r.dropped) +
+             " message(s); keys lost: " + std::to_string(r.keys_lost));
       }
       continue;
     }
-    std::printf("node %zu  mc", i);
+    std::string head = "node " + std::to_string(i) + "  mc";
     if (r.state == "none") {
-      std::printf(" (no program)\n");
+      head += " (no program)";
     } else {
-      std::printf(" %s: ", r.program.c_str());
+      head += " " + r.program + ": ";
       if (r.state == "failed") {
-        std::printf("stopped at line %u: %s\n", static_cast<unsigned>(r.line), r.error.c_str());
+        head += "stopped at line " + std::to_string(r.line) + ": " + r.error;
       } else if (r.state == "ended") {
-        std::printf("ended at line %u\n", static_cast<unsigned>(r.line));
+        head += "ended at line " + std::to_string(r.line);
       } else if (r.state == "waiting") {
-        std::printf("waiting at line %u (%s)\n", static_cast<unsigned>(r.line), r.waiting.c_str());
+        head += "waiting at line " + std::to_string(r.line) + " (" + r.waiting + ")";
       } else {
-        std::printf("running at line %u%s\n", static_cast<unsigned>(r.line),
-                    r.idle ? ", round a loop that changes nothing" : "");
+        head += "running at line " + std::to_string(r.line) + (r.idle ? ", round a loop that changes nothing" : "");
       }
     }
-    std::printf("        NETSTAT %u\n", static_cast<unsigned>(r.netstat));
-    const auto list = [](const char* title, const std::string& items) {
-      if (!items.empty()) std::printf("        %s:%s\n", title, items.c_str());
+    line(head);
+    line("        NETSTAT " + std::to_string(r.netstat) + (r.wdog ? "  WDOG ON" : ""));
+    const auto list = [&line](const char* title, const std::string& items) {
+      if (!items.empty()) line(std::string("        ") + title + ":" + items);
     };
     std::string text;
-    for (const auto& [vr, value] : r.vrs) text += " VR(" + std::to_string(vr) + ")=" + basic::format_number(value);
+    for (const auto& [vr, value] : r.vrs) text += " VR(" + std::to_string(vr) + ")=" + basic::format_value(value);
     list("VR", text);
     text.clear();
-    for (const auto& [name, value] : r.variables) text += " " + name + "=" + basic::format_number(value);
-    list("variables", text);
+    for (const auto& [index, value] : r.table) text += " TABLE(" + std::to_string(index) + ")=" + basic::format_value(value);
+    if (r.table_nonzero > r.table.size()) text += " ... (" + std::to_string(r.table_nonzero) + " not 0)";
+    list("TABLE", text);
     text.clear();
-    for (const auto& [name, value] : r.parameters) text += " " + name + "=" + basic::format_number(value);
-    list("axis parameters", text);
+    for (const auto& [name, value] : r.variables) text += " " + name + "=" + basic::format_value(value);
+    list("variables", text);
+    list("inputs on", list_of(r.inputs_on));
+    list("outputs on", list_of(r.outputs_on));
+    for (const host::axis_report& a : r.axes) {
+      std::string axis = "        axis " + std::to_string(a.axis) + ": DPOS " + basic::format_value(a.dpos) + " MPOS " +
+                         basic::format_value(a.mpos) + ", ";
+      axis += a.idle ? std::string("idle")
+                     : "moving (MTYPE " + std::to_string(a.mtype) + ", VP_SPEED " + basic::format_value(a.speed) + ")";
+      for (const auto& [name, value] : a.parameters) axis += " " + name + "=" + basic::format_value(value);
+      line(axis);
+    }
   }
 }
+
 
 }  // namespace
 
@@ -213,25 +241,32 @@ int ring_simulate_main(const words& all) {
   std::uint64_t max_byte_times = 1000000;
   if (args.has("--byte-times")) {
     if (!parse_integer(args.options.at("--byte-times"), 1, 1000000000000LL, number))
-      return fail("--byte-times must be a whole number 1..10^12, got '" + args.options.at("--byte-times") + "'");
+      return fail("--byte-times must be a whole number 1..10^12, got '" + shown_argument(args.options.at("--byte-times")) + "'");
     max_byte_times = static_cast<std::uint64_t>(number);
   }
   if (args.has("--bit-rate")) {
     double rate = 0;
     if (!parse_real(args.options.at("--bit-rate"), rate) || !(rate >= 1 && rate <= 1e9))
-      return fail("--bit-rate must be a number of bits per second 1..10^9, got '" + args.options.at("--bit-rate") +
+      return fail("--bit-rate must be a number of bits per second 1..10^9, got '" + shown_argument(args.options.at("--bit-rate")) +
                   "'");
     config.bit_rate = rate;
   }
   if (args.has("--statements-per-byte-time")) {
     if (!parse_integer(args.options.at("--statements-per-byte-time"), 1, 1000000, number))
       return fail("--statements-per-byte-time must be a whole number 1..1000000, got '" +
-                  args.options.at("--statements-per-byte-time") + "'");
+                  shown_argument(args.options.at("--statements-per-byte-time")) + "'");
     config.statements_per_byte_time = static_cast<std::uint32_t>(number);
+  }
+  if (args.has("--servo-period")) {
+    double period = 0;
+    if (!parse_real(args.options.at("--servo-period"), period) || !(period >= 1 && period <= 1000000))
+      return fail("--servo-period must be a number of microseconds 1..1000000, got '" +
+                  shown_argument(args.options.at("--servo-period")) + "'");
+    config.servo_period_us = period;
   }
   if (args.has("--key-gap")) {
     if (!parse_integer(args.options.at("--key-gap"), 0, 1000000000LL, number))
-      return fail("--key-gap must be a whole number of byte-times, got '" + args.options.at("--key-gap") + "'");
+      return fail("--key-gap must be a whole number of byte-times, got '" + shown_argument(args.options.at("--key-gap")) + "'");
     config.key_gap = static_cast<std::uint64_t>(number);
   }
 
@@ -273,51 +308,71 @@ int ring_simulate_main(const words& all) {
   const bool json = args.flags.count("--json") != 0;
   const bool trace = args.flags.count("--trace") != 0;
   const bool narrate = trace || !json;
+  output out;
+  std::string& text = out.text();
   if (narrate) {
-    if (builtin != nullptr) std::printf("%s: %s\n", builtin->name, builtin->title);
-    std::printf("ring:");
+    if (builtin != nullptr) text += std::string(builtin->name) + ": " + builtin->title + "\n";
+    text += "ring:";
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const host::node_report r = net->report(i + 1);
       if (r.what == host::node_spec::kind::keypad) {
-        std::printf(" %zu keypad %zu ->", i + 1, r.keypad_number);
+        text += " " + std::to_string(i + 1) + " keypad " + std::to_string(r.keypad_number) + " ->";
       } else {
-        std::printf(" %zu mc%s%s ->", i + 1, nodes[i].program_name.empty() ? "" : " ", nodes[i].program_name.c_str());
+        text += " " + std::to_string(i + 1) + " mc" + (nodes[i].program_name.empty() ? "" : " ") +
+                nodes[i].program_name + " ->";
       }
     }
-    std::printf(" back to 1\n");
-    std::printf("clock: one byte per link per byte-time, %s us at %s bit/s (10 bits per byte); %u BASIC "
-                "statement(s) per byte-time per program\n",
-                basic::format_number(1e6 * 10 / config.bit_rate).c_str(), basic::format_number(config.bit_rate).c_str(),
-                static_cast<unsigned>(config.statements_per_byte_time));
-    if (!keys.empty()) std::printf("keys: %s\n", keys.c_str());
-    std::printf("\n");
-    net->on_event([trace](const host::network_event& e) {
+    text += " back to 1\n";
+    text += "clock: one byte per link per byte-time, " + basic::format_value(1e6 * 10 / config.bit_rate) + " us at " +
+            basic::format_value(config.bit_rate) + " bit/s (10 bits per byte); " +
+            std::to_string(config.statements_per_byte_time) +
+            " BASIC statement(s) per byte-time per program; servo period " +
+            basic::format_value(config.servo_period_us) + " us\n";
+    if (!keys.empty()) text += "keys: " + keys + "\n";
+    text += "\n";
+    net->on_event([trace, &out](const host::network_event& e) {
       const bool traced_only = e.kind == host::event_kind::message || e.kind == host::event_kind::frame_error ||
-                               e.kind == host::event_kind::display;
+                               e.kind == host::event_kind::display || e.kind == host::event_kind::motion;
       if (traced_only && !trace) return;
+      char head[64];
+      std::snprintf(head, sizeof head, "t=%8llu  node %-2zu ", static_cast<unsigned long long>(e.time), e.node);
       if (e.kind == host::event_kind::display) {
-        std::printf("t=%8llu  node %-2zu display\n%s", static_cast<unsigned long long>(e.time), e.node,
-                    box(e.display, "                      ").c_str());
-        return;
+        out.text() += std::string(head) + "display\n" + box(e.display, "                      ");
+      } else {
+        out.text() += head + e.text + "\n";
       }
-      std::printf("t=%8llu  node %-2zu %s\n", static_cast<unsigned long long>(e.time), e.node, e.text.c_str());
+      (void)out.maybe_flush();
     });
   }
-  const host::run_end end = net->run(max_byte_times);
-  if (narrate) {
-    if (end == host::run_end::settled) {
-      std::printf("t=%8llu  settled: every program has ended or waits for ever, the keys are done and the ring is "
-                  "quiet\n",
-                  static_cast<unsigned long long>(net->now()));
-    } else {
-      std::printf("t=%8llu  stopped after --byte-times %llu\n", static_cast<unsigned long long>(net->now()),
-                  static_cast<unsigned long long>(max_byte_times));
+  // The run, in pieces so that a closed output ends it and a long one shows its progress on a terminal.
+  host::run_end end = host::run_end::limit;
+  {
+    const double total_seconds = ring::byte_times_to_seconds(max_byte_times, config.bit_rate, config.bits_per_byte);
+    (void)total_seconds;
+    constexpr std::uint64_t piece = 1u << 16;
+    for (;;) {
+      const std::uint64_t until = std::min<std::uint64_t>(max_byte_times, net->now() + piece);
+      end = net->run(until, until == max_byte_times);
+      if (out.failed()) return fail_io("cannot write standard output");
+      if (end == host::run_end::settled || net->now() >= max_byte_times) break;
     }
-    std::printf("\n%llu byte-times = %s s of ring time\n\n", static_cast<unsigned long long>(net->now()),
-                basic::format_number(net->seconds()).c_str());
-    print_summary(*net);
   }
-  if (json) std::printf("%s\n", host::summary_json(*net, end).c_str());
+  if (narrate) {
+    char head[32];
+    std::snprintf(head, sizeof head, "t=%8llu  ", static_cast<unsigned long long>(net->now()));
+    if (end == host::run_end::settled) {
+      text += std::string(head) + "settled: every program has ended or waits for ever, the keys are done and the "
+                                  "ring is quiet\n";
+    } else {
+      text += std::string(head) + "stopped after --byte-times " + std::to_string(max_byte_times) +
+              ": the run had not settled\n";
+    }
+    text += "\n" + std::to_string(net->now()) + " byte-times = " + basic::format_value(net->seconds()) +
+            " s of ring time\n\n";
+    append_summary(text, *net);
+  }
+  if (json) text += host::summary_json(*net, end) + "\n";
+  if (!out.flush()) return fail_io("cannot write standard output");
   if (writer) {
     for (host::ring_link_recorder& link : links) {
       link.flush();

@@ -4,8 +4,10 @@
 #include "ring_network.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <deque>
+#include <map>
 
 #include "basic/controller.hpp"
 #include "basic/number_format.hpp"
@@ -120,7 +122,7 @@ std::string describe(const ring::message& m) {
     case ring::message_type::character:
       return "PRINT \"" + escaped_text(m.text) + "\"";
     case ring::message_type::variable:
-      return "VR(" + std::to_string(m.vr) + ") = " + basic::format_number(trionet::q32_to_double(m.value));
+      return "VR(" + std::to_string(m.vr) + ") = " + basic::format_value(trionet::q32_to_double(m.value));
     case ring::message_type::keypad_offset:
       return "keypad offset " + std::to_string(m.offset) + " (keys go " + std::to_string(m.offset) +
              (m.offset == 1 ? " hop" : " hops") + " along)";
@@ -156,6 +158,8 @@ const char* basic_spelling(basic::wait_reason reason) {
       return "WAIT UNTIL";
     case basic::wait_reason::wa:
       return "WA";
+    case basic::wait_reason::motion:
+      return "the axes: a move, WAIT IDLE or WAIT LOADED";
   }
   return "";
 }
@@ -183,16 +187,28 @@ basic::io_status io_status_of(ring::send_status r) {
   return basic::io_status::bad_type;
 }
 
+// Text from the command line in a message: cut and escaped.
+std::string echoed(std::string_view text) {
+  const std::string cut = clipped(text, 40);
+  return escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
+}
+
 bool find_key(const std::string& name, ring::key& out) {
   return ring::key_named(name.data(), name.size(), out);
 }
 
-// A BASIC program's controller: a Motion Coordinator of the library with its VR table, its axis parameters
-// and its terminal.
+// The channels a program's PRINT # writes as lines of text: the terminal (#0), the serial ports (#1, #2) and
+// Motion Perfect's channels (#5 to #7).
+bool terminal_channel(int channel) {
+  return channel == 0 || channel == 1 || channel == 2 || (channel >= 5 && channel <= 7);
+}
+
+// A BASIC program's controller: a Motion Coordinator of the library with its VR table, its machine (axes, I/O,
+// TABLE, servo clock) and its terminal and serial channels.
 class mc_adapter final : public basic::controller {
  public:
   mc_adapter(std::size_t vr_count, const network_config& config,
-             std::function<void(const std::string&)> terminal_line)
+             std::function<void(int channel, const std::string&)> terminal_line)
       : vr_(&mc_adapter::network_write, this),
         node_(ring::with_variable_layout(config.layout,
                                          [&](auto layout) -> std::unique_ptr<mc_api> {
@@ -200,6 +216,7 @@ class mc_adapter final : public basic::controller {
                                                vr_, config.defkey, ring::crc16_runtime(config.crc));
                                          })),
         vr_count_(vr_count),
+        machine_(machine_config_of(config)),
         terminal_line_(std::move(terminal_line)) {}
   mc_adapter(const mc_adapter&) = delete;
   mc_adapter& operator=(const mc_adapter&) = delete;
@@ -210,19 +227,22 @@ class mc_adapter final : public basic::controller {
   // Direct variable transfers applied since the last call: (vr, value).
   std::vector<std::pair<std::uint16_t, double>> take_network_writes() { return std::exchange(network_writes_, {}); }
 
-  // A line the program printed on its terminal and did not end yet.
+  // Lines the program printed on its terminal and serial channels and did not end yet.
   void flush_terminal() {
-    if (!terminal_.empty()) terminal_line_(std::exchange(terminal_, {}));
+    for (auto& [channel, line] : terminal_) {
+      if (!line.empty()) terminal_line_(channel, std::exchange(line, {}));
+    }
   }
 
   basic::print_result print(int channel, std::string_view text) override {
-    if (channel == 0) {
+    if (terminal_channel(channel)) {
+      std::string& line = terminal_[channel];
       for (char c : text) {
-        if (c == '\n' || terminal_.size() == max_terminal_line) {
-          terminal_line_(std::exchange(terminal_, {}));
+        if (c == '\n' || line.size() == max_terminal_line) {
+          terminal_line_(channel, std::exchange(line, {}));
           if (c == '\n') continue;
         }
-        if (c != '\r') terminal_ += c;
+        if (c != '\r') line += c;
       }
       return {basic::io_status::ok, text.size()};
     }
@@ -287,8 +307,8 @@ class mc_adapter final : public basic::controller {
   double vr(std::size_t index) const override { return vr_[index]; }
   void set_vr(std::size_t index, double value) override { vr_[index] = value; }
 
-  double parameter(std::size_t index) const override { return parameters_[index]; }
-  void set_parameter(std::size_t index, double value) override { parameters_[index] = value; }
+  basic::machine& hardware() override { return machine_; }
+  const basic::machine& hardware() const { return machine_; }
 
  private:
   // The VR table's write policy: a direct variable transfer to a VR this controller has is applied, and
@@ -302,18 +322,28 @@ class mc_adapter final : public basic::controller {
 
   vr_table<vr_table_size> vr_;
   std::unique_ptr<mc_api> node_;
+  static basic::machine_config machine_config_of(const network_config& config) {
+    basic::machine_config m;
+    m.servo_period_us = config.servo_period_us;
+    m.axes = config.axes;
+    return m;
+  }
+
   std::size_t vr_count_;
-  double parameters_[basic::axis_parameter_count] = {};
-  std::function<void(const std::string&)> terminal_line_;
-  std::string terminal_;
+  basic::machine machine_;
+  std::function<void(int, const std::string&)> terminal_line_;
+  std::map<int, std::string> terminal_;
   std::vector<std::pair<std::uint16_t, double>> network_writes_;
 };
 
 struct script_step {
-  std::size_t keypad;  // 1-based among keypads; 0: a wait
+  std::size_t keypad;  // 1-based among keypads; 0: a wait or an input
   ring::key key;
   std::string name;
   std::uint64_t wait;
+  std::size_t input_node = 0;  // 1-based ring position: an input word (nodeN:inM=on|off)
+  std::size_t input = 0;
+  bool on = false;
 };
 
 // A message on its way through a node: what it is, the hops it will carry on, and the node that sent it.
@@ -339,6 +369,7 @@ struct ring_network::state {
     std::uint32_t displays_seen = 0;
     std::uint32_t drops_pending = 0;
     std::deque<transit> in_transit;
+    std::uint64_t errors_seen = 0;  // runtime errors ON BASICERROR took, reported
   };
 
   network_config config;
@@ -354,6 +385,39 @@ struct ring_network::state {
   std::uint64_t bytes_this_step = 0;
   std::uint64_t clock = 0;  // the byte-time being simulated (events during a step carry it)
   bool settled = false;
+  // The servo clock: each byte-time adds servo_step to servo_phase, and a servo tick passes each time it
+  // reaches servo_whole (exact integers when the bit rate and the servo period are whole numbers).
+  std::uint64_t servo_step = 0;
+  std::uint64_t servo_whole = 1;
+  double servo_step_real = 0;  // otherwise: ticks per byte-time
+  std::uint64_t servo_phase = 0;
+  double servo_phase_real = 0;
+
+  void set_servo_clock() {
+    const double step = static_cast<double>(config.bits_per_byte) * 1e6;
+    const double whole = config.bit_rate * config.servo_period_us;
+    if (whole == std::floor(whole) && whole < 1e18) {
+      servo_step = static_cast<std::uint64_t>(step);
+      servo_whole = static_cast<std::uint64_t>(whole);
+    } else {
+      servo_whole = 0;
+      servo_step_real = step / whole;
+    }
+  }
+
+  // The servo ticks that pass in the byte-time that ends now.
+  std::uint64_t servo_ticks_due() {
+    if (servo_whole == 0) {
+      servo_phase_real += servo_step_real;
+      const double ticks = std::floor(servo_phase_real);
+      servo_phase_real -= ticks;
+      return static_cast<std::uint64_t>(ticks);
+    }
+    servo_phase += servo_step;
+    const std::uint64_t ticks = servo_phase / servo_whole;
+    servo_phase %= servo_whole;
+    return ticks;
+  }
 
   void emit(event_kind kind, std::uint64_t time, std::size_t node, std::string text,
             std::vector<std::string> display = {}) {
@@ -361,6 +425,19 @@ struct ring_network::state {
   }
 
   std::size_t after(std::size_t node, std::size_t hops) const { return (node + hops) % nodes.size(); }
+
+  // What the controller's axes, outputs and watchdog did, as events: motion for the trace, the rest always.
+  void emit_machine_events(std::size_t node) {
+    for (basic::machine_event& e : nodes[node].mc->hardware().take_events()) {
+      const bool axes = e.text.compare(0, 4, "axis") == 0 || e.text.compare(0, 4, "axes") == 0;
+      emit(axes ? event_kind::motion : event_kind::io, clock, node, std::move(e.text));
+    }
+  }
+
+  void set_input(std::size_t node, std::size_t input, bool on) {
+    nodes[node].mc->hardware().set_input(input, on);
+    emit(event_kind::io, clock, node, "input " + std::to_string(input) + (on ? " on" : " off"));
+  }
 
   bool script_done() const { return script_next == script.size() && clock >= script_due; }
 
@@ -483,11 +560,15 @@ std::unique_ptr<ring_network> ring_network::build(const std::vector<node_spec>& 
     error = "the bit rate, bits per byte and statements per byte-time must be above 0";
     return nullptr;
   }
+  if (!(config.servo_period_us >= 1 && config.servo_period_us <= 1000000) || config.axes == 0 || config.axes > 64) {
+    error = "the servo period must be 1 to 1000000 us, and a Motion Coordinator has 1 to 64 axes";
+    return nullptr;
+  }
   auto s = std::make_unique<state>();
   s->config = config;
+  s->set_servo_clock();
   s->nodes.resize(nodes.size());
   basic::task_config task_config;
-  task_config.ticks_per_ms = config.bit_rate / (1000.0 * config.bits_per_byte);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     state::node_slot& slot = s->nodes[i];
     state* owner = s.get();
@@ -502,8 +583,10 @@ std::unique_ptr<ring_network> ring_network::build(const std::vector<node_spec>& 
       (void)s->sim.add(slot.keypad->port());
       continue;
     }
-    slot.mc = std::make_unique<mc_adapter>(config.vr_count, s->config, [owner, i](const std::string& line) {
-      owner->emit(event_kind::output, owner->clock, i, "prints: " + line);
+    slot.mc = std::make_unique<mc_adapter>(config.vr_count, s->config, [owner, i](int channel, const std::string& line) {
+      const std::string shown = escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(line.data()), line.size()));
+      owner->emit(event_kind::output, owner->clock, i,
+                  (channel == 0 ? "prints: " : "prints on #" + std::to_string(channel) + ": ") + shown);
     });
     (void)s->sim.add(slot.mc->port());
     if (nodes[i].program_name.empty() && nodes[i].program_text.empty()) continue;
@@ -537,7 +620,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
     const std::string w = script.substr(i, end == std::string::npos ? std::string::npos : end - i);
     i = end == std::string::npos ? script.size() : end;
     ++word;
-    const std::string where = "key script, word " + std::to_string(word) + " '" + w + "': ";
+    const std::string where = "key script, word " + std::to_string(word) + " '" + echoed(w) + "': ";
     const auto whole_number = [](const std::string& digits, std::uint64_t limit, std::uint64_t& out) {
       if (digits.empty() || digits.size() > 13 || digits.find_first_not_of("0123456789") != std::string::npos)
         return false;
@@ -553,10 +636,39 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
       steps.push_back({0, ring::key::digit_0, "", n});
       continue;
     }
+    if (w.compare(0, 4, "node") == 0) {  // nodeN:inM=on|off
+      const std::size_t colon_at = w.find(':');
+      const std::size_t equals = w.find('=');
+      std::uint64_t node = 0;
+      std::uint64_t input = 0;
+      const std::string level = equals == std::string::npos ? "" : w.substr(equals + 1);
+      if (colon_at == std::string::npos || equals == std::string::npos || equals < colon_at ||
+          w.compare(colon_at + 1, 2, "in") != 0 || !whole_number(w.substr(4, colon_at - 4), 15, node) ||
+          !whole_number(w.substr(colon_at + 3, equals - colon_at - 3), 1000, input) ||
+          (level != "on" && level != "off")) {
+        error = where + "expected nodeN:inM=on or nodeN:inM=off (e.g. node1:in7=on)";
+        return false;
+      }
+      if (node < 1 || node > s_->nodes.size() || !s_->nodes[node - 1].mc) {
+        error = where + "node " + std::to_string(node) + " is not a Motion Coordinator of this ring";
+        return false;
+      }
+      if (input >= s_->nodes[node - 1].mc->hardware().io_count()) {
+        error = where + "a Motion Coordinator has inputs 0 to " +
+                std::to_string(s_->nodes[node - 1].mc->hardware().io_count() - 1);
+        return false;
+      }
+      script_step step{0, ring::key::digit_0, "", 0};
+      step.input_node = static_cast<std::size_t>(node);
+      step.input = static_cast<std::size_t>(input);
+      step.on = level == "on";
+      steps.push_back(step);
+      continue;
+    }
     const std::size_t colon = w.find(':');
     std::uint64_t keypad = 0;
     if (colon == std::string::npos || !whole_number(w.substr(0, colon), 15, keypad)) {
-      error = where + "expected KEYPAD:KEY (e.g. 1:up) or wait=N";
+      error = where + "expected KEYPAD:KEY (e.g. 1:up), nodeN:inM=on|off or wait=N";
       return false;
     }
     if (keypad < 1 || keypad > s_->keypad_count) {
@@ -567,7 +679,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
     ring::key k = ring::key::digit_0;
     const std::string name = w.substr(colon + 1);
     if (!find_key(name, k)) {
-      error = where + "no key '" + name + "' (keys: 0..9 up + down - clr y enter n . start stop)";
+      error = where + "no key '" + echoed(name) + "' (keys: 0..9 up + down - clr y enter n . start stop)";
       return false;
     }
     steps.push_back({static_cast<std::size_t>(keypad), k, name, 0});
@@ -592,7 +704,10 @@ void ring_network::step() {
   bool active = false;
   while (s.script_next < s.script.size() && s.script_due <= s.clock) {
     const script_step& next = s.script[s.script_next++];
-    if (next.keypad == 0) {
+    if (next.input_node != 0) {
+      s.set_input(next.input_node - 1, next.input, next.on);
+      active = true;
+    } else if (next.keypad == 0) {
       s.script_due = s.clock + next.wait;
     } else {
       s.press(next.keypad, next.key, next.name);
@@ -600,13 +715,32 @@ void ring_network::step() {
       active = true;
     }
   }
+  // The servo ticks of the byte-time that ended: every controller's axes move, TICKS counts down.
+  const std::uint64_t ticks = s.clock == 0 ? 0 : s.servo_ticks_due();
+  for (std::size_t i = 0; i < s.nodes.size() && ticks != 0; ++i) {
+    state::node_slot& n = s.nodes[i];
+    if (!n.mc) continue;
+    basic::machine& hw = n.mc->hardware();
+    const bool moving = hw.any_motion();
+    for (std::uint64_t k = 0; k < ticks; ++k) hw.servo_tick();
+    if (moving) active = true;
+    if (n.task && (moving || n.program->reads_clock)) n.task->world_changed();
+    s.emit_machine_events(i);
+  }
   for (std::size_t i = 0; i < s.nodes.size(); ++i) {
     state::node_slot& n = s.nodes[i];
     if (!n.task) continue;
     const std::uint64_t effects = n.task->effects();
-    n.task->run(s.clock, s.config.statements_per_byte_time);
+    n.task->run(s.config.statements_per_byte_time);
     if (n.task->effects() == effects) continue;
     active = true;
+    s.emit_machine_events(i);
+    if (n.task->handled_errors() != n.errors_seen) {
+      n.errors_seen = n.task->handled_errors();
+      s.emit(event_kind::error, s.clock, i,
+             "runtime error: " + n.task->error() + " (ON BASICERROR GOTO: on at line " +
+                 std::to_string(n.task->line()) + ")");
+    }
     if (n.task->state() == basic::task_state::ended) {
       s.emit(event_kind::ended, s.clock, i, "program ended at line " + std::to_string(n.task->line()));
     } else if (n.task->state() == basic::task_state::failed) {
@@ -623,7 +757,7 @@ void ring_network::step() {
     if (!n.mc) continue;
     for (const auto& [vr, value] : n.mc->take_network_writes()) {
       s.emit(event_kind::vr_from_ring, s.clock, i,
-             "VR(" + std::to_string(vr) + ") is now " + basic::format_number(value) + " (from the ring)");
+             "VR(" + std::to_string(vr) + ") is now " + basic::format_value(value) + " (from the ring)");
     }
     const std::uint32_t netstat = n.mc->node_netstat();
     if ((netstat & ~n.netstat_seen) != 0) {
@@ -631,6 +765,7 @@ void ring_network::step() {
              "NETSTAT " + std::to_string(netstat) + " (" + netstat_bits(netstat & ~n.netstat_seen) + ")");
     }
     n.netstat_seen = netstat;
+    if (n.mc->hardware().any_motion()) all_quiet = false;
     if (!n.task) continue;
     if (active) n.task->world_changed();
     switch (n.task->state()) {
@@ -638,8 +773,11 @@ void ring_network::step() {
       case basic::task_state::failed:
         break;
       case basic::task_state::waiting:
+        // Waiting for ever: for a character that nothing will send, or for a condition that nothing will
+        // change (one that reads TICKS changes with time; one that reads the axes, while they move).
         all_quiet = all_quiet && (n.task->waiting_for() == basic::wait_reason::get ||
-                                  n.task->waiting_for() == basic::wait_reason::wait_until);
+                                  (n.task->waiting_for() == basic::wait_reason::wait_until &&
+                                   (n.task->waiting_reads() & basic::reads_clock) == 0));
         break;
       case basic::task_state::running:
         all_quiet = all_quiet && n.task->idle();
@@ -649,7 +787,7 @@ void ring_network::step() {
   s.settled = !active && all_quiet && s.script_done();
 }
 
-run_end ring_network::run(std::uint64_t max_byte_times) {
+run_end ring_network::run(std::uint64_t max_byte_times, bool last_piece) {
   run_end end = run_end::limit;
   while (s_->sim.now() < max_byte_times) {
     step();
@@ -659,6 +797,7 @@ run_end ring_network::run(std::uint64_t max_byte_times) {
     }
   }
   s_->clock = s_->sim.now();
+  if (!last_piece && end == run_end::limit) return end;
   for (auto& n : s_->nodes) {
     if (n.mc) n.mc->flush_terminal();
   }
@@ -707,8 +846,33 @@ node_report ring_network::report(std::size_t node) const {
   for (std::size_t i = 0; i < mc.vr_count(); ++i) {
     if (mc.vr(i) != 0) r.vrs.emplace_back(i, mc.vr(i));
   }
-  for (std::size_t i = 0; i < basic::axis_parameter_count; ++i) {
-    if (mc.parameter(i) != 0) r.parameters.emplace_back(basic::axis_parameter_names[i], mc.parameter(i));
+  const basic::machine& hw = mc.hardware();
+  for (std::size_t axis = 0; axis < hw.axis_count(); ++axis) {
+    if (!hw.used(axis)) continue;
+    axis_report a;
+    a.axis = axis;
+    a.dpos = hw.axis_value(axis, basic::axis_parameter::dpos);
+    a.mpos = hw.axis_value(axis, basic::axis_parameter::mpos);
+    a.speed = hw.axis_value(axis, basic::axis_parameter::vp_speed);
+    a.mtype = static_cast<unsigned>(hw.axis_value(axis, basic::axis_parameter::mtype));
+    a.idle = hw.idle(axis);
+    for (std::size_t p = 0; p < basic::axis_parameter_count; ++p) {
+      const auto parameter = static_cast<basic::axis_parameter>(p);
+      const basic::axis_parameter_info& info = basic::info(parameter);
+      const double value = hw.axis_value(axis, parameter);
+      if (!info.read_only && value != info.default_value) a.parameters.emplace_back(info.name, value);
+    }
+    r.axes.push_back(std::move(a));
+  }
+  for (std::size_t io = 0; io < hw.io_count(); ++io) {
+    if (hw.output(io)) r.outputs_on.push_back(io);
+    if (hw.input_signal(io)) r.inputs_on.push_back(io);
+  }
+  r.wdog = hw.wdog();
+  for (std::size_t i = 0; i < hw.table_size(); ++i) {
+    if (hw.table(i) == 0) continue;
+    ++r.table_nonzero;
+    if (r.table.size() < 64) r.table.emplace_back(i, hw.table(i));
   }
   if (!n.task) {
     r.state = "none";

@@ -1,8 +1,9 @@
 // A simulated fibre ring whose Motion Coordinators run BASIC programs and whose membrane keypads are pressed by
 // a script, all on one deterministic clock (docs/basic.md):
 //
-//   each byte-time:  the script's key presses due now -> every program runs its statements -> the ring moves
-//                    one byte per link -> what happened is reported as events
+//   each byte-time:  the script's key presses and inputs due now -> the servo ticks due (axes move) -> every
+//                    program runs its statements -> the ring moves one byte per link -> what happened is
+//                    reported as events
 //
 // The run ends after a number of byte-times, or as soon as every program has ended, failed or waits for ever
 // (GET# or WAIT UNTIL with nothing left to come, or a loop that changes nothing), the script is done and the
@@ -45,6 +46,8 @@ struct network_config {
   std::uint8_t (*key_off_code)(std::uint8_t) noexcept = ring::default_key_off_code;  ///< the key OFF rule
   ring::defkey_table defkey = ring::default_defkey;  ///< every MC's GET#3 translation
   ring::display_model display{};                     ///< what every keypad's display does with 13, 10, 27 'H'
+  double servo_period_us = 1000;  ///< every MC's SERVO_PERIOD: the clock of its axes, TICKS and WA
+  std::size_t axes = 8;           ///< axes per Motion Coordinator
 };
 
 enum class event_kind : std::uint8_t {
@@ -54,8 +57,11 @@ enum class event_kind : std::uint8_t {
   key,           ///< the script pressed a key
   dropped,       ///< a keypad dropped a message: what, where and why
   vr_from_ring,  ///< a direct variable transfer wrote a VR
-  output,        ///< a line a program printed on its terminal (PRINT without #, or PRINT #0)
+  output,        ///< a line a program printed on its terminal or a serial channel (PRINT, PRINT #0, #1 ...)
   netstat,       ///< NETSTAT gained error bits
+  io,            ///< an input set by the script, an output set by OP, WDOG switched
+  motion,        ///< a move started, ended or was cancelled (trace)
+  error,         ///< a runtime error that ON BASICERROR GOTO took
   ended,         ///< a program ended
   failed,        ///< a program stopped with a runtime error
 };
@@ -78,6 +84,12 @@ constexpr const char* to_string(event_kind kind) noexcept {
       return "output";
     case event_kind::netstat:
       return "netstat";
+    case event_kind::io:
+      return "io";
+    case event_kind::motion:
+      return "motion";
+    case event_kind::error:
+      return "error";
     case event_kind::ended:
       return "ended";
     case event_kind::failed:
@@ -110,6 +122,17 @@ constexpr const char* to_string(run_end end) noexcept {
   return "unknown";
 }
 
+/// An axis a program used, for summaries.
+struct axis_report {
+  std::size_t axis = 0;
+  double dpos = 0;
+  double mpos = 0;
+  double speed = 0;  ///< VP_SPEED now
+  unsigned mtype = 0;  ///< the running move's type (0: idle)
+  bool idle = true;
+  std::vector<std::pair<std::string, double>> parameters;  ///< those set to other than their default
+};
+
 /// A node's state, for summaries.
 struct node_report {
   node_spec::kind what = node_spec::kind::mc;
@@ -123,7 +146,12 @@ struct node_report {
   std::uint32_t netstat = 0;
   std::vector<std::pair<std::size_t, double>> vrs;             ///< every VR that is not 0
   std::vector<std::pair<std::string, double>> variables;       ///< every named variable
-  std::vector<std::pair<std::string, double>> parameters;      ///< axis parameters that are not 0
+  std::vector<axis_report> axes;                               ///< the axes the program used
+  std::vector<std::size_t> inputs_on;                          ///< IN channels that are on
+  std::vector<std::size_t> outputs_on;                         ///< OP channels that are on
+  bool wdog = false;
+  std::vector<std::pair<std::size_t, double>> table;           ///< TABLE entries that are not 0 (at most 64)
+  std::size_t table_nonzero = 0;                               ///< how many there are
   std::uint64_t statements = 0;                                ///< statements run
   // keypad
   std::size_t keypad_number = 0;  ///< 1-based among the keypads, as the key script counts them
@@ -146,7 +174,8 @@ class ring_network {
   ring_network(const ring_network&) = delete;
   ring_network& operator=(const ring_network&) = delete;
 
-  /// The operator's key script (grammar in docs/basic.md), e.g. "wait=500 1:7 1:up 1:Y wait=2000 2:start".
+  /// The operator's key script (grammar in docs/basic.md), e.g. "wait=500 1:7 1:up 1:Y wait=2000 2:start";
+  /// also the inputs: "node1:in7=on".
   /// False with `error` naming the bad word.
   bool set_keys(const std::string& script, std::string& error);
 
@@ -157,8 +186,9 @@ class ring_network {
 
   /// One byte-time.
   void step();
-  /// Steps until the run settles or `max_byte_times` have passed since the start.
-  run_end run(std::uint64_t max_byte_times);
+  /// Steps until the run settles or `max_byte_times` have passed since the start; then reports the lines
+  /// programs left unfinished on their terminals, unless this is not the `last_piece` of a longer run.
+  run_end run(std::uint64_t max_byte_times, bool last_piece = true);
   /// True after a step that met the end condition.
   bool settled() const;
   std::uint64_t now() const;

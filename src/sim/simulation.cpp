@@ -26,7 +26,13 @@ const builtin_network builtins[] = {
 };
 
 std::string json_number(double v) {
-  return std::isfinite(v) ? basic::format_number(v) : "null";
+  return std::isfinite(v) ? basic::format_value(v) : "null";
+}
+
+std::string numbers_json(const std::vector<std::size_t>& numbers) {
+  std::string out = "[";
+  for (std::size_t k = 0; k < numbers.size(); ++k) out += (k ? "," : "") + std::to_string(numbers[k]);
+  return out + "]";
 }
 
 }  // namespace
@@ -62,19 +68,31 @@ std::string summary_json(const ring_network& net, run_end end) {
     out += ",\"ended\":" + std::string(r.state == "running" || r.state == "waiting" ? "false" : "true");
     out += ",\"line\":" + (has_program ? std::to_string(r.line) : std::string("null"));
     out += ",\"error\":" + (r.error.empty() ? std::string("null") : json_string(r.error));
-    out += ",\"netstat\":" + std::to_string(r.netstat) + ",\"vr\":{";
+    out += ",\"netstat\":" + std::to_string(r.netstat) + ",\"wdog\":" + (r.wdog ? "true" : "false") + ",\"vr\":{";
     for (std::size_t k = 0; k < r.vrs.size(); ++k) {
       out += (k ? ",\"" : "\"") + std::to_string(r.vrs[k].first) + "\":" + json_number(r.vrs[k].second);
+    }
+    out += "},\"table\":{";
+    for (std::size_t k = 0; k < r.table.size(); ++k) {
+      out += (k ? ",\"" : "\"") + std::to_string(r.table[k].first) + "\":" + json_number(r.table[k].second);
     }
     out += "},\"variables\":{";
     for (std::size_t k = 0; k < r.variables.size(); ++k) {
       out += (k ? "," : "") + json_string(r.variables[k].first) + ":" + json_number(r.variables[k].second);
     }
-    out += "},\"parameters\":{";
-    for (std::size_t k = 0; k < r.parameters.size(); ++k) {
-      out += (k ? "," : "") + json_string(r.parameters[k].first) + ":" + json_number(r.parameters[k].second);
+    out += "},\"inputs_on\":" + numbers_json(r.inputs_on) + ",\"outputs_on\":" + numbers_json(r.outputs_on);
+    out += ",\"axes\":[";
+    for (std::size_t k = 0; k < r.axes.size(); ++k) {
+      const axis_report& a = r.axes[k];
+      out += (k ? ",{" : "{") + std::string("\"axis\":") + std::to_string(a.axis) + ",\"dpos\":" + json_number(a.dpos) +
+             ",\"mpos\":" + json_number(a.mpos) + ",\"idle\":" + (a.idle ? "true" : "false") +
+             ",\"mtype\":" + std::to_string(a.mtype) + ",\"vp_speed\":" + json_number(a.speed) + ",\"parameters\":{";
+      for (std::size_t p = 0; p < a.parameters.size(); ++p) {
+        out += (p ? "," : "") + json_string(a.parameters[p].first) + ":" + json_number(a.parameters[p].second);
+      }
+      out += "}}";
     }
-    out += "}}";
+    out += "]}";
   }
   return out + "]}";
 }
