@@ -445,20 +445,30 @@ class compiler {
   bool refuse(const reserved_word& w, source_position where) {
     return fail(compile_status::not_modelled, where, refusal_message(w));
   }
-  // A reserved word where the program needs a name of its own (a variable, a label, a FOR variable).
+  // A reserved word where the program needs a name of its own (a variable, a label, a FOR variable): true,
+  // with the error recorded, when `t` is one.
   bool reserved_here(const token& t, const char* as) {
     const reserved_word* w = find_reserved_word(t.text);
     if (w == nullptr) return false;
-    if (!w->modelled) return refuse(*w, t.at);
-    return fail(compile_status::syntax_error, t.at,
-                std::string("`") + w->name + "` is a Trio BASIC " + to_string(w->kind) + " and cannot be " + as);
+    if (!w->modelled) {
+      refuse(*w, t.at);
+    } else {
+      fail(compile_status::syntax_error, t.at,
+           std::string("`") + w->name + "` is a Trio BASIC " + to_string(w->kind) + " and cannot be " + as);
+    }
+    return true;
   }
-  // A name with '$': a reserved word (DATE$ ...) or a string variable, which Trio BASIC does not have.
+  // A name with '$': a reserved word (DATE$ ...) or a string variable, which Trio BASIC does not have. True,
+  // with the error recorded, when `t` is one.
   bool dollar_name(const token& t) {
     if (t.text.empty() || t.text.back() != '$') return false;
-    if (const reserved_word* w = find_reserved_word(t.text)) return refuse(*w, t.at);
-    return fail(compile_status::syntax_error, t.at,
-                "'" + shown(t.raw) + "': Trio BASIC has no string variables (strings are only items of PRINT)");
+    if (const reserved_word* w = find_reserved_word(t.text)) {
+      refuse(*w, t.at);
+    } else {
+      fail(compile_status::syntax_error, t.at,
+           "'" + shown(t.raw) + "': Trio BASIC has no string variables (strings are only items of PRINT)");
+    }
+    return true;
   }
 
   // ---- lines and statements ----

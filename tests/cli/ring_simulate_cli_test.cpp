@@ -67,7 +67,7 @@ TEST(RingSimulateCli, Example2RunsTheHandshake) {
   EXPECT_TRUE(has(r.out, "node 1  VR(200) is now 999 (from the ring)\n")) << r.out;
   EXPECT_TRUE(has(r.out, "|PRESS START TO RUN  |")) << r.out;
   EXPECT_TRUE(has(r.out, "node 1  mc examples/manual/example2_three_axis.bas: ended at line ")) << r.out;
-  EXPECT_TRUE(has(r.out, "        axis parameters: SPEED=0.02\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "        axis 0: DPOS 0 MPOS 0, idle SPEED=0.02\n")) << r.out;
   EXPECT_FALSE(has(r.out, "NETSTAT 1")) << r.out;
 }
 
@@ -99,14 +99,15 @@ TEST(RingSimulateCli, JsonSummaryIsTheLastLine) {
   EXPECT_EQ(json.rfind("{\"byte_times\":", 0), 0u) << json;
   EXPECT_TRUE(has(json, ",\"end\":\"settled\",\"nodes\":[{\"node\":1,\"kind\":\"mc\","
                         "\"program\":\"examples/manual/example2_three_axis.bas\",\"state\":\"ended\",\"ended\":true,"
-                        "\"line\":40,\"error\":null,\"netstat\":0,\"vr\":{\"0\":0.3,\"1\":0.02,\"100\":20,\"200\":999},"
-                        "\"variables\":{},\"parameters\":{}}"))
+                        "\"line\":40,\"error\":null,\"netstat\":0,\"wdog\":false,\"vr\":{\"0\":0.3,\"1\":0.02,\"100\":20,\"200\":999},"
+                        "\"table\":{},\"variables\":{},\"inputs_on\":[],\"outputs_on\":[],\"axes\":[]}"))
       << json;
   EXPECT_TRUE(has(json, "{\"node\":3,\"kind\":\"keypad\",\"keypad\":1,\"network_mode\":true,\"offset\":1,"
                         "\"display\":[\"PRESS START TO RUN  \",\"                    \"],\"dropped\":0,"
                         "\"keys_lost\":0}]}"))
       << json;
-  EXPECT_TRUE(has(json, "\"parameters\":{\"SPEED\":0.02}")) << json;
+  EXPECT_TRUE(has(json, "\"axes\":[{\"axis\":0,\"dpos\":0,\"mpos\":0,\"idle\":true,\"mtype\":0,"
+                        "\"vp_speed\":0,\"parameters\":{\"SPEED\":0.02}}]")) << json;
 
   const auto traced = run_cli("ring simulate example1 --json --trace");
   EXPECT_TRUE(has(traced.out, "hops 1  keypad offset 2")) << traced.out;
@@ -133,7 +134,7 @@ TEST(RingSimulateCli, AUsersOwnTwoControllerProgramsFromFiles) {
   const std::string json = last_line(r.out);
   EXPECT_TRUE(has(json, "\"end\":\"settled\"")) << json;
   EXPECT_TRUE(has(json, "\"state\":\"ended\",\"ended\":true,\"line\":5,\"error\":null,\"netstat\":0,"
-                        "\"vr\":{\"21\":3},\"variables\":{\"i\":4}"))
+                        "\"wdog\":false,\"vr\":{\"21\":3},\"table\":{},\"variables\":{\"i\":4}"))
       << json;
   EXPECT_TRUE(has(json, "\"vr\":{\"20\":3,\"21\":3}")) << json;
 }
@@ -216,7 +217,7 @@ TEST(RingSimulateCli, CompileErrorsNameTheFileLineAndColumn) {
   const auto r = run_cli("ring simulate --node mc:" + bad.path() + " --node keypad");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "");
-  EXPECT_EQ(r.err, "trionet: " + bad.path() + ":2:8: expected THEN after the IF condition, found 'GOTO'\n");
+  EXPECT_EQ(r.err, "trionet: " + bad.path() + ":2:8: expected THEN after the IF condition, found the program structure word GOTO\n");
 }
 
 TEST(RingSimulateCli, UsageErrors) {

@@ -41,7 +41,7 @@ struct stopped {
     EXPECT_TRUE(r) << r.located_message();
     program = std::move(r.compiled);
     task = std::make_unique<basic::task>(program, io);
-    task->run(0, 100000);
+    task->run(100000);
   }
 };
 
@@ -56,7 +56,7 @@ void expect_runtime_error(const std::string& text, std::uint32_t line, const std
 
 TEST(BasicCompileErrors, SayWhereAndWhatWasExpected) {
   expect_compile_error("a=1\nIF a>1 GOTO x\n", compile_status::syntax_error,
-                       "test.bas:2:8: expected THEN after the IF condition, found 'GOTO'");
+                       "test.bas:2:8: expected THEN after the IF condition, found the program structure word GOTO");
   expect_compile_error("x=(1+2\n", compile_status::syntax_error,
                        "test.bas:1:7: expected ')' to close the '(' at column 3, found the end of the line");
   expect_compile_error("x=1+\n", compile_status::syntax_error, "test.bas:1:5: expected a value, found the end of the line");
@@ -69,36 +69,43 @@ TEST(BasicCompileErrors, SayWhereAndWhatWasExpected) {
   expect_compile_error("GET #3\n", compile_status::syntax_error,
                        "test.bas:1:7: expected ',' after the channel of GET #, found the end of the line");
   expect_compile_error("GET #3,CHR\n", compile_status::syntax_error,
-                       "test.bas:1:8: expected a variable or VR(n) to hold the character, found 'CHR'");
+                       "test.bas:1:8: `CHR` is a Trio BASIC input/output command and cannot be a variable");
   expect_compile_error("SEND(10,1)\n", compile_status::syntax_error,
                        "test.bas:1:10: expected ',' and data1 after SEND(n,type, found ')'");
   expect_compile_error("WAIT x\n", compile_status::syntax_error,
-                       "test.bas:1:6: expected UNTIL after WAIT (WAIT UNTIL condition), found 'x'");
+                       "test.bas:1:6: expected UNTIL, IDLE or LOADED after WAIT, found 'x'");
   expect_compile_error("x 5\n", compile_status::syntax_error, "test.bas:1:3: expected '=' after 'x', found the number 5");
-  expect_compile_error("THEN\n", compile_status::syntax_error, "test.bas:1:1: expected a statement, found 'THEN'");
+  expect_compile_error("THEN\n", compile_status::syntax_error,
+                       "test.bas:1:1: expected a statement, found the program structure word THEN");
   expect_compile_error("5\n", compile_status::syntax_error, "test.bas:1:1: expected a statement, found the number 5");
 }
 
 TEST(BasicCompileErrors, TextTheLexerCannotRead) {
   expect_compile_error("PRINT #10,\"abc\n", compile_status::syntax_error,
                        "test.bas:1:15: expected '\"' to close the string that starts at column 11");
-  expect_compile_error("x=1 ? 2\n", compile_status::syntax_error, "test.bas:1:5: unexpected character '?'");
+  expect_compile_error("x=1 | 2\n", compile_status::syntax_error,
+                       "test.bas:1:5: unexpected character '|' (Trio BASIC writes OR)");
   expect_compile_error("x=\xc3\xa9\n", compile_status::syntax_error, "test.bas:1:3: unexpected character byte 0xc3");
   expect_compile_error("PRINT \"\xc3\xa9\"\n", compile_status::syntax_error,
                        "test.bas:1:8: byte 0xc3 in a string: the ring carries characters 0..127");
-  expect_compile_error("x=$\n", compile_status::syntax_error, "test.bas:1:3: expected hex digits after '$'");
+  expect_compile_error("x=$\n", compile_status::syntax_error,
+                       "test.bas:1:3: expected hex digits after '$' (a hex number is written $1F)");
+  // The number is echoed cut to 40 characters.
   expect_compile_error("x=" + std::string(400, '9') + "\n", compile_status::syntax_error,
-                       "test.bas:1:3: the number " + std::string(400, '9') + " is out of range");
+                       "test.bas:1:3: the number " + std::string(40, '9') + "... is out of range");
 }
 
 TEST(BasicCompileErrors, WhatTheDialectDoesNotHave) {
-  expect_compile_error("MOVE(100)\n", compile_status::syntax_error,
-                       "test.bas:1:1: 'MOVE' is not a command this interpreter knows (docs/basic.md lists them)");
-  expect_compile_error("x=SIN(1)\n", compile_status::syntax_error,
-                       "test.bas:1:3: 'SIN' is not a function this interpreter knows (docs/basic.md lists them)");
-  expect_compile_error("DEFKEY\n", compile_status::syntax_error,
-                       "test.bas:1:1: DEFKEY is not supported: GET #3 translates through the default DEFKEY table "
-                       "(docs/basic.md)");
+  expect_compile_error("CONNECT(1,0)\n", compile_status::not_modelled,
+                       "test.bas:1:1: `CONNECT` is a Trio BASIC motion command that the simulator does not model");
+  expect_compile_error("x=B_SPLINE(1)\n", compile_status::not_modelled,
+                       "test.bas:1:3: `B_SPLINE` is a Trio BASIC mathematical function or operator that the "
+                       "simulator does not model");
+  expect_compile_error("DEFKEY\n", compile_status::not_modelled,
+                       "test.bas:1:1: `DEFKEY` is a Trio BASIC input/output command that the simulator does not "
+                       "model (GET #3 translates through the default DEFKEY table (docs/protocol.md 1.8))");
+  expect_compile_error("x=foo(1)\n", compile_status::syntax_error,
+                       "test.bas:1:3: 'foo' is not a Trio BASIC function (docs/basic.md lists the words)");
   expect_compile_error("x=CHR(65)\n", compile_status::syntax_error, "test.bas:1:3: CHR(...) can only be an item of PRINT");
   expect_compile_error("x=\"a\"\n", compile_status::syntax_error, "test.bas:1:3: a string can only be an item of PRINT");
   expect_compile_error("x=a[6,0]\n", compile_status::syntax_error,
@@ -159,7 +166,9 @@ TEST(BasicCompileErrors, LimitsOnUntrustedText) {
 TEST(BasicRuntimeErrors, StopTheProgramWithItsLine) {
   expect_runtime_error("x=1\nRETURN\n", 2, "RETURN without GOSUB");
   expect_runtime_error("a: GOSUB a\n", 1, "GOSUB nested more than 64 deep");
-  expect_runtime_error("\nPRINT #5,\"x\"\n", 2, "PRINT #5: bad channel (#0 is the terminal, #10..#24 the network)");
+  expect_runtime_error("\nPRINT #8,\"x\"\n", 2,
+                       "PRINT #8: bad channel (#0 is the terminal, #1 and #2 the serial ports, #5 to #7 Motion "
+                       "Perfect's channels, #10 to #24 the network)");
   expect_runtime_error("PRINT #10,CHR(200)\n", 1, "PRINT #10: a character above 127 (the ring carries 0..127)");
   expect_runtime_error("PRINT #10,CHR(300)\n", 1, "CHR(300): a character is 0..255");
   expect_runtime_error("GET #7,x\n", 1, "GET #7: bad channel (GET # reads channel 3 or 4)");
@@ -180,7 +189,7 @@ TEST(BasicRuntimeErrors, StopTheProgramWithItsLine) {
 TEST(BasicRuntimeErrors, AStoppedProgramStaysStopped) {
   stopped s("x=1\nRETURN\nx=2\n");
   ASSERT_EQ(s.task->state(), basic::task_state::failed);
-  EXPECT_EQ(s.task->run(1, 100), 0u);
+  EXPECT_EQ(s.task->run(100), 0u);
   EXPECT_EQ(*s.task->find_variable("x"), 1);
   EXPECT_EQ(s.task->line(), 2u);
 }

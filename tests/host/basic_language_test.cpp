@@ -30,8 +30,8 @@ class running {
   running& operator=(const running&) = delete;
 
   /// Runs at clock `now` until the program ends, fails or waits (or `budget` statements).
-  task_state go(std::uint64_t now = 0, std::uint32_t budget = 1000000) {
-    task->run(now, budget);
+  task_state go(std::uint32_t budget = 1000000) {
+    task->run(budget);
     return task->state();
   }
   double var(const std::string& name) const {
@@ -52,26 +52,37 @@ class running {
 
 // ---- numbers as PRINT writes them ----
 
-TEST(BasicNumbers, PrintRoundsToFourDecimalsAndDropsTrailingZeros) {
-  EXPECT_EQ(basic::format_number(0.1 + 0.2), "0.3");  // 0.30000000000000004
-  EXPECT_EQ(basic::format_number(125), "125");
-  EXPECT_EQ(basic::format_number(1.0 / 3), "0.3333");
-  EXPECT_EQ(basic::format_number(2.0 / 3), "0.6667");
-  EXPECT_EQ(basic::format_number(-2.5), "-2.5");
-  EXPECT_EQ(basic::format_number(-0.00001), "0");
-  EXPECT_EQ(basic::format_number(-0.0), "0");
-  EXPECT_EQ(basic::format_number(0.02), "0.02");
-  EXPECT_EQ(basic::format_number(1e6), "1000000");
-  EXPECT_EQ(basic::format_number(99.99996), "100");
+TEST(BasicNumbers, PrintWritesFourDecimalPlacesAsTheManualShows) {
+  EXPECT_EQ(basic::format_print_number(1), "1.0000");  // the manual: PRINT INT(1.79) writes 1.0000
+  EXPECT_EQ(basic::format_print_number(47104), "47104.0000");
+  EXPECT_EQ(basic::format_print_number(0.1 + 0.2), "0.3000");  // 0.30000000000000004
+  EXPECT_EQ(basic::format_print_number(1.0 / 3), "0.3333");
+  EXPECT_EQ(basic::format_print_number(2.0 / 3), "0.6667");
+  EXPECT_EQ(basic::format_print_number(-2.5), "-2.5000");
+  EXPECT_EQ(basic::format_print_number(-0.00001), "0.0000");  // no sign on a value that rounds to zero
+  EXPECT_EQ(basic::format_print_number(-0.0), "0.0000");
+}
+
+TEST(BasicNumbers, ReportsRoundToFourDecimalsAndDropTrailingZeros) {
+  EXPECT_EQ(basic::format_value(0.1 + 0.2), "0.3");  // 0.30000000000000004
+  EXPECT_EQ(basic::format_value(125), "125");
+  EXPECT_EQ(basic::format_value(1.0 / 3), "0.3333");
+  EXPECT_EQ(basic::format_value(2.0 / 3), "0.6667");
+  EXPECT_EQ(basic::format_value(-2.5), "-2.5");
+  EXPECT_EQ(basic::format_value(-0.00001), "0");
+  EXPECT_EQ(basic::format_value(-0.0), "0");
+  EXPECT_EQ(basic::format_value(0.02), "0.02");
+  EXPECT_EQ(basic::format_value(1e6), "1000000");
+  EXPECT_EQ(basic::format_value(99.99996), "100");
 }
 
 TEST(BasicNumbers, FormattedWidthAndDecimals) {
-  EXPECT_EQ(basic::format_number(125, 6, 0), "   125");
-  EXPECT_EQ(basic::format_number(0.2 + 1e-16, 8, 1), "     0.2");
-  EXPECT_EQ(basic::format_number(0.02, 0, 2), "0.02");
-  EXPECT_EQ(basic::format_number(-0.01, 4, 1), " 0.0");
-  EXPECT_EQ(basic::format_number(-1.25, 6, 1), "  -1.2");   // the double below -1.25 rounds away
-  EXPECT_EQ(basic::format_number(123456, 3, 0), "123456");  // a wider number takes the room it needs
+  EXPECT_EQ(basic::format_print_number(125, 6, 0), "   125");
+  EXPECT_EQ(basic::format_print_number(0.2 + 1e-16, 8, 1), "     0.2");
+  EXPECT_EQ(basic::format_print_number(0.02, 0, 2), "0.02");
+  EXPECT_EQ(basic::format_print_number(-0.01, 4, 1), " 0.0");
+  EXPECT_EQ(basic::format_print_number(-1.25, 6, 1), "  -1.2");   // the double below -1.25 rounds away
+  EXPECT_EQ(basic::format_print_number(123456, 3, 0), "123456");  // a wider number takes the room it needs
 }
 
 // ---- text as Trio writes it ----
@@ -176,19 +187,18 @@ TEST(BasicExpressions, VrReadAndWrite) {
   EXPECT_EQ(r.var("x"), 7.1);  // VR(2.9) is VR(2)
 }
 
-TEST(BasicExpressions, AxisParametersAreNamedValues) {
-  running r("SPEED=VR(1)\nAccel=SPEED*2\nx=ACCEL");
+TEST(BasicExpressions, AxisParametersBelongToTheBaseAxisOrTheAxisNamed) {
+  running r("SPEED=VR(1)\nAccel=SPEED*2\nx=ACCEL\nSPEED AXIS(2)=7\nBASE(2)\ny=SPEED\nz=SPEED AXIS(0)");
   r.io.vrs[1] = 0.02;
   EXPECT_EQ(r.go(), task_state::ended);
-  std::size_t speed = 0, accel = 0;
-  for (std::size_t i = 0; i < basic::axis_parameter_count; ++i) {
-    if (std::string(basic::axis_parameter_names[i]) == "SPEED") speed = i;
-    if (std::string(basic::axis_parameter_names[i]) == "ACCEL") accel = i;
-  }
-  EXPECT_EQ(r.io.parameters[speed], 0.02);
-  EXPECT_EQ(r.io.parameters[accel], 0.04);
+  const basic::machine& hw = r.io.hardware_state;
+  EXPECT_EQ(hw.axis_value(0, basic::axis_parameter::speed), 0.02);
+  EXPECT_EQ(hw.axis_value(0, basic::axis_parameter::accel), 0.04);
+  EXPECT_EQ(hw.axis_value(2, basic::axis_parameter::speed), 7);
   EXPECT_EQ(r.var("x"), 0.04);
-  EXPECT_EQ(r.task->variable_count(), 1u);  // SPEED and ACCEL are not variables
+  EXPECT_EQ(r.var("y"), 7);
+  EXPECT_EQ(r.var("z"), 0.02);
+  EXPECT_EQ(r.task->variable_count(), 3u);  // SPEED and ACCEL are not variables
 }
 
 TEST(BasicExpressions, NetstatReadsAndNetstatZeroClears) {
@@ -299,10 +309,10 @@ TEST(BasicControl, ForNextWithStep) {
 
 TEST(BasicControl, StatementsAreCountedAndTheBudgetIsKept) {
   running r("a=1\nIF a=1 THEN b=1 ELSE b=2\nc=3");  // 1 + (IF, b=1) + 1 = 4; the jump over ELSE is free
-  EXPECT_EQ(r.task->run(0, 2), 2u);
+  EXPECT_EQ(r.task->run(2), 2u);
   EXPECT_EQ(r.task->state(), task_state::running);
   EXPECT_EQ(r.var("b"), 0);
-  EXPECT_EQ(r.task->run(1, 100), 2u);
+  EXPECT_EQ(r.task->run(100), 2u);
   EXPECT_EQ(r.task->state(), task_state::ended);
   EXPECT_EQ(r.task->statements(), 4u);
 }
@@ -311,22 +321,22 @@ TEST(BasicControl, StatementsAreCountedAndTheBudgetIsKept) {
 
 TEST(BasicWaiting, WaitUntilRechecksEachTurn) {
   running r("WAIT UNTIL VR(5)=1\nx=1");
-  EXPECT_EQ(r.go(0), task_state::waiting);
+  EXPECT_EQ(r.go(), task_state::waiting);
   EXPECT_EQ(r.task->waiting_for(), wait_reason::wait_until);
-  EXPECT_EQ(r.go(1), task_state::waiting);
+  EXPECT_EQ(r.go(), task_state::waiting);
   r.io.vrs[5] = 1;
-  EXPECT_EQ(r.go(2), task_state::ended);
+  EXPECT_EQ(r.go(), task_state::ended);
   EXPECT_EQ(r.var("x"), 1);
 }
 
-TEST(BasicWaiting, WaTakesItsTimeOnTheClock) {
-  basic::task_config config;
-  config.ticks_per_ms = 12.5;  // 125 kbit/s, 10 bits per byte: 1 ms = 12.5 byte-times, WA(1) waits 13
-  running r("WA(1)\nx=1\nWA(0)\ny=1", config);
-  EXPECT_EQ(r.go(100), task_state::waiting);
+TEST(BasicWaiting, WaCountsServoTicks) {
+  running r("WA(2)\nx=1\nWA(0)\ny=1");  // the default servo period: 1 ms a tick
+  EXPECT_EQ(r.go(), task_state::waiting);
   EXPECT_EQ(r.task->waiting_for(), wait_reason::wa);
-  EXPECT_EQ(r.go(112), task_state::waiting);
-  EXPECT_EQ(r.go(113), task_state::ended);
+  r.io.hardware_state.servo_tick();
+  EXPECT_EQ(r.go(), task_state::waiting);
+  r.io.hardware_state.servo_tick();
+  EXPECT_EQ(r.go(), task_state::ended);
   EXPECT_EQ(r.var("y"), 1);
 }
 
@@ -395,7 +405,7 @@ TEST(BasicPrint, NumbersAndTheirFormats) {
       "PRINT #10,VR(0)[6.1]\n");
   EXPECT_EQ(r.go(), task_state::ended);
   EXPECT_EQ(r.printed(10),
-            "125 0.2 -0.5\r\n"
+            "125.0000 0.2000 -0.5000\r\n"
             "   125     0.2\r\n"
             "   0.2|0.20\r\n"
             "   0.0\r\n");
@@ -405,22 +415,22 @@ TEST(BasicPrint, NumbersAndTheirFormats) {
 
 TEST(BasicIdle, APollingLoopThatChangesNothingIsIdle) {
   running r("loop: IF KEY#3 THEN GOSUB got\nGOTO loop\ngot: GET #3,k: n=n+1: RETURN");
-  EXPECT_EQ(r.go(0, 100), task_state::running);
+  EXPECT_EQ(r.go(100), task_state::running);
   EXPECT_TRUE(r.task->idle());
   r.io.received = {5};
   r.task->world_changed();  // a character arrived
   EXPECT_FALSE(r.task->idle());
-  EXPECT_EQ(r.go(1, 100), task_state::running);
+  EXPECT_EQ(r.go(100), task_state::running);
   EXPECT_EQ(r.var("n"), 1);
   EXPECT_TRUE(r.task->idle());  // polling again
 }
 
 TEST(BasicIdle, ALoopThatChangesSomethingIsNotIdle) {
   running r("loop: i=i+1: GOTO loop");
-  EXPECT_EQ(r.go(0, 1000), task_state::running);
+  EXPECT_EQ(r.go(1000), task_state::running);
   EXPECT_FALSE(r.task->idle());
   running same("loop: i=5: GOTO loop");  // stores the same value again: no change
-  EXPECT_EQ(same.go(0, 1000), task_state::running);
+  EXPECT_EQ(same.go(1000), task_state::running);
   EXPECT_TRUE(same.task->idle());
 }
 
@@ -428,9 +438,9 @@ TEST(BasicIdle, TheSameSubroutineFromAnotherPlaceIsNotTheSameState) {
   // Both calls of `s` look alike (same statement, same depth) but return to different places; after the
   // second one the program changes `x`, so it must not be taken for idle before that.
   running r("a: GOSUB s\nb: GOSUB s\nx=1\nhold: GOTO hold\ns: RETURN");
-  EXPECT_EQ(r.go(0, 3), task_state::running);  // GOSUB s, RETURN, GOSUB s: at s again, returning elsewhere
+  EXPECT_EQ(r.go(3), task_state::running);  // GOSUB s, RETURN, GOSUB s: at s again, returning elsewhere
   EXPECT_FALSE(r.task->idle());
-  EXPECT_EQ(r.go(1, 100), task_state::running);
+  EXPECT_EQ(r.go(100), task_state::running);
   EXPECT_EQ(r.var("x"), 1);
   EXPECT_TRUE(r.task->idle());
 }

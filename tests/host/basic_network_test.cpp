@@ -205,7 +205,7 @@ TEST(BasicNetworkKeys, ScriptErrorsNameTheWord) {
   EXPECT_FALSE(n.net().set_keys("wait=z", error));
   EXPECT_EQ(error, "key script, word 1 'wait=z': wait=N takes a whole number of byte-times");
   EXPECT_FALSE(n.net().set_keys("up", error));
-  EXPECT_EQ(error, "key script, word 1 'up': expected KEYPAD:KEY (e.g. 1:up) or wait=N");
+  EXPECT_EQ(error, "key script, word 1 'up': expected KEYPAD:KEY (e.g. 1:up), nodeN:inM=on|off or wait=N");
   EXPECT_TRUE(n.net().set_keys(" 1:UP\t1:Y  1:+ 1:- 1:clr 1:enter 1:n 1:. 1:stop 1:0 wait=0 ", error)) << error;
 }
 
@@ -226,7 +226,7 @@ TEST(BasicNetworkExamples, TwoControllersFromTheReadme) {
   recorded_network n({mc_file("examples/two_controllers/ping.bas"), mc_file("examples/two_controllers/pong.bas")});
   ASSERT_TRUE(n.ok());
   EXPECT_EQ(n.net().run(100000), host::run_end::settled);
-  EXPECT_EQ(n.texts(event_kind::output), std::vector<std::string>{"prints: all 5 came back"});
+  EXPECT_EQ(n.texts(event_kind::output), std::vector<std::string>{"prints: all 5.0000 came back"});
   EXPECT_EQ(n.texts(event_kind::vr_from_ring).size(), 10u);
   EXPECT_EQ(vr_of(n.net().report(1), 21), 5);
   EXPECT_EQ(vr_of(n.net().report(2), 20), 5);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "basic/controller.hpp"
+#include "basic/machine.hpp"
 #include "basic/program.hpp"
 
 namespace trionet::test {
@@ -25,12 +26,13 @@ class fake_controller final : public basic::controller {
   std::vector<std::pair<int, int>> offsets_sent;             ///< SEND(n,2,offset)
   std::uint32_t netstat_value = 0;
   std::vector<double> vrs = std::vector<double>(1024, 0.0);
-  double parameters[basic::axis_parameter_count] = {};
+  basic::machine hardware_state;  ///< axes, I/O, TABLE, servo clock: the test calls servo_tick() itself
 
   basic::print_result print(int channel, std::string_view text) override {
-    if (channel != 0 && (channel < 10 || channel > 24)) return {basic::io_status::bad_channel, 0};
+    const bool terminal = channel == 0 || channel == 1 || channel == 2 || (channel >= 5 && channel <= 7);
+    if (!terminal && (channel < 10 || channel > 24)) return {basic::io_status::bad_channel, 0};
     for (char c : text) {
-      if (channel != 0 && static_cast<unsigned char>(c) > 127) return {basic::io_status::character_out_of_range, 0};
+      if (!terminal && static_cast<unsigned char>(c) > 127) return {basic::io_status::character_out_of_range, 0};
     }
     const std::size_t n = text.size() < room ? text.size() : room;
     room -= n;
@@ -67,8 +69,7 @@ class fake_controller final : public basic::controller {
   std::size_t vr_count() const override { return vrs.size(); }
   double vr(std::size_t index) const override { return vrs[index]; }
   void set_vr(std::size_t index, double value) override { vrs[index] = value; }
-  double parameter(std::size_t index) const override { return parameters[index]; }
-  void set_parameter(std::size_t index, double value) override { parameters[index] = value; }
+  basic::machine& hardware() override { return hardware_state; }
 };
 
 }  // namespace trionet::test

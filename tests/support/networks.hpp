@@ -101,9 +101,13 @@ inline double variable_of(const host::node_report& r, const std::string& name) {
   return std::nan("");
 }
 
-inline double parameter_of(const host::node_report& r, const std::string& name) {
-  for (const auto& [n, value] : r.parameters) {
-    if (n == name) return value;
+/// An axis parameter the program set to other than its default (0 if it did not).
+inline double parameter_of(const host::node_report& r, const std::string& name, std::size_t axis = 0) {
+  for (const host::axis_report& a : r.axes) {
+    if (a.axis != axis) continue;
+    for (const auto& [n, value] : a.parameters) {
+      if (n == name) return value;
+    }
   }
   return 0;
 }
