@@ -51,8 +51,7 @@ std::string to_lower(std::string_view s) {
 
 // Untrusted text echoed in a message: at most `limit` characters, control characters escaped.
 std::string shown(std::string_view text, std::size_t limit = 40) {
-  const std::string cut = host::clipped(text, limit);
-  return host::escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
+  return host::printable(text, limit);
 }
 
 std::string shown_character(char c) {
@@ -295,17 +294,6 @@ constexpr motion_word motion_words[] = {
     {"DATUM", motion_command::datum},     {"DEFPOS", motion_command::defpos},
 };
 
-// Words that start a statement (and so may be followed by ':' without being a label).
-bool starts_statement(const std::string& word) {
-  static constexpr const char* words[] = {"PRINT", "GET",  "SEND",  "IF",     "ELSE",    "ELSEIF", "ENDIF",
-                                          "GOTO",  "GOSUB", "RETURN", "STOP", "HALT",    "REPEAT", "UNTIL",
-                                          "WHILE", "WEND", "FOR",   "NEXT",   "WAIT",    "WA",     "ON",
-                                          "OP",    "TABLE", "BASE", "CONSTANT", "GLOBAL"};
-  if (std::any_of(std::begin(words), std::end(words), [&](const char* w) { return word == w; })) return true;
-  return std::any_of(std::begin(motion_words), std::end(motion_words),
-                     [&](const motion_word& m) { return word == m.name; });
-}
-
 // ---- parser and code generator ----
 
 struct block {
@@ -473,8 +461,15 @@ class compiler {
 
   // ---- lines and statements ----
 
+  // Statement words that are a whole statement alone, so that `WORD:` is that statement and then ':'.
+  static bool complete_alone(const std::string& word) {
+    static constexpr const char* words[] = {"RETURN", "STOP",    "HALT",    "REPEAT", "ELSE",     "ENDIF", "WEND",
+                                            "NEXT",   "PRINT",   "FORWARD", "REVERSE", "CANCEL", "RAPIDSTOP"};
+    return std::any_of(std::begin(words), std::end(words), [&](const char* w) { return word == w; });
+  }
+
   bool line() {
-    if (peek().kind == token_kind::name && is_symbol(":", 1) && !starts_statement(peek().text)) {
+    if (peek().kind == token_kind::name && is_symbol(":", 1) && !complete_alone(peek().text)) {
       const token& label = peek();
       if (dollar_name(label) || reserved_here(label, "a label")) return false;
       next();

@@ -401,6 +401,7 @@ void machine::replan(move_state& m, bool stop) {
   const double v = m.running ? m.plan.speed(m.elapsed) : 0;
   m.done = covered(m);
   m.elapsed = 0;
+  m.ticks = 0;
   if (stop) {
     double stopping = decel > 0 ? v * v / (2 * decel) : 0;
     if (!m.endless) stopping = std::min(stopping, m.length - m.done);
@@ -453,6 +454,7 @@ void machine::start(int index) {
   m.length = m.endless ? 0 : length;
   m.done = 0;
   m.elapsed = 0;
+  m.ticks = 0;
   m.running = false;  // replan() reads the speed of a running move: this one starts from rest
   replan(m, false);
   m.running = true;
@@ -512,8 +514,9 @@ void machine::stop_at_limit(int index, std::size_t axis, double limit, const cha
 
 void machine::advance(int index, double dt) {
   move_state& m = moves_[static_cast<std::size_t>(index)];
-  m.elapsed += dt;
-  const bool finished = !m.endless && !m.plan.endless && m.elapsed >= m.plan.duration();
+  m.elapsed = static_cast<double>(++m.ticks) * dt;
+  // A tolerance far below one servo period, so that a move of exactly N periods ends at the Nth tick.
+  const bool finished = !m.endless && !m.plan.endless && m.elapsed >= m.plan.duration() - 1e-9;
   const double s = finished ? m.length : covered(m);
   const double v = finished ? 0 : m.plan.speed(m.elapsed);
   for (std::size_t k = 0; k < m.axes.size(); ++k) {
@@ -535,11 +538,14 @@ void machine::advance(int index, double dt) {
 void machine::servo_tick() {
   ++ticks_;
   if (moves_in_use_ == 0) return;
-  start_ready_moves();
+  start_ready_moves();  // moves commanded since the last tick
   const double dt = config_.servo_period_us * 1e-6;
   for (std::size_t i = 0; i < moves_.size(); ++i) {
     if (moves_[i].in_use && moves_[i].running) advance(static_cast<int>(i), dt);
   }
+  // A buffered move takes over in the tick its predecessor ended (MTYPE becomes it, NTYPE 0); it moves from
+  // the next tick on.
+  start_ready_moves();
 }
 
 }  // namespace trionet::basic

@@ -179,7 +179,8 @@ class machine {
     double length = 0;              // of the path, user units (0 for an endless one)
     bool endless = false;
     double done = 0;     // path covered when the profile was (re)planned
-    double elapsed = 0;  // seconds since then
+    double elapsed = 0;  // seconds since then: ticks x the servo period (no sum of rounded steps)
+    std::uint64_t ticks = 0;
     profile plan;
   };
 

@@ -20,7 +20,9 @@
 #include "ring_network.hpp"
 #include "simulation.hpp"
 #include "trionet/host/capture.hpp"
+#include "trionet/host/files.hpp"
 #include "trionet/host/pcapng.hpp"
+#include "trionet/host/progress.hpp"
 #include "trionet/host/text.hpp"
 #include "trionet/ring.hpp"
 
@@ -71,49 +73,37 @@ const option_list& ring_simulate_options() {
 
 namespace {
 
-bool read_program(const std::string& path, std::string& text, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = "cannot read " + path;
-    return false;
-  }
-  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad()) {
-    error = "cannot read " + path;
-    return false;
-  }
-  return true;
-}
-
-bool node_of(const std::string& spec, bool builtin, host::node_spec& node, std::string& error) {
+// A node of --node: "keypad", "mc" or "mc:FILE". Exit status 0, 2 for a bad spec or a file not built in, 1 for
+// a program file that cannot be read (the cause in `error`).
+int node_of(const std::string& spec, bool builtin, host::node_spec& node, std::string& error) {
   if (spec == "keypad") {
     node.what = host::node_spec::kind::keypad;
-    return true;
+    return exit_ok;
   }
   if (spec == "mc") {
     node.what = host::node_spec::kind::mc;
-    return true;
+    return exit_ok;
   }
   if (spec.compare(0, 3, "mc:") != 0 || spec.size() == 3) {
-    error = "--node takes mc:FILE, mc or keypad, not '" + spec + "'";
-    return false;
+    error = "--node takes mc:FILE, mc or keypad, not '" + host::printable(spec) + "'";
+    return exit_usage;
   }
   node.what = host::node_spec::kind::mc;
   node.program_name = spec.substr(3);
-  if (!builtin) return read_program(node.program_name, node.program_text, error);
+  if (!builtin) {
+    // Read with a bound before compiling: a directory or a device is refused, an endless pipe stops there.
+    const host::file_result read = host::read_bounded_file(node.program_name, basic::max_program_text, node.program_text);
+    if (read) return exit_ok;
+    error = read.message(node.program_name, "program");
+    return exit_io;
+  }
   const host::embedded_file* file = host::find_embedded_file(node.program_name);
   if (file == nullptr) {
-    error = node.program_name + " is not built into this tool";
-    return false;
+    error = host::printable(node.program_name) + " is not built into this tool";
+    return exit_usage;
   }
   node.program_text = std::string(file->text());
-  return true;
-}
-
-// An argument echoed in a message: cut and escaped.
-std::string shown_argument(const std::string& text) {
-  const std::string cut = host::clipped(text, 40);
-  return host::escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
+  return exit_ok;
 }
 
 std::string box(const std::vector<std::string>& lines, const char* indent) {
@@ -205,7 +195,7 @@ int ring_simulate_main(const words& all) {
   if (args.positionals.size() == 1) {
     builtin = host::find_builtin_network(args.positionals[0]);
     if (builtin == nullptr)
-      return fail("unknown network '" + args.positionals[0] + "' (expected example1, example2, example3 or "
+      return fail("unknown network '" + host::printable(args.positionals[0]) + "' (expected example1, example2, example3 or "
                   "example3-fixed, or --node options)");
     if (args.has("--node")) return fail("--node cannot be used with a built-in network");
   } else if (!args.has("--node")) {
@@ -227,7 +217,9 @@ int ring_simulate_main(const words& all) {
   }
   std::vector<host::node_spec> nodes(specs.size());
   for (std::size_t i = 0; i < specs.size(); ++i) {
-    if (!node_of(specs[i], builtin != nullptr, nodes[i], error)) return fail(error);
+    const int status = node_of(specs[i], builtin != nullptr, nodes[i], error);
+    if (status == exit_io) return fail_io(error);
+    if (status != exit_ok) return fail(error);
   }
 
   host::network_config config;
@@ -241,32 +233,32 @@ int ring_simulate_main(const words& all) {
   std::uint64_t max_byte_times = 1000000;
   if (args.has("--byte-times")) {
     if (!parse_integer(args.options.at("--byte-times"), 1, 1000000000000LL, number))
-      return fail("--byte-times must be a whole number 1..10^12, got '" + shown_argument(args.options.at("--byte-times")) + "'");
+      return fail("--byte-times must be a whole number 1..10^12, got '" + host::printable(args.options.at("--byte-times")) + "'");
     max_byte_times = static_cast<std::uint64_t>(number);
   }
   if (args.has("--bit-rate")) {
     double rate = 0;
     if (!parse_real(args.options.at("--bit-rate"), rate) || !(rate >= 1 && rate <= 1e9))
-      return fail("--bit-rate must be a number of bits per second 1..10^9, got '" + shown_argument(args.options.at("--bit-rate")) +
+      return fail("--bit-rate must be a number of bits per second 1..10^9, got '" + host::printable(args.options.at("--bit-rate")) +
                   "'");
     config.bit_rate = rate;
   }
   if (args.has("--statements-per-byte-time")) {
     if (!parse_integer(args.options.at("--statements-per-byte-time"), 1, 1000000, number))
       return fail("--statements-per-byte-time must be a whole number 1..1000000, got '" +
-                  shown_argument(args.options.at("--statements-per-byte-time")) + "'");
+                  host::printable(args.options.at("--statements-per-byte-time")) + "'");
     config.statements_per_byte_time = static_cast<std::uint32_t>(number);
   }
   if (args.has("--servo-period")) {
     double period = 0;
     if (!parse_real(args.options.at("--servo-period"), period) || !(period >= 1 && period <= 1000000))
       return fail("--servo-period must be a number of microseconds 1..1000000, got '" +
-                  shown_argument(args.options.at("--servo-period")) + "'");
+                  host::printable(args.options.at("--servo-period")) + "'");
     config.servo_period_us = period;
   }
   if (args.has("--key-gap")) {
     if (!parse_integer(args.options.at("--key-gap"), 0, 1000000000LL, number))
-      return fail("--key-gap must be a whole number of byte-times, got '" + shown_argument(args.options.at("--key-gap")) + "'");
+      return fail("--key-gap must be a whole number of byte-times, got '" + host::printable(args.options.at("--key-gap")) + "'");
     config.key_gap = static_cast<std::uint64_t>(number);
   }
 
@@ -348,13 +340,14 @@ int ring_simulate_main(const words& all) {
   host::run_end end = host::run_end::limit;
   {
     const double total_seconds = ring::byte_times_to_seconds(max_byte_times, config.bit_rate, config.bits_per_byte);
-    (void)total_seconds;
-    constexpr std::uint64_t piece = 1u << 16;
+    host::progress shown("ring simulate", "s of ring time", total_seconds);
+    constexpr std::uint64_t piece = 1u << 14;  // about 10 ms of work at a time
     for (;;) {
       const std::uint64_t until = std::min<std::uint64_t>(max_byte_times, net->now() + piece);
       end = net->run(until, until == max_byte_times);
       if (out.failed()) return fail_io("cannot write standard output");
       if (end == host::run_end::settled || net->now() >= max_byte_times) break;
+      shown.update(net->seconds());
     }
   }
   if (narrate) {

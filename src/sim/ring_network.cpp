@@ -187,12 +187,6 @@ basic::io_status io_status_of(ring::send_status r) {
   return basic::io_status::bad_type;
 }
 
-// Text from the command line in a message: cut and escaped.
-std::string echoed(std::string_view text) {
-  const std::string cut = clipped(text, 40);
-  return escaped_text(byte_view(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size()));
-}
-
 bool find_key(const std::string& name, ring::key& out) {
   return ring::key_named(name.data(), name.size(), out);
 }
@@ -620,7 +614,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
     const std::string w = script.substr(i, end == std::string::npos ? std::string::npos : end - i);
     i = end == std::string::npos ? script.size() : end;
     ++word;
-    const std::string where = "key script, word " + std::to_string(word) + " '" + echoed(w) + "': ";
+    const std::string where = "key script, word " + std::to_string(word) + " '" + printable(w) + "': ";
     const auto whole_number = [](const std::string& digits, std::uint64_t limit, std::uint64_t& out) {
       if (digits.empty() || digits.size() > 13 || digits.find_first_not_of("0123456789") != std::string::npos)
         return false;
@@ -679,7 +673,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
     ring::key k = ring::key::digit_0;
     const std::string name = w.substr(colon + 1);
     if (!find_key(name, k)) {
-      error = where + "no key '" + echoed(name) + "' (keys: 0..9 up + down - clr y enter n . start stop)";
+      error = where + "no key '" + printable(name) + "' (keys: 0..9 up + down - clr y enter n . start stop)";
       return false;
     }
     steps.push_back({static_cast<std::size_t>(keypad), k, name, 0});
