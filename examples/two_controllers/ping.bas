@@ -3,4 +3,4 @@ FOR n=1 TO 5
   SEND(10,1,20,n)
   WAIT UNTIL VR(21)=n
 NEXT n
-PRINT "all ";n-1;" came back"
+PRINT "all ";n-1[1,0];" came back"

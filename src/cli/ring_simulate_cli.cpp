@@ -4,7 +4,9 @@
 // message on every link and every display change), then every node's state; --json ends with one JSON line.
 #include <cmath>
 #include <cstdint>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -49,8 +51,9 @@ const char* const simulate_usage =
     "                           their keys (Tab: next keypad; q: quit); without a terminal, key words from\n"
     "                           standard input (\"1:up 2:7 wait=MS\", until they are done) and display changes\n"
     "                           printed\n"
-    "Exit status 0 when the run ended without a program failing, 1 when a program failed or the capture\n"
-    "could not be written, 2 for bad arguments.\n";
+    "Exit status 0 when the run ended without a program failing, 1 when a program failed, a program file\n"
+    "could not be read or the output or the capture could not be written, 2 for bad arguments or a program\n"
+    "that does not compile.\n";
 
 const option_list& ring_simulate_options() {
   static const option_list options = {
@@ -276,7 +279,9 @@ int ring_simulate_main(const words& all) {
   std::vector<host::ring_link_recorder> links;
   if (args.has("--pcap")) {
     capture_file.open(args.options.at("--pcap"), std::ios::binary | std::ios::trunc);
-    if (!capture_file) return fail_io("cannot write " + args.options.at("--pcap"));
+    if (!capture_file) {
+      return fail_io("cannot write " + host::printable(args.options.at("--pcap")) + ": " + std::strerror(errno));
+    }
     writer = std::make_unique<host::pcapng_writer>(capture_file, version_line());
     const auto node_name = [&](std::size_t i) {
       return "node " + std::to_string(i + 1) +
@@ -286,7 +291,7 @@ int ring_simulate_main(const words& all) {
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const std::string name = "link " + std::to_string(i) + ": " + node_name(i) + " -> " + node_name((i + 1) % nodes.size());
       const host::pcapng_interface_result added = writer->add_interface(name, host::capture_network::ring);
-      if (!added) return fail_io("cannot write " + args.options.at("--pcap") + ": " + host::to_string(added.status));
+      if (!added) return fail_io("cannot write " + host::printable(args.options.at("--pcap")) + ": " + host::to_string(added.status));
       links.emplace_back(*writer, added.id, config.bit_rate, config.bits_per_byte);
     }
     net->on_link_byte([&links](std::uint64_t time, std::size_t link, std::uint8_t byte) {
@@ -318,8 +323,10 @@ int ring_simulate_main(const words& all) {
     text += "clock: one byte per link per byte-time, " + basic::format_value(1e6 * 10 / config.bit_rate) + " us at " +
             basic::format_value(config.bit_rate) + " bit/s (10 bits per byte); " +
             std::to_string(config.statements_per_byte_time) +
-            " BASIC statement(s) per byte-time per program; servo period " +
-            basic::format_value(config.servo_period_us) + " us\n";
+            " BASIC statement(s) per byte-time per program" +
+            (config.servo_period_us == 1000 ? std::string()
+                                            : "; servo period " + basic::format_value(config.servo_period_us) + " us") +
+            "\n";
     if (!keys.empty()) text += "keys: " + keys + "\n";
     text += "\n";
     net->on_event([trace, &out](const host::network_event& e) {
@@ -370,11 +377,11 @@ int ring_simulate_main(const words& all) {
     for (host::ring_link_recorder& link : links) {
       link.flush();
       if (link.status() != host::pcapng_write_status::ok) {
-        return fail_io("cannot write " + args.options.at("--pcap") + ": " + host::to_string(link.status()));
+        return fail_io("cannot write " + host::printable(args.options.at("--pcap")) + ": " + host::to_string(link.status()));
       }
     }
     capture_file.flush();
-    if (!capture_file) return fail_io("cannot write " + args.options.at("--pcap"));
+    if (!capture_file) return fail_io("cannot write " + host::printable(args.options.at("--pcap")));
   }
   for (std::size_t i = 1; i <= net->size(); ++i) {
     if (net->report(i).state == "failed") return 1;

@@ -228,7 +228,6 @@ TEST(RingSimulateCli, UsageErrors) {
   expect_usage_error("ring simulate --node mc", "a ring has 2 to 15 nodes, not 1");
   expect_usage_error("ring simulate --node keypad --node keypad", "at least one Motion Coordinator");
   expect_usage_error("ring simulate --node router --node mc", "--node takes mc:FILE, mc or keypad, not 'router'");
-  expect_usage_error("ring simulate --node mc:/nonexistent/x.bas --node mc", "cannot read /nonexistent/x.bas");
   expect_usage_error("ring simulate example1 --keys 3:up", "there is no keypad 3");
   expect_usage_error("ring simulate example1 --byte-times 0", "--byte-times");
   expect_usage_error("ring simulate example1 --bit-rate 0", "--bit-rate");
@@ -241,4 +240,105 @@ TEST(RingSimulateCli, HelpDescribesTheOptions) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_TRUE(has(r.out, "--node mc:FILE.bas|mc|keypad")) << r.out;
   EXPECT_TRUE(has(r.out, "--keys SCRIPT")) << r.out;
+}
+
+// ---- hostile input, closed output, progress ----
+
+namespace {
+
+// Runs `trionet <args>` with standard output to `stdout_to` (a shell redirection target); the exit status and
+// standard error.
+trionet::test::cli_result run_with_stdout(const std::string& args, const std::string& stdout_to) {
+  const std::string err_path = "/tmp/trionet-simulate-" + std::to_string(::getpid()) + ".err";
+  const std::string command = std::string(TRIONET_CLI_PATH) + " " + args + " </dev/null >" + stdout_to + " 2>" + err_path;
+  const int status = std::system(command.c_str());
+  trionet::test::cli_result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = trionet::test::slurp(err_path);
+  std::remove(err_path.c_str());
+  return r;
+}
+
+}  // namespace
+
+TEST(RingSimulateCli, AnOutputThatCannotBeWrittenExits1WithOneMessage) {
+  for (const char* args : {"ring simulate example1", "ring simulate example2 --json", "ring simulate example3 --trace"}) {
+    const auto r = run_with_stdout(args, "/dev/full");
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.err, "trionet: cannot write standard output\n") << args;
+  }
+}
+
+TEST(RingSimulateCli, AProgramThatIsADirectoryADeviceOrMissingIsRefusedWithTheCause) {
+  const auto directory = run_cli("ring simulate --node mc:. --node mc");
+  EXPECT_EQ(directory.exit_code, 1);
+  EXPECT_EQ(directory.out, "");
+  EXPECT_EQ(directory.err, "trionet: program . is a directory, not a file\n");
+  const auto device = run_cli("ring simulate --node mc:/dev/zero --node mc");  // read without bound before
+  EXPECT_EQ(device.exit_code, 1);
+  EXPECT_EQ(device.err, "trionet: program /dev/zero is a device, not a file\n");
+  const auto missing = run_cli("ring simulate --node mc:/no/such/program.bas --node mc");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err, "trionet: cannot open program /no/such/program.bas: No such file or directory\n");
+}
+
+TEST(RingSimulateCli, ACompileErrorEchoesAtMost40CharactersOfTheProgram) {
+  const temporary_file huge("huge.bas", std::string(1000000, 'a') + " 5\n");
+  const auto r = run_cli("ring simulate --node mc:" + huge.path() + " --node mc");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "trionet: " + huge.path() + ":1:1000002: expected '=' after '" + std::string(40, 'a') +
+                       "...', found the number 5\n");
+  const temporary_file control("control.bas", "x=1 \x1b[31m\n");
+  const auto escaped = run_cli("ring simulate --node mc:" + control.path() + " --node mc");
+  EXPECT_EQ(escaped.exit_code, 2);
+  EXPECT_EQ(escaped.err, "trionet: " + control.path() + ":1:5: unexpected character byte 0x1b\n");
+}
+
+TEST(RingSimulateCli, PrintToTheTerminalShowsEveryCharacterEscaped) {
+  const temporary_file program("nul.bas", "PRINT \"A\";CHR(0);\"B\";CHR(27);\"[31m\";CHR(7);\"C\\\"\n");
+  const auto r = run_cli("ring simulate --node mc:" + program.path() + " --node mc");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "node 1  prints: A\\x00B\\x1b[31m\\x07C\\\\\n")) << r.out;  // nothing lost after NUL
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
+  EXPECT_EQ(r.out.find('\x07'), std::string::npos);
+}
+
+TEST(RingSimulateCli, ALongRunIsSilentOnStderrWhenItIsNotATerminal) {
+  const temporary_file program("busy.bas", "loop: n=n+1: GOTO loop\n");
+  const auto r = run_cli("ring simulate --node mc:" + program.path() + " --node mc --byte-times 800000 --json");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");  // the progress line is for terminals only
+  EXPECT_TRUE(has(r.out, "\"end\":\"limit\"")) << r.out;
+}
+
+TEST(RingSimulateCli, TheServoPeriodIsAnOptionAndClocksTicksAndWa) {
+  const temporary_file program("servo.bas", "t=TICKS\nWA(10)\nPRINT SERVO_PERIOD;\" \";t-TICKS\n");
+  const auto r = run_cli("ring simulate --node mc:" + program.path() + " --node mc --servo-period 500");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "prints: 500.0000 20.0000\n")) << r.out;  // 10 ms are 20 ticks of 500 us
+  EXPECT_TRUE(has(r.out, "per program; servo period 500 us\n")) << r.out;
+  expect_usage_error("ring simulate example1 --servo-period 0", "--servo-period");
+  expect_usage_error("ring simulate example1 --servo-period \x1b", "\\x1b");
+}
+
+TEST(RingSimulateCli, InputsComeFromTheScriptAndOutputsAndMovesAreShown) {
+  const temporary_file program("io.bas",
+                               "WDOG=ON\n"
+                               "WAIT UNTIL IN(3)=ON\n"
+                               "OP(8,ON)\n"
+                               "MOVE(10)\n"
+                               "WAIT IDLE\n"
+                               "PRINT MPOS\n");
+  const auto r = run_cli("ring simulate --node mc:" + program.path() + " --node mc --keys \"wait=100 node1:in3=on\" --trace");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "node 1  WDOG ON\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  input 3 on\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  OP(8,ON)\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  axis 0: MOVE(10) starts at DPOS 0\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "node 1  axis 0: MOVE(10) ends at DPOS 10\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "prints: 10.0000\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "        outputs on: 8\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "        axis 0: DPOS 10 MPOS 10, idle\n")) << r.out;
+  expect_usage_error("ring simulate --node mc --node mc --keys node3:in1=on", "node 3 is not a Motion Coordinator");
+  expect_usage_error("ring simulate --node mc --node mc --keys node1:in99=on", "inputs 0 to 31");
 }

@@ -226,7 +226,7 @@ TEST(BasicNetworkExamples, TwoControllersFromTheReadme) {
   recorded_network n({mc_file("examples/two_controllers/ping.bas"), mc_file("examples/two_controllers/pong.bas")});
   ASSERT_TRUE(n.ok());
   EXPECT_EQ(n.net().run(100000), host::run_end::settled);
-  EXPECT_EQ(n.texts(event_kind::output), std::vector<std::string>{"prints: all 5.0000 came back"});
+  EXPECT_EQ(n.texts(event_kind::output), std::vector<std::string>{"prints: all 5 came back"});
   EXPECT_EQ(n.texts(event_kind::vr_from_ring).size(), 10u);
   EXPECT_EQ(vr_of(n.net().report(1), 21), 5);
   EXPECT_EQ(vr_of(n.net().report(2), 20), 5);
