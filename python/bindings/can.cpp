@@ -20,10 +20,13 @@
 namespace trionet::python {
 namespace {
 
-std::uint8_t narrow(unsigned value) { return static_cast<std::uint8_t>(value > 255 ? 255 : value); }
+std::uint8_t narrow(unsigned value) {
+  return static_cast<std::uint8_t>(value > 255 ? 255 : value);
+}
 
 can::byte_order order_of(unsigned order) {
-  if (order > static_cast<unsigned>(can::byte_order::little_endian)) throw py::value_error("no such byte order");
+  if (order > static_cast<unsigned>(can::byte_order::little_endian))
+    throw py::value_error("no such byte order");
   return static_cast<can::byte_order>(order);
 }
 
@@ -78,7 +81,8 @@ class python_port final : public can::port {
 
 class exchange_node {
  public:
-  exchange_node(can::node_address address, py::object send, std::shared_ptr<vr_values> vr, can::byte_order order)
+  exchange_node(can::node_address address, py::object send, std::shared_ptr<vr_values> vr,
+                can::byte_order order)
       : port_(std::move(send)), vr_(std::move(vr)), node_(address, port_, *vr_, order) {}
 
   unsigned send_to_node(unsigned destination, unsigned vr, double value) {
@@ -152,7 +156,8 @@ void bind_can(py::module_& m) {
   });
   m.def("route_of", [](unsigned n, std::uint32_t id) {
     const can::route_result r = can::route_of(narrow(n), id);
-    return py::make_tuple(static_cast<unsigned>(r.status), r.value.sender, r.value.receiver, r.value.receive_channel);
+    return py::make_tuple(static_cast<unsigned>(r.status), r.value.sender, r.value.receiver,
+                          r.value.receive_channel);
   });
   m.def("destination_of", [](unsigned n, unsigned sender, unsigned channel) {
     const can::node_result r = can::destination_of(narrow(n), narrow(sender), narrow(channel));
@@ -166,7 +171,8 @@ void bind_can(py::module_& m) {
   // ---- codec ----
   m.def("encode_vr", [](unsigned vr, double value, unsigned order) {
     std::uint8_t out[can::vr_message_size] = {};
-    if (vr > 0xFFFF) return py::make_tuple(static_cast<unsigned>(can::encode_status::vr_out_of_range), py::none());
+    if (vr > 0xFFFF)
+      return py::make_tuple(static_cast<unsigned>(can::encode_status::vr_out_of_range), py::none());
     const can::encode_status s = can::encode_vr(static_cast<std::uint16_t>(vr), value, out, order_of(order));
     if (s != can::encode_status::ok) return py::make_tuple(static_cast<unsigned>(s), py::none());
     return py::make_tuple(static_cast<unsigned>(s), to_bytes(out, sizeof out));
@@ -175,7 +181,8 @@ void bind_can(py::module_& m) {
     const byte_input input(data);
     return decoded(can::decode_vr_message(input.view(), order_of(order)));
   });
-  m.def("decode_vr_frame", [](std::uint32_t id, bool extended, bool remote, unsigned dlc, py::handle data, unsigned order) {
+  m.def("decode_vr_frame", [](std::uint32_t id, bool extended, bool remote, unsigned dlc, py::handle data,
+                              unsigned order) {
     const byte_input input(data);
     return decoded(can::decode_vr_frame(frame_of(id, extended, remote, dlc, input.view()), order_of(order)));
   });
@@ -184,10 +191,10 @@ void bind_can(py::module_& m) {
   py::class_<exchange_node>(m, "VrExchangeNode")
       .def(py::init([](unsigned node_count, unsigned node, py::object send, std::shared_ptr<vr_values> vr,
                        unsigned order) {
-             const can::address_result a = can::make_node_address(narrow(node_count), narrow(node));
-             if (!a) throw py::value_error(can::to_string(a.status));
-             return std::make_unique<exchange_node>(a.address, std::move(send), std::move(vr), order_of(order));
-           }))
+        const can::address_result a = can::make_node_address(narrow(node_count), narrow(node));
+        if (!a) throw py::value_error(can::to_string(a.status));
+        return std::make_unique<exchange_node>(a.address, std::move(send), std::move(vr), order_of(order));
+      }))
       .def("send_to_node", &exchange_node::send_to_node)
       .def("receive", &exchange_node::receive)
       .def("counters", &exchange_node::counters)

@@ -1,5 +1,5 @@
-// trionet.ring.Decoder and its events: ring bytes in (any buffer, no copy), one Event per message or error out,
-// with the fields of `trionet ring decode --raw` (src/host/trionet/host/ring_events.hpp makes both).
+// trionet.ring.Decoder and its events: ring bytes in (any buffer, no copy), one Event per message or error
+// out, with the fields of `trionet ring decode --raw` (src/host/trionet/host/ring_events.hpp makes both).
 //
 // An Event is a small object of its own type (the CPython API, not a pybind11 class): a decoder may make
 // millions of them, and this way making one is an allocation and a few stores. Its fields are computed when
@@ -26,9 +26,8 @@ namespace {
 constexpr std::uint8_t unfinished_status = 255;
 
 struct event_object {
-  PyObject_HEAD
-  std::uint64_t position;  // the byte of the stream the event is about
-  PyObject* text;          // a character message's text (str), else nullptr
+  PyObject_HEAD std::uint64_t position;  // the byte of the stream the event is about
+  PyObject* text;                        // a character message's text (str), else nullptr
   std::int64_t value;
   std::uint16_t vr;
   std::uint8_t status;  // ring::decode_status, or unfinished_status
@@ -55,7 +54,8 @@ ring::decode_result result_of(const event_object* e) {
   r.msg.offset = e->offset;
   r.msg.mode = e->mode;
   if (e->text != nullptr) {
-    r.msg.text = byte_view(PyUnicode_1BYTE_DATA(e->text), static_cast<std::size_t>(PyUnicode_GET_LENGTH(e->text)));
+    r.msg.text =
+        byte_view(PyUnicode_1BYTE_DATA(e->text), static_cast<std::size_t>(PyUnicode_GET_LENGTH(e->text)));
   }
   return r;
 }
@@ -91,7 +91,8 @@ struct field_finder {
   PyObject* found = nullptr;
   void name(std::string_view k, std::string_view v) {
     if (k != key) return;
-    // "type" and "reason" are string literals (ring_event_fields); any other name field is made for the event.
+    // "type" and "reason" are string literals (ring_event_fields); any other name field is made for the
+    // event.
     found = k == "type" || k == "reason" ? name_str(v.data()) : new_str(v);
   }
   void text(std::string_view k, std::string_view v) {
@@ -142,19 +143,39 @@ void event_dealloc(PyObject* self) {
   Py_DECREF(type);
 }
 
-PyObject* get_event(PyObject* self, void*) { return name_str(kind_of(reinterpret_cast<event_object*>(self))); }
+PyObject* get_event(PyObject* self, void*) {
+  return name_str(kind_of(reinterpret_cast<event_object*>(self)));
+}
 PyObject* get_position(PyObject* self, void*) {
   return PyLong_FromUnsignedLongLong(reinterpret_cast<event_object*>(self)->position);
 }
-PyObject* get_type(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "type"); }
-PyObject* get_hops(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "hops"); }
-PyObject* get_text(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "text"); }
-PyObject* get_vr(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "vr"); }
-PyObject* get_raw(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "raw"); }
-PyObject* get_value(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "value"); }
-PyObject* get_offset(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "offset"); }
-PyObject* get_mode(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "mode"); }
-PyObject* get_reason(PyObject* self, void*) { return field(reinterpret_cast<event_object*>(self), "reason"); }
+PyObject* get_type(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "type");
+}
+PyObject* get_hops(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "hops");
+}
+PyObject* get_text(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "text");
+}
+PyObject* get_vr(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "vr");
+}
+PyObject* get_raw(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "raw");
+}
+PyObject* get_value(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "value");
+}
+PyObject* get_offset(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "offset");
+}
+PyObject* get_mode(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "mode");
+}
+PyObject* get_reason(PyObject* self, void*) {
+  return field(reinterpret_cast<event_object*>(self), "reason");
+}
 
 PyObject* enum_member(PyObject* enum_class, unsigned value) {
   if (enum_class == nullptr) return PyLong_FromUnsignedLong(value);
@@ -224,13 +245,17 @@ PyObject* event_richcompare(PyObject* a, PyObject* b, int op) {
 
 PyGetSetDef event_getset[] = {
     {"event", get_event, nullptr,
-     "The kind of event: \"message\", \"crc_error\", \"frame_error\", \"no_room\" or \"unfinished\".", nullptr},
+     "The kind of event: \"message\", \"crc_error\", \"frame_error\", \"no_room\" or \"unfinished\".",
+     nullptr},
     {"position", get_position, nullptr,
      "The byte of the stream the event is about, counted from 0 (the message's header; for stray data, a "
-     "stray end of message or a zero-hops header, that byte). `trionet ring decode --raw` calls it \"offset\".",
+     "stray end of message or a zero-hops header, that byte). `trionet ring decode --raw` calls it "
+     "\"offset\".",
      nullptr},
-    {"type", get_type, nullptr, "A message's type: \"char\", \"var\", \"offset\" or \"mode\" (else None).", nullptr},
-    {"hops", get_hops, nullptr, "Hops to the receiver, 1..15 (messages, crc_error, no_room; else None).", nullptr},
+    {"type", get_type, nullptr, "A message's type: \"char\", \"var\", \"offset\" or \"mode\" (else None).",
+     nullptr},
+    {"hops", get_hops, nullptr, "Hops to the receiver, 1..15 (messages, crc_error, no_room; else None).",
+     nullptr},
     {"text", get_text, nullptr, "A character message's characters, each 0..127 (else None).", nullptr},
     {"vr", get_vr, nullptr, "The VR of a direct variable transfer or a CRC error (else None).", nullptr},
     {"raw", get_raw, nullptr, "A variable's Q32.32 bits as \"0x\" and 16 hex digits (else None).", nullptr},
@@ -238,14 +263,16 @@ PyGetSetDef event_getset[] = {
     {"offset", get_offset, nullptr, "A keypad offset message's offset in hops, 1..15 (else None).", nullptr},
     {"mode", get_mode, nullptr, "A keypad mode message's mode, 0 or 127 (else None).", nullptr},
     {"reason", get_reason, nullptr, "A frame error's reason, e.g. \"stray_data\" (else None).", nullptr},
-    {"status", get_status, nullptr, "The decoder's status as a DecodeStatus (None for \"unfinished\").", nullptr},
+    {"status", get_status, nullptr, "The decoder's status as a DecodeStatus (None for \"unfinished\").",
+     nullptr},
     {"error", get_error, nullptr, "A frame error's reason as a FrameError (else None).", nullptr},
     {nullptr, nullptr, nullptr, nullptr, nullptr},
 };
 
 PyMethodDef event_methods[] = {
     {"to_dict", event_to_dict, METH_NOARGS,
-     "The event's fields in order, as `trionet ring decode --raw` prints them (its \"offset\" of the event is "
+     "The event's fields in order, as `trionet ring decode --raw` prints them (its \"offset\" of the event "
+     "is "
      "\"position\" here)."},
     {nullptr, nullptr, 0, nullptr},
 };
@@ -310,7 +337,8 @@ class decoder {
                  [&](const ring::decode_result& r, std::uint64_t at) {
                    if (failed) return;  // keep decoding, so that the decoder stays in step with the stream
                    event_object* e = event_of(r, at);
-                   if (e == nullptr || PyList_Append(list, reinterpret_cast<PyObject*>(e)) != 0) failed = true;
+                   if (e == nullptr || PyList_Append(list, reinterpret_cast<PyObject*>(e)) != 0)
+                     failed = true;
                    Py_XDECREF(e);
                  });
     position_ += bytes.size();
@@ -371,15 +399,18 @@ void bind_decoder(py::module_& m) {
            }),
            py::arg("profile") = py::none())
       .def("feed", &decoder::feed, py::arg("data"),
-           "Decodes the next bytes of the stream (any bytes-like object, read in place) and returns the events "
+           "Decodes the next bytes of the stream (any bytes-like object, read in place) and returns the "
+           "events "
            "they completed, in order. TypeError for an object that is not a contiguous buffer.")
-      .def("finish", &decoder::finish,
-           "The end of the input: an \"unfinished\" event for a message still open (then forgotten), else [].")
+      .def(
+          "finish", &decoder::finish,
+          "The end of the input: an \"unfinished\" event for a message still open (then forgotten), else [].")
       .def("line_idle", &decoder::line_idle,
            "The line went idle: an open message is lost, a frame_error event with reason idle_line; else [].")
       .def("reset", &decoder::reset, "Forgets any open message, silently (e.g. after a link reset).")
       .def_property_readonly("position", &decoder::position, "Bytes fed so far.")
-      .def_property_readonly("in_message", &decoder::in_message, "True while a message has begun and not ended.");
+      .def_property_readonly("in_message", &decoder::in_message,
+                             "True while a message has begun and not ended.");
 }
 
 }  // namespace trionet::python

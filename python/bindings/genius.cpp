@@ -43,7 +43,8 @@ struct segments_in {
       const byte_input data(t[2]);
       storage.emplace_back(data.view().begin(), data.view().end());
       const unsigned destination = t[1].cast<unsigned>();
-      segments.push_back(genius::segment{t[0].cast<bool>(), static_cast<std::uint8_t>(destination > 255 ? 255 : destination),
+      segments.push_back(genius::segment{t[0].cast<bool>(),
+                                         static_cast<std::uint8_t>(destination > 255 ? 255 : destination),
                                          byte_view(storage.back().data(), storage.back().size())});
     }
   }
@@ -93,10 +94,11 @@ std::vector<genius::device> devices_of(const py::list& list) {
 // A streaming transmission parser with a profile's CRC and layout.
 class parser {
  public:
-  explicit parser(const py::object& profile) : parser_(genius_wire(profile).crc, genius_wire(profile).layout) {}
+  explicit parser(const py::object& profile)
+      : parser_(genius_wire(profile).crc, genius_wire(profile).layout) {}
 
-  // (status, transmission or None): the transmission is (sender, broadcast, destination, [(block, destination,
-  // bytes)]).
+  // (status, transmission or None): the transmission is (sender, broadcast, destination, [(block,
+  // destination, bytes)]).
   py::tuple push(std::uint8_t byte, bool control) {
     const genius::parse_status s = parser_.push(genius::character{byte, control});
     if (s != genius::parse_status::ok) return py::make_tuple(static_cast<unsigned>(s), py::none());
@@ -105,7 +107,8 @@ class parser {
     for (const genius::segment& seg : t.segments) {
       segments.append(py::make_tuple(seg.block, seg.destination, to_bytes(seg.data.data(), seg.data.size())));
     }
-    return py::make_tuple(static_cast<unsigned>(s), py::make_tuple(t.sender, t.broadcast, t.destination, segments));
+    return py::make_tuple(static_cast<unsigned>(s),
+                          py::make_tuple(t.sender, t.broadcast, t.destination, segments));
   }
   unsigned push_framing_error() { return static_cast<unsigned>(parser_.push_framing_error()); }
   py::dict counts() const {
@@ -146,7 +149,8 @@ void bind_genius(py::module_& m) {
     return genius::encode_character(genius::character{byte, control});
   });
   m.def("decode_character", [](unsigned word) {
-    const genius::character_result r = genius::decode_character(static_cast<std::uint16_t>(word > 0xFFFF ? 0xFFFF : word));
+    const genius::character_result r =
+        genius::decode_character(static_cast<std::uint16_t>(word > 0xFFFF ? 0xFFFF : word));
     return py::make_tuple(static_cast<unsigned>(r.status), r.value.byte, r.value.control);
   });
 
@@ -157,25 +161,25 @@ void bind_genius(py::module_& m) {
   });
 
   // ---- transmissions ----
-  m.def("encode_transmission",
-        [](unsigned sender, bool broadcast, unsigned destination, const py::list& segment_list, py::object profile) {
-          const segments_in segments(segment_list);
-          genius::transmission t;
-          t.sender = static_cast<std::uint8_t>(sender > 255 ? 255 : sender);
-          t.broadcast = broadcast;
-          t.destination = static_cast<std::uint8_t>(destination > 255 ? 255 : destination);
-          t.segments = span<const genius::segment>(segments.segments.data(), segments.segments.size());
-          const genius::encode_result length = genius::encoded_length(t);
-          if (!length) return py::make_tuple(static_cast<unsigned>(length.status), py::none());
-          std::vector<genius::character> out(length.length);
-          const genius_wire wire(profile);
-          const genius::encode_result r =
-              genius::encode_transmission(span<genius::character>(out.data(), out.size()), t, wire.crc, wire.layout);
-          if (!r) return py::make_tuple(static_cast<unsigned>(r.status), py::none());
-          py::list characters;
-          for (const genius::character& c : out) characters.append(py::make_tuple(c.byte, c.control));
-          return py::make_tuple(static_cast<unsigned>(r.status), characters);
-        });
+  m.def("encode_transmission", [](unsigned sender, bool broadcast, unsigned destination,
+                                  const py::list& segment_list, py::object profile) {
+    const segments_in segments(segment_list);
+    genius::transmission t;
+    t.sender = static_cast<std::uint8_t>(sender > 255 ? 255 : sender);
+    t.broadcast = broadcast;
+    t.destination = static_cast<std::uint8_t>(destination > 255 ? 255 : destination);
+    t.segments = span<const genius::segment>(segments.segments.data(), segments.segments.size());
+    const genius::encode_result length = genius::encoded_length(t);
+    if (!length) return py::make_tuple(static_cast<unsigned>(length.status), py::none());
+    std::vector<genius::character> out(length.length);
+    const genius_wire wire(profile);
+    const genius::encode_result r = genius::encode_transmission(
+        span<genius::character>(out.data(), out.size()), t, wire.crc, wire.layout);
+    if (!r) return py::make_tuple(static_cast<unsigned>(r.status), py::none());
+    py::list characters;
+    for (const genius::character& c : out) characters.append(py::make_tuple(c.byte, c.control));
+    return py::make_tuple(static_cast<unsigned>(r.status), characters);
+  });
   m.def("read_control", [](std::uint8_t byte, py::object profile) {
     const genius::control_fields f = genius::read_control(byte, genius_wire(profile).layout);
     return py::make_tuple(static_cast<unsigned>(f.kind), f.sba, f.broadcast, f.crc);
@@ -209,9 +213,9 @@ void bind_genius(py::module_& m) {
   m.def("default_timing", [](unsigned r) { return timing_dict(genius::default_timing(rate_of(r))); });
   m.def("analyse_turns", [](const py::list& device_list, const py::dict& timing, unsigned after) {
     const std::vector<genius::device> devices = devices_of(device_list);
-    const genius::turn_analysis a = genius::analyse_turns(
-        span<const genius::device>(devices.data(), devices.size()), timing_of(timing),
-        static_cast<std::uint8_t>(after > 255 ? 255 : after));
+    const genius::turn_analysis a =
+        genius::analyse_turns(span<const genius::device>(devices.data(), devices.size()), timing_of(timing),
+                              static_cast<std::uint8_t>(after > 255 ? 255 : after));
     py::dict d;
     d["status"] = static_cast<unsigned>(a.status);
     d["after"] = a.after;
@@ -234,9 +238,9 @@ void bind_genius(py::module_& m) {
   });
   m.def("simulate_scan", [](const py::list& device_list, const py::dict& timing, unsigned after) {
     const std::vector<genius::device> devices = devices_of(device_list);
-    const genius::bus_scan s = genius::simulate_scan(span<const genius::device>(devices.data(), devices.size()),
-                                                     timing_of(timing),
-                                                     static_cast<std::uint8_t>(after > 255 ? 255 : after));
+    const genius::bus_scan s =
+        genius::simulate_scan(span<const genius::device>(devices.data(), devices.size()), timing_of(timing),
+                              static_cast<std::uint8_t>(after > 255 ? 255 : after));
     py::dict d;
     d["status"] = static_cast<unsigned>(s.status);
     py::list transmissions;

@@ -85,11 +85,14 @@ void bind_profile(py::module_& m) {
              return r.text;
            })
       .def_readwrite("name", &learn::profile::name)
-      .def_property_readonly("ring_max_characters", [](const learn::profile& p) { return p.ring.max_characters; })
-      .def_property_readonly("ring_receive_buffer", [](const learn::profile& p) { return p.ring.receive_buffer; })
+      .def_property_readonly("ring_max_characters",
+                             [](const learn::profile& p) { return p.ring.max_characters; })
+      .def_property_readonly("ring_receive_buffer",
+                             [](const learn::profile& p) { return p.ring.receive_buffer; })
       .def_property_readonly("ring_crc", [](const learn::profile& p) { return crc_dict(p.ring.crc); })
       .def_property_readonly("can_node_count", [](const learn::profile& p) { return p.can.node_count; })
-      .def_property_readonly("can_byte_order", [](const learn::profile& p) { return static_cast<unsigned>(p.can.byte_order); })
+      .def_property_readonly("can_byte_order",
+                             [](const learn::profile& p) { return static_cast<unsigned>(p.can.byte_order); })
       .def_property_readonly("genius_crc", [](const learn::profile& p) { return crc_dict(p.genius.crc); })
       .def("__eq__", [](const learn::profile& a, const learn::profile& b) { return a == b; });
 
@@ -141,8 +144,8 @@ void bind_learn(py::module_& m) {
     return learn::frame_crc_matches(crc16_of(crc), frames_of(one).front());
   });
 
-  m.def("learn_ring_layout", [](const py::list& frame_list, const std::vector<std::pair<unsigned, double>>& sent_list,
-                                py::object crc) {
+  m.def("learn_ring_layout", [](const py::list& frame_list,
+                                const std::vector<std::pair<unsigned, double>>& sent_list, py::object crc) {
     const std::vector<learn::variable_frame> frames = frames_of(frame_list);
     std::vector<learn::sent_variable> sent;
     for (const auto& [vr, value] : sent_list) {
@@ -174,21 +177,23 @@ void bind_learn(py::module_& m) {
     return d;
   });
 
-  m.def("genius_crc_samples", [](const std::vector<std::pair<std::uint8_t, bool>>& characters, py::object profile) {
-    std::vector<genius::character> in;
-    in.reserve(characters.size());
-    for (const auto& [byte, control] : characters) in.push_back(genius::character{byte, control});
-    genius::control_layout layout;
-    if (!profile.is_none()) layout = profile.cast<const learn::profile&>().genius.control;
-    const learn::sample_extraction s =
-        learn::genius_crc_samples(span<const genius::character>(in.data(), in.size()), layout);
-    const auto samples = [](const std::vector<learn::crc6_sample>& list) {
-      py::list out;
-      for (const learn::crc6_sample& x : list) out.append(py::make_tuple(to_bytes(x.data.data(), x.data.size()), x.crc));
-      return out;
-    };
-    return py::make_tuple(samples(s.stops), samples(s.blocks), s.skipped_characters);
-  });
+  m.def("genius_crc_samples",
+        [](const std::vector<std::pair<std::uint8_t, bool>>& characters, py::object profile) {
+          std::vector<genius::character> in;
+          in.reserve(characters.size());
+          for (const auto& [byte, control] : characters) in.push_back(genius::character{byte, control});
+          genius::control_layout layout;
+          if (!profile.is_none()) layout = profile.cast<const learn::profile&>().genius.control;
+          const learn::sample_extraction s =
+              learn::genius_crc_samples(span<const genius::character>(in.data(), in.size()), layout);
+          const auto samples = [](const std::vector<learn::crc6_sample>& list) {
+            py::list out;
+            for (const learn::crc6_sample& x : list)
+              out.append(py::make_tuple(to_bytes(x.data.data(), x.data.size()), x.crc));
+            return out;
+          };
+          return py::make_tuple(samples(s.stops), samples(s.blocks), s.skipped_characters);
+        });
 
   m.def("learn_genius_crc", [](const std::vector<std::pair<py::object, unsigned>>& sample_list, bool even,
                                std::size_t max_classes) {

@@ -210,26 +210,36 @@ void bind_ring(py::module_& m) {
   // ---- encoders: (status, bytes or None) ----
   m.def("encode_characters", [](unsigned hops, py::handle text, py::object profile) {
     const byte_input input(text);
-    if (hops > 255) return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
+    if (hops > 255)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
     return encode_message(ring::message::characters(static_cast<std::uint8_t>(hops), input.view()), profile);
   });
   m.def("encode_variable", [](unsigned hops, unsigned vr, std::int64_t raw, py::object profile) {
-    if (hops > 255) return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
-    if (vr > ring::max_vr) return py::make_tuple(static_cast<unsigned>(ring::encode_status::vr_out_of_range), py::none());
+    if (hops > 255)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
+    if (vr > ring::max_vr)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::vr_out_of_range), py::none());
     return encode_message(
-        ring::message::variable(static_cast<std::uint8_t>(hops), static_cast<std::uint16_t>(vr), raw), profile);
+        ring::message::variable(static_cast<std::uint8_t>(hops), static_cast<std::uint16_t>(vr), raw),
+        profile);
   });
   m.def("encode_keypad_offset", [](unsigned hops, unsigned offset) {
-    if (hops > 255) return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
-    if (offset > 255) return py::make_tuple(static_cast<unsigned>(ring::encode_status::offset_out_of_range), py::none());
+    if (hops > 255)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
+    if (offset > 255)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::offset_out_of_range), py::none());
     return encode_message(
-        ring::message::keypad_offset(static_cast<std::uint8_t>(hops), static_cast<std::uint8_t>(offset)), py::none());
+        ring::message::keypad_offset(static_cast<std::uint8_t>(hops), static_cast<std::uint8_t>(offset)),
+        py::none());
   });
   m.def("encode_keypad_mode", [](unsigned hops, unsigned mode) {
-    if (hops > 255) return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
-    if (mode > 255) return py::make_tuple(static_cast<unsigned>(ring::encode_status::mode_out_of_range), py::none());
+    if (hops > 255)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::hops_out_of_range), py::none());
+    if (mode > 255)
+      return py::make_tuple(static_cast<unsigned>(ring::encode_status::mode_out_of_range), py::none());
     return encode_message(
-        ring::message::keypad_mode(static_cast<std::uint8_t>(hops), static_cast<std::uint8_t>(mode)), py::none());
+        ring::message::keypad_mode(static_cast<std::uint8_t>(hops), static_cast<std::uint8_t>(mode)),
+        py::none());
   });
 
   // ---- Q32.32 ----
@@ -245,7 +255,8 @@ void bind_ring(py::module_& m) {
       .def_buffer([](vr_values& v) {
         return py::buffer_info(v.values().data(), static_cast<py::ssize_t>(sizeof(double)),
                                py::format_descriptor<double>::format(), 1,
-                               {static_cast<py::ssize_t>(v.values().size())}, {static_cast<py::ssize_t>(sizeof(double))});
+                               {static_cast<py::ssize_t>(v.values().size())},
+                               {static_cast<py::ssize_t>(sizeof(double))});
       })
       .def("__len__", [](vr_values& v) { return v.values().size(); })
       .def("get", [](vr_values& v, std::size_t vr) { return v.values().at(vr); })
@@ -254,8 +265,8 @@ void bind_ring(py::module_& m) {
            [](vr_values& v, unsigned vr, double value) {
              const q32_result q = q32_from_double(value);
              if (!q) return static_cast<unsigned>(vr_write_status::value_out_of_range);
-             const vr_write_status s = v.write(static_cast<std::uint16_t>(vr > 65535 ? 65535 : vr),
-                                               network_value::from_q32(q.raw));
+             const vr_write_status s =
+                 v.write(static_cast<std::uint16_t>(vr > 65535 ? 65535 : vr), network_value::from_q32(q.raw));
              v.raise_pending();
              return static_cast<unsigned>(s);
            })
@@ -281,7 +292,8 @@ void bind_ring(py::module_& m) {
       .def("send_variable",
            [](motion_coordinator_node& n, int address, unsigned vr, double value) {
              if (vr > ring::max_vr) return static_cast<unsigned>(ring::send_status::vr_out_of_range);
-             return static_cast<unsigned>(n.node().send_variable(address, static_cast<std::uint16_t>(vr), value));
+             return static_cast<unsigned>(
+                 n.node().send_variable(address, static_cast<std::uint16_t>(vr), value));
            })
       .def("send_keypad_offset",
            [](motion_coordinator_node& n, int address, int offset) {
@@ -301,21 +313,24 @@ void bind_ring(py::module_& m) {
                              [](motion_coordinator_node& n) { return n.node().characters_waiting(); })
       .def_property_readonly("netstat", [](motion_coordinator_node& n) { return n.node().netstat(); })
       .def("clear_netstat", [](motion_coordinator_node& n) { n.node().clear_netstat(); })
-      .def_property_readonly("transmit_free", [](motion_coordinator_node& n) { return n.node().transmit_free(); })
+      .def_property_readonly("transmit_free",
+                             [](motion_coordinator_node& n) { return n.node().transmit_free(); })
       .def("counters", [](motion_coordinator_node& n) { return counters_of(n.node().counters()); })
       .def("forwarding_counters",
            [](motion_coordinator_node& n) { return counters_of(n.node().forwarding_counters()); });
 
   py::class_<keypad_node, ring_node>(m, "Keypad")
       .def(py::init<>())
-      .def("press", [](keypad_node& n, unsigned k) {
-        if (k >= ring::key_count) throw py::value_error("no such key");
-        return static_cast<unsigned>(n.node().press(static_cast<ring::key>(k)));
-      })
-      .def("release", [](keypad_node& n, unsigned k) {
-        if (k >= ring::key_count) throw py::value_error("no such key");
-        return static_cast<unsigned>(n.node().release(static_cast<ring::key>(k)));
-      })
+      .def("press",
+           [](keypad_node& n, unsigned k) {
+             if (k >= ring::key_count) throw py::value_error("no such key");
+             return static_cast<unsigned>(n.node().press(static_cast<ring::key>(k)));
+           })
+      .def("release",
+           [](keypad_node& n, unsigned k) {
+             if (k >= ring::key_count) throw py::value_error("no such key");
+             return static_cast<unsigned>(n.node().release(static_cast<ring::key>(k)));
+           })
       .def_property_readonly("network_mode", [](keypad_node& n) { return n.node().network_mode(); })
       .def_property_readonly("offset", [](keypad_node& n) { return n.node().offset(); })
       .def_property_readonly("mode", [](keypad_node& n) { return n.node().mode(); })
@@ -325,7 +340,8 @@ void bind_ring(py::module_& m) {
                                return py::make_tuple(std::string(d.line(0)), std::string(d.line(1)));
                              })
       .def_property_readonly("cursor", [](keypad_node& n) { return n.node().display().cursor(); })
-      .def_property_readonly("cursor_visible", [](keypad_node& n) { return n.node().display().cursor_visible(); })
+      .def_property_readonly("cursor_visible",
+                             [](keypad_node& n) { return n.node().display().cursor_visible(); })
       .def_property_readonly("netstat", [](keypad_node& n) { return n.node().netstat(); })
       .def("clear_netstat", [](keypad_node& n) { n.node().clear_netstat(); })
       .def("counters", [](keypad_node& n) { return counters_of(n.node().counters()); })
@@ -341,7 +357,8 @@ void bind_ring(py::module_& m) {
       .def_property_readonly("idle_byte_times", [](simulator& s) { return s.ring().idle_byte_times(); })
       .def_property_readonly("quiet", [](simulator& s) { return s.ring().quiet(); })
       .def("drop_next", [](simulator& s, std::size_t link) { s.ring().drop_next(link); })
-      .def("flip_next", [](simulator& s, std::size_t link, std::uint8_t mask) { s.ring().flip_next(link, mask); })
+      .def("flip_next",
+           [](simulator& s, std::size_t link, std::uint8_t mask) { s.ring().flip_next(link, mask); })
       .def("cut", [](simulator& s, std::size_t link, bool cut) { s.ring().cut(link, cut); });
 }
 
