@@ -173,11 +173,11 @@ def main():
                     "character stream", "BM_ring_mc_forward_characters_bulk", "mc_forward_characters_bulk", 10)
     instruction_row("MC node receive-and-forward, bulk, variable transfers",
                     "BM_ring_mc_forward_variables_bulk", "mc_forward_variables_bulk", 10)
-    instruction_row("MC node receive-and-forward, DMA relay (`relay(byte_view, byte_buffer)`: 16 bytes in, forwarded "
-                    "bytes written straight to the transmit buffer), character stream",
-                    "BM_ring_mc_relay_characters", "mc_relay_characters", 10)
-    instruction_row("MC node receive-and-forward, DMA relay, variable transfers",
-                    "BM_ring_mc_relay_variables", "mc_relay_variables", 10)
+    instruction_row("Host POSIX link (256-byte read() and write()), character stream, hops 2: a byte at a time "
+                    "through the byte port", "BM_ring_host_link_characters_bytewise",
+                    "host_link_characters_bytewise", None)
+    instruction_row("Host POSIX link, the same with the node's bulk calls (what `fd_link` does)",
+                    "BM_ring_host_link_characters_bulk", "host_link_characters_bulk", None)
     instruction_row("MC node, character transfers delivered to it (timed: with GET# reading; counted: `receive` only)",
                     "BM_ring_mc_deliver_characters_with_get", "mc_deliver_characters", None)
     instruction_row("MC node, variable transfers delivered to it (decode, CRC, write VR())",
@@ -233,8 +233,8 @@ def main():
     hot = []
     for workload in ("decoder_characters_bulk", "decoder_characters_bytewise", "decoder_variables_bulk",
                      "decoder_variables_bytewise", "mc_forward_characters", "mc_forward_variables",
-                     "mc_forward_characters_bulk", "mc_forward_variables_bulk", "mc_relay_characters",
-                     "mc_relay_variables"):
+                     "mc_forward_characters_bulk", "mc_forward_variables_bulk", "host_link_characters_bytewise",
+                     "host_link_characters_bulk"):
         path = os.path.join(args.callgrind_dir, f"{workload}.out")
         total, by_file, lines = hot_lines(path, args.root, 5)
         hot.append((workload, total, by_file, lines))

@@ -114,8 +114,7 @@ void mc_forward(benchmark::State& state, const std::vector<std::uint8_t>& stream
 }
 
 // The same through the calls a DMA-fed node uses, dma_chunk bytes at a time with room for twice that to send:
-// `chunk(mc, in, out)` is receive(byte_view) then transmit(byte_buffer), or relay(in, out), which writes
-// forwarded bytes straight into `out` when the forward buffer is empty.
+// `chunk(mc, in, out)` is receive(byte_view) then transmit(byte_buffer).
 template <class Chunk>
 void mc_forward_dma(benchmark::State& state, const std::vector<std::uint8_t>& stream, Chunk chunk) {
   trionet::vr_table<256> vr;
@@ -142,12 +141,6 @@ void mc_forward_bulk(benchmark::State& state, const std::vector<std::uint8_t>& s
     return mc.transmit(out);
   });
 }
-void mc_relay(benchmark::State& state, const std::vector<std::uint8_t>& stream) {
-  mc_forward_dma(state, stream, [](motion_coordinator<>& mc, byte_view in, trionet::byte_buffer out) {
-    return mc.relay(in, out);
-  });
-}
-
 void BM_ring_mc_forward_characters(benchmark::State& state) {
   mc_forward(state, tb::character_stream(2));
 }
@@ -164,14 +157,41 @@ BENCHMARK(BM_ring_mc_forward_characters);
 BENCHMARK(BM_ring_mc_forward_variables);
 BENCHMARK(BM_ring_mc_forward_characters_bulk);
 BENCHMARK(BM_ring_mc_forward_variables_bulk);
-void BM_ring_mc_relay_characters(benchmark::State& state) {
-  mc_relay(state, tb::character_stream(2));
+// A host's POSIX link (src/host/posix_link.cpp): each read() of up to 256 bytes into the node, then what one
+// write() of 256 bytes takes, a byte at a time through the byte port (as it was) or with the bulk calls.
+void host_link(benchmark::State& state, bool bulk) {
+  const std::vector<std::uint8_t> stream = tb::character_stream(2);
+  trionet::vr_table<256> vr;
+  tb::host_mc mc(vr);
+  trionet::byte_port& port = mc;
+  std::uint8_t out[tb::host_chunk];
+  std::uint64_t sent = 0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < stream.size(); i += tb::host_chunk) {
+      const std::size_t n = stream.size() - i < tb::host_chunk ? stream.size() - i : tb::host_chunk;
+      if (bulk) {
+        mc.receive(byte_view(&stream[i], n));
+        sent += mc.transmit(trionet::byte_buffer(out, sizeof out));
+      } else {
+        for (std::size_t j = 0; j < n; ++j) port.receive(stream[i + j]);
+        std::size_t m = 0;
+        while (m < sizeof out && port.transmit(out[m])) ++m;
+        sent += m;
+      }
+    }
+    benchmark::DoNotOptimize(out);
+    benchmark::ClobberMemory();
+  }
+  const auto bytes = static_cast<std::uint64_t>(state.iterations()) * stream.size();
+  if (mc.forwarding_counters().forwards_lost != 0 || mc.netstat() != 0 || sent != bytes) {
+    state.SkipWithError("the node lost, rejected or held back forwarded traffic");
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
 }
-void BM_ring_mc_relay_variables(benchmark::State& state) {
-  mc_relay(state, tb::variable_stream(2));
-}
-BENCHMARK(BM_ring_mc_relay_characters);
-BENCHMARK(BM_ring_mc_relay_variables);
+void BM_ring_host_link_characters_bytewise(benchmark::State& state) { host_link(state, false); }
+void BM_ring_host_link_characters_bulk(benchmark::State& state) { host_link(state, true); }
+BENCHMARK(BM_ring_host_link_characters_bytewise);
+BENCHMARK(BM_ring_host_link_characters_bulk);
 
 // Character transfers to the node (hops 1). The program reads them with GET#4 after each message (the
 // receive buffer holds 256 characters), and that reading is part of the time measured here.

@@ -14,6 +14,7 @@
 #include "trionet/can/frame.hpp"
 #include "trionet/can/vr_codec.hpp"
 #include "trionet/ring/encode.hpp"
+#include "trionet/ring/motion_coordinator.hpp"
 
 namespace trionet::bench {
 
@@ -27,6 +28,11 @@ constexpr std::size_t messages_per_stream = 16;
 /// node's bulk `transmit(byte_buffer)` is then given room for twice that. Below the default forward buffer
 /// (32 bytes), so cut-through forwarding never overflows.
 constexpr std::size_t dma_chunk = 16;
+
+/// Bytes per read() and write() of a host's POSIX link (src/host/posix_link.cpp).
+constexpr std::size_t host_chunk = 256;
+/// A Motion Coordinator as a host runs it on a POSIX link: a forward buffer that holds a whole read().
+using host_mc = ring::motion_coordinator<256, 4096, 256>;
 
 /// A deterministic generator (xorshift32), so every run measures the same bytes.
 class pseudo_random {

@@ -10,8 +10,9 @@
 //   6     pull (op & 31) + 1 bytes from the MC's transmitter
 //   7     clear NETSTAT, KEY#, keypad press/release, pull from the keypad, idle line (op & 7)
 // Every received byte goes to both nodes. At the end both transmitters are drained.
-// A twin of the MC gets the same bytes and calls through the bulk forms (receive(byte_view), relay) and must
-// send the same bytes, answer every call the same and end with the same counters, NETSTAT and VRs.
+// A twin of the MC gets the same bytes and calls through the bulk forms (receive(byte_view),
+// transmit(byte_buffer)) and must send the same bytes, answer every call the same and end with the same
+// counters, NETSTAT and VRs.
 //
 // Invariants (MC):
 //   - a model of the link (docs/protocol.md 1.5) says where each received byte goes (local, forwarded,
@@ -93,6 +94,14 @@ struct stream_checker {
       FUZZ_CHECK(r.error != frame_error::zero_hops);
     }
   }
+};
+
+/// Where a received byte goes (docs/protocol.md 1.5).
+enum class byte_route {
+  local,      // to the node's own decoder
+  forwarded,  // into the forward buffer
+  dropped,    // the rest of a lost message
+  lost,       // the byte on which a forwarded message was lost (no room, or past the longest legal message)
 };
 
 /// What the MC's link must do (docs/protocol.md 1.5): where each received byte goes, and what it transmits.
@@ -605,9 +614,10 @@ class harness {
   }
 
   // The twin: the same node fed the same bytes through the bulk calls a DMA-fed node uses. The bytes received
-  // since its last call go in at once with receive(byte_view), and when `mc_` is pulled `pulls` times the
-  // last (up to 16) of them go through relay(in, out) with room for `pulls` bytes: the same as receiving them
-  // one by one and pulling that often, so it must send the same bytes and end in the same state.
+  // since its last call go in at once with receive(byte_view), in two pieces (the last up to 15 of them
+  // apart), and when `mc_` is pulled `pulls` times the twin's transmit(byte_buffer) gets room for `pulls`
+  // bytes: the same as receiving them one by one and pulling that often, so it must send the same bytes and
+  // end in the same state.
   void receive_in_twin() {
     twin_.receive(trionet::byte_view(twin_pending_.data(), twin_pending_.size()));
     twin_pending_.clear();
@@ -615,10 +625,9 @@ class harness {
   void relay_to_twin(std::size_t pulls, std::uint8_t op) {
     const std::size_t tail = std::min<std::size_t>(twin_pending_.size(), op & 15u);
     twin_.receive(trionet::byte_view(twin_pending_.data(), twin_pending_.size() - tail));
+    twin_.receive(trionet::byte_view(twin_pending_.data() + twin_pending_.size() - tail, tail));
     std::vector<std::uint8_t> out(pulls);
-    const std::size_t got =
-        twin_.relay(trionet::byte_view(twin_pending_.data() + twin_pending_.size() - tail, tail),
-                    trionet::byte_buffer(out.data(), out.size()));
+    const std::size_t got = twin_.transmit(trionet::byte_buffer(out.data(), out.size()));
     FUZZ_CHECK(got <= pulls);
     twin_sent_.insert(twin_sent_.end(), out.begin(), out.begin() + static_cast<std::ptrdiff_t>(got));
     twin_pending_.clear();

@@ -64,7 +64,7 @@ constexpr std::uint16_t position_vr = 0;
 constexpr std::int64_t step = trionet::q32_from_double(0.001).raw;  // computed at compile time
 
 trionet::vr_table<64, std::int64_t> vr;  // Q32.32 VRs: no floating point anywhere in the image
-ring::motion_coordinator<256, 16, 32, ring::crc16_ccitt_false_bitwise> node(vr);  // default capacities
+ring::motion_coordinator<256, 16, 32, 256, ring::crc16_ccitt_false_bitwise> node(vr);  // default capacities
 #endif
 
 }  // namespace

@@ -337,8 +337,8 @@ void two_motion_coordinators(const char* name) {
   group(name);
   trionet::vr_table<256> vr_a;
   trionet::vr_table<256> vr_b;
-  ring::motion_coordinator<256, 48, 48, CrcA, ring::default_max_characters, Layout> a(vr_a);
-  ring::motion_coordinator<256, 48, 48, CrcB, ring::default_max_characters, Layout> b(vr_b);
+  ring::motion_coordinator<256, 48, 48, ring::default_max_characters, CrcA, Layout> a(vr_a);
+  ring::motion_coordinator<256, 48, 48, ring::default_max_characters, CrcB, Layout> b(vr_b);
 
   // SEND(10,1,200,99) and PRINT #10,"HELLO": a ring of two, so address 10 (one hop) is the other node.
   const double value = *opaque(&golden_frame[1]) == 0x48 ? 99.0 : 0.0;

@@ -10,7 +10,6 @@
 #include "trionet/ring/keypad.hpp"
 #include "trionet/ring/keypad_codes.hpp"
 #include "trionet/ring/keypad_display.hpp"
-#include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/motion_coordinator.hpp"
 #include "trionet/ring/node.hpp"

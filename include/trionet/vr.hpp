@@ -27,7 +27,7 @@
 #endif
 #endif
 
-#include "trionet/attributes.hpp"
+#include "trionet/detail/attributes.hpp"
 #include "trionet/q32.hpp"
 
 namespace trionet {

@@ -37,8 +37,8 @@ constexpr std::size_t host_read_chunk = 256;  // what fd_link reads at once
 // The nodes check and send direct variable transfers with the profile's CRC (an object chosen at run time)
 // and variable layout (a policy: one instantiation for each, picked by ring::with_variable_layout).
 template <class Layout>
-using host_mc = ring::motion_coordinator<256, host_forward_capacity, 256, ring::crc16_runtime,
-                                         ring::default_max_characters, Layout>;
+using host_mc = ring::motion_coordinator<256, host_forward_capacity, 256, ring::default_max_characters,
+                                         ring::crc16_runtime, Layout>;
 template <class Layout>
 using host_keypad =
     ring::keypad<host_forward_capacity, 64, ring::default_max_characters, ring::crc16_runtime, Layout>;

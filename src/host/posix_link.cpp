@@ -42,7 +42,7 @@ pump_result fd_link::service(short revents) {
     std::uint8_t in[256];
     const ssize_t got = ::read(fd_, in, sizeof in);
     if (got > 0) {
-      for (ssize_t i = 0; i < got; ++i) node_->receive(in[i]);
+      receive(byte_view(in, static_cast<std::size_t>(got)));
       result.received = static_cast<std::size_t>(got);
     } else if (got == 0) {
       result.closed = true;
@@ -54,9 +54,8 @@ pump_result fd_link::service(short revents) {
   }
   if ((revents & POLLOUT) != 0) {
     if (unsent() == 0) {
-      out_offset_ = out_length_ = 0;
-      std::uint8_t byte = 0;
-      while (out_length_ < sizeof out_ && node_->transmit(byte)) out_[out_length_++] = byte;
+      out_offset_ = 0;
+      out_length_ = transmit(byte_buffer(out_, sizeof out_));
     }
     if (unsent() != 0) {
       const ssize_t wrote = ::write(fd_, out_ + out_offset_, unsent());
@@ -69,6 +68,18 @@ pump_result fd_link::service(short revents) {
     }
   }
   return result;
+}
+
+void fd_link::receive(byte_view in) noexcept {
+  if (receive_bulk_ != nullptr) return receive_bulk_(*node_, in);
+  for (std::uint8_t byte : in) node_->receive(byte);
+}
+
+std::size_t fd_link::transmit(byte_buffer out) noexcept {
+  if (transmit_bulk_ != nullptr) return transmit_bulk_(*node_, out);
+  std::size_t n = 0;
+  while (n < out.size() && node_->transmit(out[n])) ++n;
+  return n;
 }
 
 }  // namespace trionet::host

@@ -525,7 +525,7 @@ header_result profile_header(const profile& p, std::string_view namespace_name) 
   h += "using ring_decoder = trionet::ring::decoder<ring_max_characters, ring_crc, ring_layout>;\n";
   h += "template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 32>\n";
   h += "using motion_coordinator = trionet::ring::motion_coordinator<ring_receive_buffer, ForwardCapacity,\n";
-  h += "    TransmitCapacity, ring_crc, ring_max_characters, ring_layout>;\n";
+  h += "    TransmitCapacity, ring_max_characters, ring_crc, ring_layout>;\n";
   h += "template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16>\n";
   h += "using keypad = trionet::ring::keypad<ForwardCapacity, TransmitCapacity, ring_max_characters, "
        "ring_crc,\n";

@@ -26,7 +26,7 @@ using event_sink = std::function<void(const network_event&)>;
 // and layout (a template parameter of the library's nodes, one of seven). The simulation reaches them
 // through these interfaces, implemented once per layout and chosen when the ring is built.
 template <class Layout>
-using mc_node = ring::motion_coordinator<256, 32, 32, ring::crc16_runtime, ring::default_max_characters, Layout>;
+using mc_node = ring::motion_coordinator<256, 32, 32, ring::default_max_characters, ring::crc16_runtime, Layout>;
 template <class Layout>
 using keypad_node = ring::keypad<16, 16, ring::default_max_characters, ring::crc16_runtime, Layout>;
 constexpr std::size_t mc_max_own_frame = mc_node<ring::default_variable_layout>::max_own_frame;

@@ -4,8 +4,8 @@
 //
 // N is the link side's steps per node (default 2000000): with `--link uart` (the default) one received byte
 // and one transmitted byte at most each, as a UART interrupt; with `--link dma` the ring nodes' link side
-// takes runs of 1..8 bytes in bulk (receive and transmit, or relay), as a DMA-fed UART. Prints what each run
-// did; returns 1 if any check failed, 2 on a bad command line.
+// takes runs of 1..8 bytes in bulk (receive, then transmit in bulk or a byte at a time), as a DMA-fed UART.
+// Prints what each run did; returns 1 if any check failed, 2 on a bad command line.
 #pragma once
 
 #include <cstdio>

@@ -1,5 +1,5 @@
 // trionet_concurrency_stress_broken: the same stress with the concurrency contract deliberately broken, to
-// show that the test can fail. Here `single_writer` (include/trionet/single_writer.hpp) of every size the
+// show that the test can fail. Here `single_writer` (include/trionet/detail/single_writer.hpp) of every size the
 // nodes use is a plain variable: the same loads and stores by the same sides, without the atomic. The
 // nodes' queue indices, NETSTAT bytes, keypad offset and mode and all counters become data races, and
 // ThreadSanitizer must report one. scripts/concurrency-test requires it for each node; never run it as a
@@ -8,7 +8,7 @@
 //   trionet_concurrency_stress_broken [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]
 #include <cstdint>
 
-#include "trionet/single_writer.hpp"
+#include "trionet/detail/single_writer.hpp"
 
 namespace trionet {
 
@@ -32,6 +32,7 @@ class plain_single_writer {
 }  // namespace broken
 
 // Declared before any node is, so that the nodes below are built on them.
+namespace detail {
 template <>
 class single_writer<std::uint8_t> : public broken::plain_single_writer<std::uint8_t> {
  public:
@@ -47,6 +48,7 @@ class single_writer<std::uint32_t> : public broken::plain_single_writer<std::uin
  public:
   using plain_single_writer::plain_single_writer;
 };
+}  // namespace detail
 
 }  // namespace trionet
 

@@ -162,7 +162,7 @@ bool grew_or_same(const Counters& now, const Counters& before) {
 
 /// One step of a ring node's link side: a byte in (unless the line is quiet) and a byte out, as a UART
 /// interrupt does; or, with `config::dma`, a run of 1..8 bytes in and room for as many out, as a DMA-fed UART
-/// does (receive then transmit in bulk, or relay).
+/// does (receive in bulk, then transmit in bulk or a byte at a time).
 template <class Node>
 void link_step(Node& node, const config& cfg, std::mt19937_64& rng, const std::vector<std::uint8_t>& current,
                std::size_t& at, bool quiet, std::vector<std::uint8_t>& out, std::uint64_t& calls) {
@@ -180,16 +180,16 @@ void link_step(Node& node, const config& cfg, std::mt19937_64& rng, const std::v
   std::uint8_t buffer[8];
   const std::size_t in = quiet ? 0 : std::min(room, current.size() - at);
   std::size_t sent = 0;
-  if (in != 0 && (rng() & 1) != 0) {
-    sent = node.relay(byte_view(current.data() + at, in), byte_buffer(buffer, room));
+  if (in != 0) {
+    node.receive(byte_view(current.data() + at, in));
     ++calls;
-  } else {
-    if (in != 0) {
-      node.receive(byte_view(current.data() + at, in));
-      ++calls;
-    }
+  }
+  if ((rng() & 1) != 0) {
     sent = node.transmit(byte_buffer(buffer, room));
     ++calls;
+  } else {
+    while (sent < room && node.transmit(buffer[sent])) ++sent;
+    calls += sent + 1;
   }
   at += in;
   out.insert(out.end(), buffer, buffer + sent);
@@ -471,7 +471,7 @@ report run_motion_coordinator(const config& cfg) {
 
 /// The Motion Coordinator's run (see detail::run_motion_coordinator): default capacities with a UART link
 /// side. A DMA-fed link side receives a run of bytes before it transmits, so by the capacity rule of
-/// ring/link.hpp its forward buffer holds a longest own frame plus a run: 16 + 8 bytes, own frames of 16.
+/// ring/node.hpp its forward buffer holds a longest own frame plus a run: 16 + 8 bytes, own frames of 16.
 inline report run_motion_coordinator(const config& cfg) {
   if (cfg.dma) return detail::run_motion_coordinator<ring::motion_coordinator<256, 24, 16>>(cfg);
   return detail::run_motion_coordinator<ring::motion_coordinator<>>(cfg);

@@ -32,7 +32,7 @@ inline constexpr std::size_t ring_receive_buffer = 256;
 using ring_decoder = trionet::ring::decoder<ring_max_characters, ring_crc, ring_layout>;
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 32>
 using motion_coordinator = trionet::ring::motion_coordinator<ring_receive_buffer, ForwardCapacity,
-    TransmitCapacity, ring_crc, ring_max_characters, ring_layout>;
+    TransmitCapacity, ring_max_characters, ring_crc, ring_layout>;
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16>
 using keypad = trionet::ring::keypad<ForwardCapacity, TransmitCapacity, ring_max_characters, ring_crc,
     ring_layout>;

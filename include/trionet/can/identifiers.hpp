@@ -109,13 +109,17 @@ struct [[nodiscard]] route_result {
   return node_count >= min_node_count && node_count <= max_node_count;
 }
 
-namespace detail {
-[[nodiscard]] constexpr scheme_status check_node(std::uint8_t node_count, std::uint8_t node) noexcept {
-  if (!valid_node_count(node_count)) return scheme_status::bad_node_count;
-  if (node < 1 || node > node_count) return scheme_status::bad_node;
-  return scheme_status::ok;
+}  // namespace trionet::can
+
+namespace trionet::detail {
+[[nodiscard]] constexpr can::scheme_status check_node(std::uint8_t node_count, std::uint8_t node) noexcept {
+  if (!can::valid_node_count(node_count)) return can::scheme_status::bad_node_count;
+  if (node < 1 || node > node_count) return can::scheme_status::bad_node;
+  return can::scheme_status::ok;
 }
-}  // namespace detail
+}  // namespace trionet::detail
+
+namespace trionet::can {
 
 /// Node k's base identifier, 10k (also its receive channel 1 identifier).
 [[nodiscard]] constexpr identifier_result base_identifier(std::uint8_t node_count,

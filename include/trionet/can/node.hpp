@@ -15,7 +15,7 @@
 #include "trionet/can/identifiers.hpp"
 #include "trionet/can/port.hpp"
 #include "trionet/can/vr_codec.hpp"
-#include "trionet/single_writer.hpp"
+#include "trionet/detail/single_writer.hpp"
 #include "trionet/vr.hpp"
 
 namespace trionet::can {
@@ -169,7 +169,9 @@ struct node_counters {
   }
 };
 
-namespace detail {
+}  // namespace trionet::can
+
+namespace trionet::detail {
 
 // Where a node keeps its byte order: nothing when it is fixed at compile time (`fixed_byte_order`), one byte
 // when it is chosen at run time (`byte_order`).
@@ -177,21 +179,23 @@ template <class Order>
 class order_holder {
  protected:
   constexpr order_holder() noexcept = default;
-  static constexpr byte_order held_order() noexcept { return Order::value; }
+  static constexpr can::byte_order held_order() noexcept { return Order::value; }
 };
 
 template <>
-class order_holder<byte_order> {
+class order_holder<can::byte_order> {
  protected:
   constexpr order_holder() noexcept = default;
-  constexpr explicit order_holder(byte_order order) noexcept : order_(order) {}
-  constexpr byte_order held_order() const noexcept { return order_; }
+  constexpr explicit order_holder(can::byte_order order) noexcept : order_(order) {}
+  constexpr can::byte_order held_order() const noexcept { return order_; }
 
  private:
-  byte_order order_ = byte_order::big_endian;
+  can::byte_order order_ = can::byte_order::big_endian;
 };
 
-}  // namespace detail
+}  // namespace trionet::detail
+
+namespace trionet::can {
 
 /// One controller on the exchange. Holds its address, a reference to its port and VR store, and counters.
 /// Cost: 11 counters and their values at the last clear (88 bytes), two pointers and a 2-byte address
@@ -399,19 +403,19 @@ class basic_vr_exchange_node : private detail::order_holder<Order> {
   port* port_;
   vr_store* store_;
   // Written by the program side:
-  single_writer<std::uint32_t> sent_;
-  single_writer<std::uint32_t> send_busy_;
-  single_writer<std::uint32_t> send_failed_;
+  detail::single_writer<std::uint32_t> sent_;
+  detail::single_writer<std::uint32_t> send_busy_;
+  detail::single_writer<std::uint32_t> send_failed_;
   node_counters cleared_{};  // every count at the last clear_counters (program side only)
   // Written by the receive side:
-  single_writer<std::uint32_t> written_;
-  single_writer<std::uint32_t> refused_;
-  single_writer<std::uint32_t> out_of_range_;
-  single_writer<std::uint32_t> value_out_of_range_;
-  single_writer<std::uint32_t> foreign_;
-  single_writer<std::uint32_t> bad_dlc_;
-  single_writer<std::uint32_t> bad_sign_;
-  single_writer<std::uint32_t> bad_fraction_;
+  detail::single_writer<std::uint32_t> written_;
+  detail::single_writer<std::uint32_t> refused_;
+  detail::single_writer<std::uint32_t> out_of_range_;
+  detail::single_writer<std::uint32_t> value_out_of_range_;
+  detail::single_writer<std::uint32_t> foreign_;
+  detail::single_writer<std::uint32_t> bad_dlc_;
+  detail::single_writer<std::uint32_t> bad_sign_;
+  detail::single_writer<std::uint32_t> bad_fraction_;
 };
 
 /// A node whose byte order is chosen at run time (the constructor's last argument; default big-endian).

@@ -175,25 +175,29 @@ struct [[nodiscard]] decode_result {
   return {encode_status::ok, out};
 }
 
-namespace detail {
+}  // namespace trionet::can
+
+namespace trionet::detail {
 
 // Byte i (0 = first on the wire) of an n-byte number in `order`.
-constexpr std::uint8_t number_byte(std::uint32_t number, unsigned n, unsigned i, byte_order order) noexcept {
-  const unsigned shift = 8U * (order == byte_order::big_endian ? n - 1U - i : i);
+constexpr std::uint8_t number_byte(std::uint32_t number, unsigned n, unsigned i, can::byte_order order) noexcept {
+  const unsigned shift = 8U * (order == can::byte_order::big_endian ? n - 1U - i : i);
   return static_cast<std::uint8_t>(number >> shift);
 }
 
 // The n-byte number at `at` in `order`.
-constexpr std::uint32_t read_number(const std::uint8_t* at, unsigned n, byte_order order) noexcept {
+constexpr std::uint32_t read_number(const std::uint8_t* at, unsigned n, can::byte_order order) noexcept {
   std::uint32_t number = 0;
   for (unsigned i = 0; i < n; ++i) {
-    const unsigned shift = 8U * (order == byte_order::big_endian ? n - 1U - i : i);
+    const unsigned shift = 8U * (order == can::byte_order::big_endian ? n - 1U - i : i);
     number |= std::uint32_t{at[i]} << shift;
   }
   return number;
 }
 
-}  // namespace detail
+}  // namespace trionet::detail
+
+namespace trionet::can {
 
 /// Writes `message` into the 8 data bytes `out`, its numbers in `order`. A negative zero is sent with sign 0.
 /// Nothing is written on error (fraction > 9999).

@@ -37,7 +37,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "trionet/crc_holder.hpp"
+#include "trionet/detail/crc_holder.hpp"
 #include "trionet/genius/character.hpp"
 #include "trionet/genius/crc6.hpp"
 #include "trionet/span.hpp"

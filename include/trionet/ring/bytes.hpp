@@ -13,7 +13,7 @@
 #include <cstring>
 #include <optional>
 
-#include "trionet/attributes.hpp"
+#include "trionet/detail/attributes.hpp"
 
 namespace trionet::ring {
 

@@ -22,7 +22,6 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "trionet/crc_holder.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::ring {
@@ -238,12 +237,14 @@ class crc16_runtime {
   std::array<std::uint16_t, 256> table_{};
 };
 
-namespace detail {
+}  // namespace trionet::ring
+
+namespace trionet::detail {
 template <class Crc, class = void>
 struct is_sliced : std::false_type {};
 template <class Crc>
 struct is_sliced<Crc, std::void_t<decltype(Crc::table_kind)>>
-    : std::bool_constant<Crc::table_kind == crc_table::sliced> {};
+    : std::bool_constant<Crc::table_kind == ring::crc_table::sliced> {};
 
 template <class Crc, class = void>
 struct has_update : std::false_type {};
@@ -251,9 +252,9 @@ template <class Crc>
 struct has_update<Crc, std::void_t<decltype(Crc::update(std::uint16_t{}, std::uint8_t{}))>> : std::true_type {
 };
 
-// The ring's codecs hold their CRC as every codec does (trionet/crc_holder.hpp).
-using trionet::detail::crc_holder;
-}  // namespace detail
+}  // namespace trionet::detail
+
+namespace trionet::ring {
 
 /// The CRC of exactly N bytes with any CRC policy (initial, update, finish): a fixed count the compiler can
 /// unroll, as for the 12 bytes of a direct variable transfer.

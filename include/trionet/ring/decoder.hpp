@@ -26,7 +26,9 @@
 #include <cstdint>
 #include <cstring>
 
-#include "trionet/attributes.hpp"
+#include "trionet/detail/attributes.hpp"
+#include "trionet/detail/character_store.hpp"
+#include "trionet/detail/crc_holder.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
@@ -115,60 +117,24 @@ struct [[nodiscard]] decode_result {
   constexpr explicit operator bool() const noexcept { return status == decode_status::ok; }
 };
 
-/// Where a character store lets the decoder write: slots [first, end) of the store's `slots()`.
-struct store_window {
-  std::uint16_t first = 0;  ///< the first slot
-  std::uint16_t end = 0;    ///< one past the last slot (first == end: no room)
-};
+}  // namespace trionet::ring
 
-/// The default character store: a plain array of N characters, so a decoded message's `text` is contiguous.
-///
-/// A character store holds the data of the message being received, in slots that the decoder writes itself
-/// (so that the per-byte path is one comparison and one store), and keeps a character transfer's characters
-/// only if the message turns out valid:
-///   std::uint8_t* slots();                      // the store's bytes
-///   static constexpr std::size_t payload_at;    // slots [payload_at, payload_at + 14): the data of a
-///                                               // message of another type (at most 14 bytes are kept)
-///   store_window begin();                       // a character transfer begins: where its characters go
-///   store_window next(std::size_t stored);      // the window is used up after `stored` characters: where
-///                                               // the next go (the store may wrap round), or no room
-///   byte_view commit(std::size_t length);       // the message is valid: keep it (a view of it, or empty if
-///                                               // the characters are not contiguous)
-///   byte_view text(std::size_t length) const;   // the message just committed, as `commit` returned it
-///   void abort();                               // the message is discarded
-/// A node can stage characters straight into its receive buffer this way, so no message is held twice.
-template <std::size_t N>
-class character_buffer {
- public:
-  /// Where the data of a message of type 2..7 goes.
-  static constexpr std::size_t payload_at = 0;
-  /// The store's bytes.
-  std::uint8_t* slots() noexcept { return data_; }
-  /// The store's bytes, read-only.
-  const std::uint8_t* slots() const noexcept { return data_; }
-  /// A character transfer begins: all N slots.
-  store_window begin() noexcept { return {0, static_cast<std::uint16_t>(N)}; }
-  /// The N slots are used up: no more room.
-  static store_window next(std::size_t) noexcept { return {}; }
-  /// The first `length` slots hold the message.
-  byte_view commit(std::size_t length) noexcept { return text(length); }
-  /// The message just committed.
-  byte_view text(std::size_t length) const noexcept { return byte_view(data_, length); }
-  /// Nothing to forget: the next message starts again at slot 0.
-  static void abort() noexcept {}
-
- private:
-  static_assert(N >= 1 && N < 65535, "a character buffer holds 1..65534 characters");
-  std::uint8_t data_[N < variable_data_length ? variable_data_length : N] = {};
-};
-
+namespace trionet::detail {
 /// What one byte did to a decoder, in a byte: the `decode_status` in bits 0..2 and, for a frame error, the
 /// `frame_error` in bits 3..6. A node handles this and asks for the whole `decode_result` only for a message
 /// it takes (`basic_decoder::result`), so the per-byte path never builds one.
 using decode_step = std::uint8_t;
 
 /// The status of a step.
-constexpr decode_status status_of(decode_step step) noexcept { return static_cast<decode_status>(step & 7u); }
+constexpr ring::decode_status status_of(decode_step step) noexcept {
+  return static_cast<ring::decode_status>(step & 7u);
+}
+}  // namespace trionet::detail
+
+namespace trionet::ring {
+
+template <class Node, class Decoder, std::size_t ForwardCapacity, std::size_t TransmitCapacity, bool Switchable>
+class node;
 
 /// The decoder with its character store as a template parameter (see `decoder` for the common case).
 /// `Crc` and `Layout` are the direct variable transfer's CRC (crc.hpp) and field layout
@@ -183,6 +149,10 @@ class basic_decoder : private detail::crc_holder<Crc> {
  public:
   /// The longest character transfer it accepts.
   static constexpr std::size_t max_characters = MaxCharacters;
+  /// The CRC policy of its direct variable transfers (crc.hpp).
+  using crc_type = Crc;
+  /// The field layout of its direct variable transfers (variable_layout.hpp).
+  using layout_type = Layout;
 
   /// A decoder with a static CRC policy (or a run-time CRC with its default parameters).
   constexpr basic_decoder() = default;
@@ -190,7 +160,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
   constexpr explicit basic_decoder(const Crc& crc) noexcept : detail::crc_holder<Crc>(crc) {}
 
   /// Feeds one byte. The fast path: a data byte of an open message with room in the store's window.
-  [[nodiscard]] TRIONET_FAST_PATH decode_result push(std::uint8_t byte) noexcept {
+  [[nodiscard]] TRIONET_ALWAYS_INLINE decode_result push(std::uint8_t byte) noexcept {
     if (TRIONET_LIKELY(is_data(byte)) && at_ != end_) {
       store_.slots()[at_] = byte;
       ++at_;
@@ -199,8 +169,71 @@ class basic_decoder : private detail::crc_holder<Crc> {
     return result(step_slow(byte));
   }
 
+  /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
+  /// order: exactly the results that pushing the bytes one at a time would give.
+  template <class Sink>
+  void push(byte_view bytes, Sink&& sink) noexcept(noexcept(sink(decode_result{}))) {
+    const std::uint8_t* p = bytes.begin();
+    const std::uint8_t* const end = bytes.end();
+    while (p != end) {
+      if (state_ != state::in_message && end - p >= 16 && is_whole_variable_transfer(p)) {
+        // A whole direct variable transfer in the buffer: checked in place, as the bytes one by one would be.
+        state_ = state::idle;
+        end_ = at_;
+        const detail::decode_step checked = check_variable(p + 1);
+        decode_result r;
+        r.status = detail::status_of(checked);
+        if (r.status == decode_status::frame_error) {
+          r.error = static_cast<frame_error>(checked >> 3);
+        } else {
+          r.msg.type = message_type::variable;
+          r.msg.hops = hops_of(*p);
+          Layout::read(p + 1, r.msg.vr, r.msg.value);
+        }
+        p += 16;
+        sink(r);
+        continue;
+      }
+      if (state_ == state::in_message) {  // the common case: a run of message data, copied whole
+        const std::uint8_t* const run = find_control(p, end);
+        store(p, static_cast<std::size_t>(run - p));
+        p = run;
+        if (p == end) break;
+      }
+      const detail::decode_step done = step_slow(*p++);
+      if (done != 0) sink(result(done));
+    }
+  }
+
+  /// A header that this decoder does not see (a node forwards it) ends any open message: `interrupted` if a
+  /// message was open, else incomplete. Either way the decoder is then between messages.
+  [[nodiscard]] decode_result interrupt() noexcept { return result(close(frame_error::interrupted)); }
+
+  /// The line has been idle (docs/protocol.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
+  /// else incomplete. Either way the decoder is then between messages (a skipped A = 0 message is over too).
+  [[nodiscard]] decode_result line_idle() noexcept { return result(close(frame_error::idle_line)); }
+
+  /// Forgets any open message (e.g. after a link reset), silently.
+  void reset() noexcept {
+    if (state_ == state::in_message) {
+      if (characters()) store_.abort();
+      end_ = at_;  // (outside a message end_ == at_ already)
+    }
+    state_ = state::idle;
+  }
+
+  /// True while a message has begun and not ended.
+  bool in_message() const noexcept { return state_ == state::in_message; }
+  /// True while a message, or a skipped A = 0 message, has begun and not ended.
+  bool open() const noexcept { return state_ == state::in_message || state_ == state::skipping; }
+
+ private:
+  // ---- for the ring-node core (node.hpp): the decoder of a node's messages, a step at a time ----
+  template <class, class, std::size_t, std::size_t, bool>
+  friend class node;
+
   /// Feeds one byte and says what it did in a `decode_step` (see `result` for the details).
-  [[nodiscard]] TRIONET_ALWAYS_INLINE decode_step step(std::uint8_t byte) noexcept {
+  [[nodiscard]] TRIONET_ALWAYS_INLINE detail::decode_step step(std::uint8_t byte) noexcept {
     if (TRIONET_LIKELY(is_data(byte)) && at_ != end_) {
       store_.slots()[at_] = byte;
       ++at_;
@@ -209,20 +242,11 @@ class basic_decoder : private detail::crc_holder<Crc> {
     return step_slow(byte);
   }
 
-  /// The fast path alone: stores a data byte of an open message if its window has room (true), else does
-  /// nothing (false: `step` it).
-  TRIONET_ALWAYS_INLINE bool take(std::uint8_t byte) noexcept {
-    if (at_ == end_) return false;
-    store_.slots()[at_] = byte;
-    ++at_;
-    return true;
-  }
-
   /// The whole result of the step just taken (the message, or why it was discarded); `step` must be the
   /// last step's value, and the decoder not fed since. A character message's text is in the store.
-  decode_result result(decode_step step) const noexcept {
+  decode_result result(detail::decode_step step) const noexcept {
     decode_result r;
-    r.status = status_of(step);
+    r.status = detail::status_of(step);
     switch (r.status) {
       case decode_status::incomplete:
         return r;
@@ -259,86 +283,32 @@ class basic_decoder : private detail::crc_holder<Crc> {
   /// The data of that message when it is not a character transfer (14 bytes for a variable transfer).
   const std::uint8_t* payload() const noexcept { return store_.slots() + Store::payload_at; }
 
-  /// Feeds many bytes; calls `sink(const decode_result&)` for every result that is not `incomplete`, in
-  /// order: exactly the results that pushing the bytes one at a time would give.
-  template <class Sink>
-  void push(byte_view bytes, Sink&& sink) noexcept(noexcept(sink(decode_result{}))) {
-    const std::uint8_t* p = bytes.begin();
-    const std::uint8_t* const end = bytes.end();
-    while (p != end) {
-      if (state_ != state::in_message && end - p >= 16 && is_whole_variable_transfer(p)) {
-        // A whole direct variable transfer in the buffer: checked in place, as the bytes one by one would be.
-        state_ = state::idle;
-        end_ = at_;
-        const decode_step checked = check_variable(p + 1);
-        decode_result r;
-        r.status = status_of(checked);
-        if (r.status == decode_status::frame_error) {
-          r.error = static_cast<frame_error>(checked >> 3);
-        } else {
-          r.msg.type = message_type::variable;
-          r.msg.hops = hops_of(*p);
-          Layout::read(p + 1, r.msg.vr, r.msg.value);
-        }
-        p += 16;
-        sink(r);
-        continue;
-      }
-      if (state_ == state::in_message) {  // the common case: a run of message data, copied whole
-        const std::uint8_t* const run = find_control(p, end);
-        store(p, static_cast<std::size_t>(run - p));
-        p = run;
-        if (p == end) break;
-      }
-      const decode_step done = step_slow(*p++);
-      if (done != 0) sink(result(done));
-    }
-  }
-
-  /// A header that this decoder does not see (a node forwards it) ends any open message: `interrupted` if a
-  /// message was open, else incomplete. Either way the decoder is then between messages.
-  [[nodiscard]] decode_result interrupt() noexcept { return result(close(frame_error::interrupted)); }
-
-  /// The line has been idle (docs/protocol.md 1.10): an open message has lost the rest of its bytes, `idle_line`;
-  /// else incomplete. Either way the decoder is then between messages (a skipped A = 0 message is over too).
-  [[nodiscard]] decode_result line_idle() noexcept { return result(close(frame_error::idle_line)); }
-
   /// `interrupt` or `line_idle` (`reason`) as a step: a frame error with that reason if a message was open.
-  decode_step close(frame_error reason) noexcept {
+  detail::decode_step close(frame_error reason) noexcept {
     const bool was_open = state_ == state::in_message;
     reset();
-    return was_open ? error(reason) : decode_step{0};
-  }
-
-  /// Forgets any open message (e.g. after a link reset), silently.
-  void reset() noexcept {
-    if (state_ == state::in_message) {
-      if (characters()) store_.abort();
-      end_ = at_;  // (outside a message end_ == at_ already)
-    }
-    state_ = state::idle;
+    return was_open ? error(reason) : detail::decode_step{0};
   }
 
   /// True between messages, with nothing to skip or report.
   bool idle() const noexcept { return state_ == state::idle; }
-  /// True while a message has begun and not ended.
-  bool in_message() const noexcept { return state_ == state::in_message; }
-  /// True while a message, or a skipped A = 0 message, has begun and not ended.
-  bool open() const noexcept { return state_ == state::in_message || state_ == state::skipping; }
 
   /// The character store.
   Store& store() noexcept { return store_; }
   /// The character store, read-only.
   const Store& store() const noexcept { return store_; }
 
- private:
+  // ---- the decoder itself ----
+
   enum class state : std::uint8_t { idle, stray, in_message, skipping };
 
-  static constexpr decode_step error(frame_error reason) noexcept {
-    return static_cast<decode_step>(static_cast<unsigned>(decode_status::frame_error) |
+  static constexpr detail::decode_step error(frame_error reason) noexcept {
+    return static_cast<detail::decode_step>(static_cast<unsigned>(decode_status::frame_error) |
                                     (static_cast<unsigned>(reason) << 3));
   }
-  static constexpr decode_step status(decode_status s) noexcept { return static_cast<decode_step>(s); }
+  static constexpr detail::decode_step status(decode_status s) noexcept {
+    return static_cast<detail::decode_step>(s);
+  }
 
   bool characters() const noexcept { return type_of(header_) == 1; }
   bool no_room() const noexcept { return (header_ & 0x80u) == 0; }
@@ -348,7 +318,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
   void set_length(std::size_t length) noexcept { base_ = static_cast<std::uint16_t>(length - at_); }
 
   // Everything but a data byte with room in the window.
-  TRIONET_NOINLINE decode_step step_slow(std::uint8_t byte) noexcept {
+  TRIONET_NOINLINE detail::decode_step step_slow(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
       if (state_ == state::in_message) {  // the window is used up
         if (next_window()) {
@@ -368,7 +338,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
     if (type_of(byte) == 0) {  // end of message
       state_ = state::idle;
       if (was == state::in_message) return finish(hops_of(byte));
-      return was == state::skipping ? decode_step{0} : error(frame_error::stray_eom);
+      return was == state::skipping ? detail::decode_step{0} : error(frame_error::stray_eom);
     }
     if (was == state::in_message && characters()) store_.abort();
     const std::uint8_t hops = hops_of(byte);
@@ -385,7 +355,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
       end_ = static_cast<std::uint16_t>(Store::payload_at + variable_data_length);
       set_length(0);
     }
-    return was == state::in_message ? error(frame_error::interrupted) : decode_step{0};
+    return was == state::in_message ? error(frame_error::interrupted) : detail::decode_step{0};
   }
 
   // Characters go to the store's windows (up to MaxCharacters), other payloads to its payload slots (up to
@@ -409,7 +379,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
   bool next_window() noexcept {
     const std::size_t so_far = length();
     if (!characters() || no_room() || so_far >= MaxCharacters) return false;
-    const store_window next = store_.next(so_far);
+    const detail::store_window next = store_.next(so_far);
     if (next.first == next.end) {
       header_ = static_cast<std::uint8_t>(header_ & 0x7Fu);  // no room
       return false;
@@ -426,7 +396,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
   }
 
   // The store's window `w` takes the characters from the `so_far`th on.
-  void open_window(store_window w, std::size_t so_far) noexcept {
+  void open_window(detail::store_window w, std::size_t so_far) noexcept {
     at_ = w.first;
     const std::size_t most = w.first + (MaxCharacters - so_far);
     end_ = static_cast<std::uint16_t>(w.end < most ? w.end : most);
@@ -434,8 +404,8 @@ class basic_decoder : private detail::crc_holder<Crc> {
   }
 
   // The end of message of the open message: its checks, in the order of the file comment.
-  decode_step finish(std::uint8_t end_hops) noexcept {
-    const decode_step checked = check(end_hops);
+  detail::decode_step finish(std::uint8_t end_hops) noexcept {
+    const detail::decode_step checked = check(end_hops);
     if (characters()) {
       if (checked == status(decode_status::ok)) {
         (void)store_.commit(length());
@@ -446,7 +416,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
     return checked;
   }
 
-  decode_step check(std::uint8_t end_hops) const noexcept {
+  detail::decode_step check(std::uint8_t end_hops) const noexcept {
     if (end_hops != hops_of(header_)) return error(frame_error::eom_mismatch);
     const std::size_t n = length();
     const std::uint8_t* const payload = store_.slots() + Store::payload_at;
@@ -481,7 +451,7 @@ class basic_decoder : private detail::crc_holder<Crc> {
 
   // The checks of a direct variable transfer whose 14 data bytes are well framed: the value's top group (X9 by
   // default) must have bits 6..1 zero whatever the CRC; a CRC error is an otherwise well-formed message.
-  decode_step check_variable(const std::uint8_t* data) const noexcept {
+  detail::decode_step check_variable(const std::uint8_t* data) const noexcept {
     if ((data[Layout::top_group] & 0x7E) != 0) return error(frame_error::bad_field);
     std::uint8_t scratch[variable_crc_length];
     const std::uint16_t crc = crc_of<variable_crc_length>(this->crc(), Layout::crc_bytes(data, scratch));
@@ -504,6 +474,6 @@ class basic_decoder : private detail::crc_holder<Crc> {
 /// The streaming decoder with its own character buffer of MaxCharacters.
 template <std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
           class Layout = default_variable_layout>
-using decoder = basic_decoder<character_buffer<MaxCharacters>, MaxCharacters, Crc, Layout>;
+using decoder = basic_decoder<detail::character_buffer<MaxCharacters>, MaxCharacters, Crc, Layout>;
 
 }  // namespace trionet::ring

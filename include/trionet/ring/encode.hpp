@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "trionet/detail/attributes.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/message.hpp"
@@ -60,45 +61,53 @@ struct [[nodiscard]] encode_result {
   constexpr explicit operator bool() const noexcept { return status == encode_status::ok; }
 };
 
+}  // namespace trionet::ring
+
+namespace trionet::detail {
+
 /// Checks a message's fields (not the buffer). The first problem found, or `ok`.
-constexpr encode_status check(const message& m) noexcept {
-  if (!valid_hops(m.hops)) return encode_status::hops_out_of_range;
+constexpr ring::encode_status check_message(const ring::message& m) noexcept {
+  if (!ring::valid_hops(m.hops)) return ring::encode_status::hops_out_of_range;
   switch (m.type) {
-    case message_type::character:
-      if (m.text.empty()) return encode_status::empty_text;
+    case ring::message_type::character:
+      if (m.text.empty()) return ring::encode_status::empty_text;
       for (std::uint8_t c : m.text) {
-        if (!is_data(c)) return encode_status::character_out_of_range;
+        if (!ring::is_data(c)) return ring::encode_status::character_out_of_range;
       }
-      return encode_status::ok;
-    case message_type::variable:
-      return m.vr <= max_vr ? encode_status::ok : encode_status::vr_out_of_range;
-    case message_type::keypad_offset:
-      return valid_hops(m.offset) ? encode_status::ok : encode_status::offset_out_of_range;
-    case message_type::keypad_mode:
-      return m.mode == keypad_mode_key_on || m.mode == keypad_mode_key_on_off
-                 ? encode_status::ok
-                 : encode_status::mode_out_of_range;
+      return ring::encode_status::ok;
+    case ring::message_type::variable:
+      return m.vr <= ring::max_vr ? ring::encode_status::ok : ring::encode_status::vr_out_of_range;
+    case ring::message_type::keypad_offset:
+      return ring::valid_hops(m.offset) ? ring::encode_status::ok : ring::encode_status::offset_out_of_range;
+    case ring::message_type::keypad_mode:
+      return m.mode == ring::keypad_mode_key_on || m.mode == ring::keypad_mode_key_on_off
+                 ? ring::encode_status::ok
+                 : ring::encode_status::mode_out_of_range;
   }
-  return encode_status::unknown_type;
+  return ring::encode_status::unknown_type;
 }
 
 /// Writes the 14 data bytes of a direct variable transfer (V0 V1 X0..X9 C0 C1) in the layout `Layout`, with
-/// the CRC `crc` (a static policy by default; pass a `crc16_runtime` for one chosen at run time).
-/// Precondition: vr <= 16383.
-template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
+/// the CRC `crc` (a static policy, or a `crc16_runtime`). Precondition: vr <= 16383.
+template <class Crc, class Layout>
 constexpr void write_variable_data(std::uint8_t* out, std::uint16_t vr, std::int64_t value,
-                                   const Crc& crc = Crc{}) noexcept {
+                                   const Crc& crc) noexcept {
+  TRIONET_ASSERT(vr <= ring::max_vr);
   Layout::write(out, vr, value);
-  std::uint8_t scratch[variable_crc_length] = {};
-  const std::uint16_t sum = crc_of<variable_crc_length>(crc, Layout::crc_bytes(out, scratch));
+  std::uint8_t scratch[ring::variable_crc_length] = {};
+  const std::uint16_t sum = ring::crc_of<ring::variable_crc_length>(crc, Layout::crc_bytes(out, scratch));
   out[12] = static_cast<std::uint8_t>(sum & 0x7F);
   out[13] = static_cast<std::uint8_t>((sum >> 8) & 0x7F);
 }
 
+}  // namespace trionet::detail
+
+namespace trionet::ring {
+
 /// Encodes any message. On success returns its frame length; on error writes nothing.
 template <class Crc = crc16_ccitt_false, class Layout = default_variable_layout>
 constexpr encode_result encode(byte_buffer out, const message& m, const Crc& crc = Crc{}) noexcept {
-  const encode_status status = check(m);
+  const encode_status status = detail::check_message(m);
   if (status != encode_status::ok) return {status, 0};
   const std::size_t length = frame_length(m);
   if (out.size() < length) return {encode_status::buffer_too_small, 0};
@@ -109,7 +118,7 @@ constexpr encode_result encode(byte_buffer out, const message& m, const Crc& crc
       for (std::uint8_t c : m.text) *p++ = c;
       break;
     case message_type::variable:
-      write_variable_data<Crc, Layout>(p, m.vr, m.value, crc);
+      detail::write_variable_data<Crc, Layout>(p, m.vr, m.value, crc);
       p += variable_data_length;
       break;
     case message_type::keypad_offset:

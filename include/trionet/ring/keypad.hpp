@@ -23,10 +23,9 @@
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/keypad_codes.hpp"
 #include "trionet/ring/keypad_display.hpp"
-#include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/node.hpp"
-#include "trionet/single_writer.hpp"
+#include "trionet/detail/single_writer.hpp"
 
 namespace trionet::ring {
 
@@ -80,25 +79,22 @@ struct keypad_counters {
 template <std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 16,
           std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
           class Layout = default_variable_layout>
-class keypad final
-    : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>,
-                  decoder<MaxCharacters, Crc, Layout>,
-                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout, true>> {
-  using core = node<keypad, decoder<MaxCharacters, Crc, Layout>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout, true>>;
+class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>,
+                                  decoder<MaxCharacters, Crc, Layout>, ForwardCapacity, TransmitCapacity, true> {
+  using core = node<keypad, decoder<MaxCharacters, Crc, Layout>, ForwardCapacity, TransmitCapacity, true>;
   friend core;
 
  public:
   /// A keypad in local mode (not forwarding) until its keypad offset arrives (docs/protocol.md 1.7).
   explicit keypad(const keypad_config& config = keypad_config{}) noexcept
       : config_(config), display_(config.display) {
-    this->link_.set_forwarding(false);
+    this->set_forwarding(false);
   }
   /// The same with a CRC object (`crc16_runtime`: the CRC of a profile, chosen at run time) for the direct
   /// variable transfers it checks.
   keypad(const keypad_config& config, const Crc& crc) noexcept
       : core(crc), config_(config), display_(config.display) {
-    this->link_.set_forwarding(false);
+    this->set_forwarding(false);
   }
 
   using core::receive;
@@ -148,9 +144,9 @@ class keypad final
       return key_status::local_mode;
     }
     const std::uint8_t text[1] = {character};
-    if (!this->link_.queue(message::characters(offset, byte_view(text, 1)))) {
+    if (!this->queue(message::characters(offset, byte_view(text, 1)))) {
       keys_lost_.increment();
-      this->link_.netstat().raise_tx_timeout();
+      this->raise_tx_timeout();
       return key_status::queue_full;
     }
     keys_sent_.increment();
@@ -160,14 +156,14 @@ class keypad final
   // A message for this keypad (the core has counted errors already). In local mode the link forwards nothing
   // and the keypad never transmits: the transmit queue stays empty because keys are refused.
   // Link side: a message for this keypad, still in the decoder.
-  void deliver(decode_step step) noexcept { deliver(this->decoder_.result(step)); }
+  void deliver(detail::decode_step step) noexcept { deliver(this->delivered(step)); }
   // Link side.
   void deliver(const decode_result& r) noexcept {
     if (r.status != decode_status::ok) return;  // no_room cannot happen: the store holds MaxCharacters
     if (!network_mode()) {
       if (r.msg.type == message_type::keypad_offset) {
         offset_.store(r.msg.offset);
-        this->link_.set_forwarding(true);
+        this->set_forwarding(true);
       } else {
         dropped_in_local_mode_.increment();
       }
@@ -192,13 +188,13 @@ class keypad final
 
   keypad_config config_;
   keypad_display display_;  // link side
-  single_writer<std::uint8_t> offset_;  // link side
-  single_writer<std::uint8_t> mode_{keypad_mode_key_on};  // link side
-  single_writer<std::uint32_t> dropped_in_local_mode_;  // link side
-  single_writer<std::uint32_t> display_messages_;       // link side
-  single_writer<std::uint32_t> variables_ignored_;      // link side
-  single_writer<std::uint32_t> keys_sent_;              // program side
-  single_writer<std::uint32_t> keys_lost_;              // program side
+  detail::single_writer<std::uint8_t> offset_;  // link side
+  detail::single_writer<std::uint8_t> mode_{keypad_mode_key_on};  // link side
+  detail::single_writer<std::uint32_t> dropped_in_local_mode_;  // link side
+  detail::single_writer<std::uint32_t> display_messages_;       // link side
+  detail::single_writer<std::uint32_t> variables_ignored_;      // link side
+  detail::single_writer<std::uint32_t> keys_sent_;              // program side
+  detail::single_writer<std::uint32_t> keys_lost_;              // program side
 };
 
 }  // namespace trionet::ring

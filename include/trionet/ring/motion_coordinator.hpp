@@ -21,14 +21,14 @@
 #include <cstdint>
 #include <cstring>
 
-#include "trionet/fifo.hpp"
-#include "trionet/single_writer.hpp"
+#include "trionet/detail/attributes.hpp"
+#include "trionet/detail/character_store.hpp"
+#include "trionet/detail/single_writer.hpp"
 #include "trionet/q32.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/keypad_codes.hpp"
-#include "trionet/ring/link.hpp"
 #include "trionet/ring/message.hpp"
 #include "trionet/ring/node.hpp"
 #include "trionet/span.hpp"
@@ -134,66 +134,19 @@ struct motion_coordinator_counters {
   std::uint32_t sends_refused = 0;  ///< PRINT#/SEND calls refused for lack of room (NETSTAT bit 0) (2^16)
 };
 
-/// The receive buffer as the decoder's character store (see `character_buffer`): a single-producer,
-/// single-consumer queue from the link side (the decoder stages a message's characters past its tail and
-/// publishes them only if the whole message is valid and fits: all or nothing) to the program side (KEY#,
-/// GET#). The 14 bytes after the queue hold the data of the other message types.
-template <std::size_t Capacity>
-class receive_buffer {
- public:
-  /// Where the data of a message of type 2..7 goes.
-  static constexpr std::size_t payload_at = Capacity;
-
-  /// Link side: the store's bytes.
-  std::uint8_t* slots() noexcept { return fifo_.slots(); }
-  /// Link side: the store's bytes, read-only.
-  const std::uint8_t* slots() const noexcept { return fifo_.slots(); }
-  /// Link side: a character transfer begins: the free slots from the queue's tail up to its wrap.
-  store_window begin() const noexcept { return window(0); }
-  /// Link side: `stored` characters are staged: the free slots after them (the program side may have made
-  /// more room meanwhile).
-  store_window next(std::size_t stored) const noexcept { return window(stored); }
-  /// Link side: the message's `length` characters go to the program side, all at once.
-  byte_view commit(std::size_t length) noexcept {
-    fifo_.publish(length);
-    return {};  // the characters may wrap round the buffer: no contiguous view
-  }
-  /// The committed characters are not one contiguous view.
-  static byte_view text(std::size_t) noexcept { return {}; }
-  /// Link side: nothing was published, so there is nothing to take back.
-  static void abort() noexcept {}
-
-  /// Program side: characters of whole messages waiting to be read.
-  std::size_t waiting() const noexcept { return fifo_.available(); }
-  /// Program side: takes the oldest character; false when there is none.
-  bool take(std::uint8_t& c) noexcept { return fifo_.pop(c); }
-
- private:
-  store_window window(std::size_t stored) const noexcept {
-    const std::size_t free = fifo_.free();
-    if (stored >= free) return {};
-    const std::size_t first = fifo_.staging_slot(stored);
-    const std::size_t room = free - stored;
-    const std::size_t end = room < Capacity - first ? first + room : Capacity;
-    return {static_cast<std::uint16_t>(first), static_cast<std::uint16_t>(end)};
-  }
-
-  spsc_fifo<Capacity, variable_data_length> fifo_;
-};
-
 /// `MaxCharacters` is the character maximum of docs/protocol.md 1.4: the longest character transfer the node
 /// accepts, and the bound on messages it forwards. The receive buffer (`ReceiveCapacity`) may be smaller: a
 /// message that does not fit is dropped whole (NETSTAT bit 4). `Crc` and `Layout` are the direct variable
 /// transfer's CRC policy and field layout (crc.hpp, variable_layout.hpp).
-template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 16,
-          std::size_t TransmitCapacity = 32, class Crc = crc16_ccitt_false,
-          std::size_t MaxCharacters = default_max_characters, class Layout = default_variable_layout>
+template <std::size_t ReceiveCapacity = 256, std::size_t ForwardCapacity = 16, std::size_t TransmitCapacity = 32,
+          std::size_t MaxCharacters = default_max_characters, class Crc = crc16_ccitt_false,
+          class Layout = default_variable_layout>
 class motion_coordinator final
-    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, Crc, MaxCharacters, Layout>,
-                  basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
-                  detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>> {
-  using core = node<motion_coordinator, basic_decoder<receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
-                    detail::link<ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>>;
+    : public node<motion_coordinator<ReceiveCapacity, ForwardCapacity, TransmitCapacity, MaxCharacters, Crc, Layout>,
+                  basic_decoder<detail::receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
+                  ForwardCapacity, TransmitCapacity, false> {
+  using core = node<motion_coordinator, basic_decoder<detail::receive_buffer<ReceiveCapacity>, MaxCharacters, Crc, Layout>,
+                    ForwardCapacity, TransmitCapacity, false>;
   friend core;
 
  public:
@@ -218,7 +171,7 @@ class motion_coordinator final
   [[nodiscard]] print_result print(int n, byte_view text) noexcept {
     const send_status checked = check_print(n, text);
     if (checked != send_status::ok) return {checked, 0};
-    const std::size_t queued = this->link_.queue_text(hops_of_address(n), text);
+    const std::size_t queued = this->queue_text(hops_of_address(n), text);
     if (queued == text.size()) return {send_status::ok, queued};
     refuse();
     return {send_status::queue_full, queued};
@@ -236,7 +189,7 @@ class motion_coordinator final
     const std::uint8_t hops = hops_of_address(n);
     std::size_t done = 0;
     for (;;) {
-      done += this->link_.queue_text(hops, byte_view(text.data() + done, text.size() - done));
+      done += this->queue_text(hops, byte_view(text.data() + done, text.size() - done));
       if (done == text.size()) return {send_status::ok, done};
       if (!wait()) {
         refuse();
@@ -265,7 +218,7 @@ class motion_coordinator final
     const auto hops = hops_from_basic_address(n);
     if (!hops) return send_status::bad_address;
     if (vr > max_vr) return send_status::vr_out_of_range;
-    return queue(message::variable(*hops, vr, value));
+    return send(message::variable(*hops, vr, value));
   }
 
   /// SEND(n,2,offset): tells the keypad n where to send its key presses (offset: BASIC address 10..24,
@@ -275,7 +228,7 @@ class motion_coordinator final
     if (!hops) return send_status::bad_address;
     const auto offset_hops = hops_from_basic_address(offset);
     if (!offset_hops) return send_status::offset_out_of_range;
-    return queue(message::keypad_offset(*hops, *offset_hops));
+    return send(message::keypad_offset(*hops, *offset_hops));
   }
 
   /// Keypad mode: 0 = key ON only, 127 = key ON and key OFF.
@@ -283,26 +236,26 @@ class motion_coordinator final
     const auto hops = hops_from_basic_address(n);
     if (!hops) return send_status::bad_address;
     if (mode != keypad_mode_key_on && mode != keypad_mode_key_on_off) return send_status::mode_out_of_range;
-    return queue(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
+    return send(message::keypad_mode(*hops, static_cast<std::uint8_t>(mode)));
   }
 
   // ---- KEY# and GET# (program side) ----
 
   /// KEY#3 / KEY#4: true if at least one character is waiting; nothing is consumed.
   bool key(int channel) const noexcept {
-    return (channel == 3 || channel == 4) && this->decoder_.store().waiting() != 0;
+    return (channel == 3 || channel == 4) && this->character_store().waiting() != 0;
   }
 
   /// GET#4: the next character raw; GET#3: translated through DEFKEY.
   [[nodiscard]] get_result get(int channel) noexcept {
     if (channel != 3 && channel != 4) return {get_status::bad_channel, 0};
     std::uint8_t c = 0;
-    if (!this->decoder_.store().take(c)) return {get_status::nothing_yet, 0};
+    if (!this->character_store().take(c)) return {get_status::nothing_yet, 0};
     return {get_status::ok, channel == 3 ? (*defkey_)[c] : c};
   }
 
   /// Program side: characters waiting in the receive buffer.
-  std::size_t characters_waiting() const noexcept { return this->decoder_.store().waiting(); }
+  std::size_t characters_waiting() const noexcept { return this->character_store().waiting(); }
 
   /// Either side: the counters now (each read whole; not all at one instant).
   motion_coordinator_counters counters() const noexcept {
@@ -337,50 +290,34 @@ class motion_coordinator final
   // Program side: an own message could not be put into the transmit queue: NETSTAT bit 0.
   void refuse() noexcept {
     sends_refused_.increment();
-    this->link_.netstat().raise_tx_timeout();
+    this->raise_tx_timeout();
   }
 
-  send_status queue(const message& m) noexcept {
-    const encode_result queued = this->link_.queue(m);
-    switch (queued.status) {
-      case encode_status::ok:
-        return send_status::ok;
-      case encode_status::buffer_too_small:
-        refuse();
-        return send_status::queue_full;
-      case encode_status::empty_text:
-        return send_status::empty_text;
-      case encode_status::character_out_of_range:
-        return send_status::character_out_of_range;
-      case encode_status::vr_out_of_range:
-        return send_status::vr_out_of_range;
-      case encode_status::offset_out_of_range:
-        return send_status::offset_out_of_range;
-      case encode_status::mode_out_of_range:
-        return send_status::mode_out_of_range;
-      case encode_status::hops_out_of_range:
-      case encode_status::unknown_type:
-        break;
-    }
-    return send_status::bad_address;
+  // A message whose fields were all checked: queued, or refused for want of room.
+  send_status send(const message& m) noexcept {
+    const encode_result queued = this->queue(m);
+    if (queued) return send_status::ok;
+    TRIONET_ASSERT(queued.status == encode_status::buffer_too_small);
+    refuse();
+    return send_status::queue_full;
   }
 
   // Link side: a message for this node, `ok` or `no_room` (the core has counted errors already), still in the
   // decoder.
-  void deliver(decode_step step) noexcept {
-    if (status_of(step) == decode_status::no_room) {
+  void deliver(detail::decode_step step) noexcept {
+    if (detail::status_of(step) == decode_status::no_room) {
       receive_overflows_.increment();
-      this->link_.netstat().raise(netstat_rx_overflow);
+      this->raise_netstat(netstat_rx_overflow);
       return;
     }
-    switch (this->decoder_.type()) {
+    switch (this->delivered_type()) {
       case message_type::character:
         character_messages_.increment();
         return;
       case message_type::variable: {
         std::uint16_t vr = 0;
         std::int64_t value = 0;
-        Layout::read(this->decoder_.payload(), vr, value);
+        Layout::read(this->delivered_payload(), vr, value);
         switch (vr_->write(vr, network_value::from_q32(value))) {
           case vr_write_status::ok:
             variables_written_.increment();
@@ -405,17 +342,17 @@ class motion_coordinator final
   }
 
   // Written by the link side:
-  single_writer<std::uint16_t> character_messages_;
-  single_writer<std::uint16_t> variables_written_;
-  single_writer<std::uint16_t> variables_refused_;
-  single_writer<std::uint16_t> variables_out_of_range_;
-  single_writer<std::uint16_t> variables_value_out_of_range_;
-  single_writer<std::uint16_t> keypad_messages_ignored_;
+  detail::single_writer<std::uint16_t> character_messages_;
+  detail::single_writer<std::uint16_t> variables_written_;
+  detail::single_writer<std::uint16_t> variables_refused_;
+  detail::single_writer<std::uint16_t> variables_out_of_range_;
+  detail::single_writer<std::uint16_t> variables_value_out_of_range_;
+  detail::single_writer<std::uint16_t> keypad_messages_ignored_;
   // Written by the program side:
-  single_writer<std::uint16_t> sends_refused_;
+  detail::single_writer<std::uint16_t> sends_refused_;
   vr_store* vr_;
   const defkey_table* defkey_;
-  single_writer<std::uint32_t> receive_overflows_;  // link side
+  detail::single_writer<std::uint32_t> receive_overflows_;  // link side
 };
 
 }  // namespace trionet::ring

@@ -1,264 +1,416 @@
-// The core that every node on the fibre ring shares (docs/protocol.md 1.4-1.6, 1.10): the link (decrement and
-// forward, forwarded traffic first, the forwarding bound), the destination's decoder, the idle line, NETSTAT
-// and the receive-side counters, and the bulk paths for DMA-fed links. `motion_coordinator` and `keypad` are
-// this core plus what they do with a message for them (`deliver`).
+// The ring-node core (docs/protocol.md 1.4-1.6, 1.10): what every node on the fibre ring does with its link.
+// `motion_coordinator` and `keypad` are this core plus what they do with a message for them (`deliver`).
 //
-//   link byte -> receive -+-> link: not for this node -> forward buffer --+
-//                         |                                               +-> transmit -> link byte
-//                         +-> decoder: for this node -> deliver(message)  |
-//                                  +-> frame / CRC error: counted         |
-//   program: PRINT#, SEND, key presses --------------> transmit queue ----+
-//   idle line --> line_idle: ends an open message in the decoder and in the link (counted)
+//   link byte -> receive -+-> not for this node: forward buffer (A - 1) ---+
+//                         |                                                +-> transmit -> link byte
+//                         +-> for this node: decoder -> deliver(message)   |   forwarded bytes first, one
+//                                  +-> frame / CRC error: counted          |   message at a time
+//   program: PRINT#, SEND, key presses ------------> transmit queue -------+
+//   idle line -> line_idle: ends an open message (counted)
+//
+// Forwarding (1.5, 1.10) is one state machine, `receive_slow` below, over `receiving_`:
+//
+//   byte            local (between messages,   forwarding (a message       dropping (the rest of a
+//                   or one for the node)       passing through, type T)    message not passed on)
+//   header A > 1    passed on with A - 1: forwarding T (no room: lost; forwarding off: dropping); any
+//                   message open before it has ended
+//   header A <= 1   to the decoder: local (A = 0: a frame error there); any message passing through ends
+//   data            to the decoder             appended; past the bound    dropped
+//                                              of T: cut; no room: lost
+//   end of message  to the decoder             passed on with A - 1: local dropped: local
+//                                              (no room: lost)
+//   idle line       the decoder's open         ended: lost (counted)       local
+//                   message: a frame error
+//
+// A lost message (`forwards_lost`: no room, `forwards_cut`: longer than legal, `forwards_ended_idle`) sets
+// NETSTAT bit 1; it is removed whole if none of it has gone out, else cut short (its destination sees a frame
+// error), and the rest of it is dropped. The forward buffer (detail/forward_buffer.hpp) takes a data byte of
+// a message passing through on its fast path (`receive`: one comparison and one store); the state machine
+// takes every other byte.
+//
+// Capacity rule: bytes arrive at most one per byte-time, so while the node sends an own frame of L bytes at
+// most L forwarded bytes arrive. The forward buffer holds at least a direct variable transfer (16 bytes,
+// checked at compile time) and the node never queues an own frame longer than it (`max_own_frame`: long
+// PRINT# text goes as several messages): forwarded traffic is never lost to the node's own sending.
 //
 // Two sides, no lock (docs/design.md, "Contexts"; transport.hpp shows the wiring):
-//   link side (one interrupt context: the UART ISR, or a host's I/O loop)
-//     receive (per byte and bulk), transmit (per byte and bulk), relay, line_idle, transmit_pending,
-//     in_message, forward_backlog; and everything that a delivered message does (deliver: the receive
-//     buffer, VR() through its vr_store, the keypad's display and mode)
-//   program side (one thread context: the main loop or one RTOS task)
-//     PRINT#, SEND, GET#, KEY#, key presses, transmit_free, netstat, clear_netstat
+//   link side (one interrupt context: the UART ISR, or a host's I/O loop): receive and transmit (per byte and
+//     bulk), line_idle, transmit_pending, in_message, forward_backlog, and everything a delivered message
+//     does (deliver: the receive buffer, VR() through its vr_store, the keypad's display and mode)
+//   program side (one thread context: the main loop or one RTOS task): PRINT#, SEND, GET#, KEY#, key
+//     presses, transmit_free, netstat, clear_netstat
 //   either side: counters, forwarding_counters (each counter is read whole; not all at one instant)
-// The link side may interrupt the program side at any instruction; neither masks the other. The buffers
-// between them are single-producer, single-consumer queues (the transmit queue, the receive buffer), NETSTAT
-// is a `netstat_register`, and every counter is written by one side only.
+// The transmit queue is a single-producer, single-consumer queue between them, NETSTAT a netstat register
+// (each side writes one byte), and every counter is written by one side only.
 //
-// Cost: the link's and the decoder's RAM plus 8 bytes of counters. Per byte O(1); a data byte of a message
-// passing through takes the link's fast path. The bulk forms copy runs of message data whole.
+// Cost: ForwardCapacity + TransmitCapacity bytes, the decoder's RAM and about 40 bytes. Per byte O(1).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
-#include "trionet/attributes.hpp"
+#include "trionet/detail/attributes.hpp"
+#include "trionet/detail/crc_holder.hpp"
+#include "trionet/detail/fifo.hpp"
+#include "trionet/detail/forward_buffer.hpp"
+#include "trionet/detail/netstat_register.hpp"
+#include "trionet/detail/single_writer.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/decoder.hpp"
-#include "trionet/ring/link.hpp"
+#include "trionet/ring/encode.hpp"
+#include "trionet/ring/message.hpp"
 #include "trionet/ring/netstat.hpp"
-#include "trionet/single_writer.hpp"
 #include "trionet/span.hpp"
 #include "trionet/transport.hpp"
 
 namespace trionet::ring {
 
-/// The ring-node core. `Node` (the derived node, CRTP) provides
-///   void deliver(decode_step)   // a valid message for it (`ok`), or one with no room (`no_room`), still in
-///                               // the decoder
-/// which runs on the link side. Every message ends with its end of message, a control byte, which the node
-/// takes one at a time in the bulk paths too: so messages are delivered only there. `Decoder` is a
-/// `basic_decoder`; `Link` a `detail::link`.
-template <class Node, class Decoder, class Link>
-class node : public byte_port {
+/// Counters of a node's link, as read at one moment; they only ever grow. The forwarding losses (wire errors)
+/// wrap at 2^32, the traffic counts (messages forwarded, sent) at 2^16.
+struct link_counters {
+  std::uint32_t forwards_lost = 0;        ///< forwarded messages lost to a full forward buffer
+  std::uint32_t forwards_cut = 0;         ///< ... longer than the longest legal message of their type
+  std::uint32_t forwards_ended_idle = 0;  ///< ... whose end of message never came: the line went idle
+  std::uint32_t messages_forwarded = 0;   ///< headers of messages passed on (A decremented)
+  std::uint32_t messages_dropped = 0;     ///< messages dropped while forwarding was off: a keypad in local mode
+  std::uint32_t messages_sent = 0;        ///< own messages whose end of message has gone out
+
+  /// Forwarded messages lost for any reason (each sets NETSTAT bit 1).
+  constexpr std::uint32_t forwards_failed() const noexcept {
+    return forwards_lost + forwards_cut + forwards_ended_idle;
+  }
+};
+
+/// The ring-node core (see the file comment). `Node` (the derived node, CRTP) provides
+///   void deliver(detail::decode_step)   // a valid message for it (`ok`), or one with no room (`no_room`),
+///                                       // still in the decoder
+/// which runs on the link side. `Decoder` is a `basic_decoder`, whose CRC policy and layout the node's own
+/// direct variable transfers use; `Switchable`: whether forwarding can be turned off (a keypad).
+template <class Node, class Decoder, std::size_t ForwardCapacity, std::size_t TransmitCapacity, bool Switchable>
+class node : public byte_port,
+             private detail::crc_holder<typename Decoder::crc_type>,
+             private detail::forwarding_switch<Switchable> {
+  using crc_type = typename Decoder::crc_type;
+  using layout_type = typename Decoder::layout_type;
+  static constexpr std::size_t max_characters = Decoder::max_characters;
+  static_assert(ForwardCapacity >= framing_length + variable_data_length && ForwardCapacity < 65535,
+                "the forward buffer must hold a whole direct variable transfer (16 bytes): while a node sends "
+                "an own frame, as many forwarded bytes arrive as the frame has, and they must not be lost");
+  static_assert(TransmitCapacity >= framing_length + 1 && TransmitCapacity <= 32767,
+                "the transmit queue must hold at least a one-character message (3 bytes)");
+
  public:
+  /// The longest own frame the node queues, header and end of message included: it fits in the transmit
+  /// queue, and the forward buffer can absorb everything that arrives while it is sent.
+  static constexpr std::size_t max_own_frame =
+      ForwardCapacity < TransmitCapacity ? ForwardCapacity : TransmitCapacity;
+  /// The most characters one own character message carries.
+  static constexpr std::size_t max_own_characters =
+      max_own_frame - framing_length < max_characters ? max_own_frame - framing_length : max_characters;
+  /// The transmit queue's capacity in bytes (`transmit_free()` when nothing waits).
+  static constexpr std::size_t transmit_capacity = TransmitCapacity;
+  /// The forward buffer's capacity in bytes.
+  static constexpr std::size_t forward_capacity = ForwardCapacity;
+
   // ---- the link side (byte_port): per byte, for a UART interrupt ----
 
-  /// Link side: a byte arrived. A data byte of a message passing through takes the fast path (inlined into
-  /// a caller that knows the node's type, e.g. the UART interrupt).
+  /// Link side: a byte arrived. A data byte of a message passing through takes the forward buffer's fast
+  /// path (inlined into a caller that knows the node's type, e.g. the UART interrupt); every other byte the
+  /// state machine.
   TRIONET_ALWAYS_INLINE void receive(std::uint8_t byte) noexcept final {
-    if (TRIONET_LIKELY(is_data(byte))) {
-      if (TRIONET_LIKELY(link_.forward_fast(byte))) return;
-#if !defined(__OPTIMIZE_SIZE__)  // the next steps on hosts; with -Os straight to the general paths (size)
-      if (link_.local_data(byte) && decoder_.take(byte)) return;  // a data byte of a message for the node
-      return receive_next_data(byte);
-    }
-    receive_next_control(byte);
-#else
-      return receive_data_general(byte);
-    }
-    receive_control_general(byte);
-#endif
+    if (TRIONET_LIKELY(is_data(byte)) && TRIONET_LIKELY(forward_.put_fast(byte))) return;
+    receive_slow(byte);
   }
-  /// Link side: the next byte to send, if there is one now. The next forwarded byte takes the fast path
-  /// (inlined as `receive` is).
+  /// Link side: the next byte to send, if there is one now: forwarded bytes first, then the node's own frames,
+  /// never mixing two messages. The next forwarded byte takes the fast path (inlined as `receive` is).
   [[nodiscard]] TRIONET_ALWAYS_INLINE bool transmit(std::uint8_t& byte) noexcept final {
-    return link_.transmit(byte);
+    // The two paths meet in a whole register, so a caller that widens `byte` does not widen it again after
+    // the fast path; the general path's result stays in a register too.
+    std::size_t next;
+    if (TRIONET_LIKELY(forward_.ready())) {
+      next = forward_.take();
+    } else {
+      const int slow = transmit_slow();
+      if (slow < 0) return false;
+      next = static_cast<std::uint8_t>(slow);
+    }
+    byte = static_cast<std::uint8_t>(next);
+    return true;
   }
   /// Link side: true when `transmit` would give a byte now.
-  [[nodiscard]] bool transmit_pending() const noexcept final { return link_.transmit_pending(); }
-
-  /// Link side: the idle line (docs/protocol.md 1.10): a message open in the decoder is a frame error
-  /// (NETSTAT bit 3); a message being forwarded is ended and counted as lost (NETSTAT bit 1); the node's own
-  /// messages may then be sent.
+  [[nodiscard]] bool transmit_pending() const noexcept final {
+    return !forward_.empty() || !(forwarding_message() || queue_.empty());  // (parked: the queue has the rest)
+  }
+  /// Link side: the idle line (docs/protocol.md 1.10): a message open in the decoder is a frame error (NETSTAT
+  /// bit 3); a message being forwarded is ended and counted as lost (NETSTAT bit 1), and any later byte of it
+  /// is stray data; the node's own messages may then be sent.
   void line_idle() noexcept final {
-    (void)link_.line_idle();
+    if (forwarding_message()) {
+      forward_.close();
+      forwards_ended_idle_.increment();
+      netstat_.raise(netstat_tx_buffer_error);
+    }
+    receiving_ = receiving::local;
     handle(decoder_.close(frame_error::idle_line));
   }
-  /// Link side: true while a message has begun on the receive side and not ended.
-  [[nodiscard]] bool in_message() const noexcept final { return link_.passing_message() || decoder_.open(); }
+  /// Link side: true while a message has begun on the receive side and not ended (for this node, passing
+  /// through it, or being dropped): what `line_idle` would end.
+  [[nodiscard]] bool in_message() const noexcept final {
+    return receiving_ != receiving::local || decoder_.open();
+  }
 
-  // ---- the link side in bulk: a DMA-fed UART or a host ----
+  // ---- the link side in bulk: a DMA-fed UART, or a host's read() and write() ----
 
-  /// Link side: many received bytes at once (a DMA buffer, a read()): the same as `receive` for each, in
-  /// order, with runs of message data copied whole. Not virtual, so firmware that does not call it does not
-  /// link it.
-  void receive(byte_view bytes) noexcept { receive_bytes(bytes); }
-  /// Link side: fills `out` with up to out.size() bytes to send and returns how many: the same bytes as that
-  /// many calls of `transmit`, stopping at the first that has none.
-  [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept { return link_.transmit(out.data(), out.size()); }
-
-  /// Link side: a DMA-fed node's receive-and-forward in one call: exactly `receive(in)` then `transmit(out)`
-  /// (returns how many bytes of `out` to send). When the forward buffer is empty and the node is between its
-  /// own messages, the bytes it forwards are written straight into `out`: one copy instead of two.
-  [[nodiscard]] std::size_t relay(byte_view in, byte_buffer out) noexcept {
-    if (!link_.straight_through(in.size(), out.size())) return receive_then_transmit(in, out);
-    auto straight = Link::straight_buffer(out.data());
-    receive_bytes(in, straight);
-    return link_.transmit_after(straight, out.data(), out.size());
+  /// Link side: many received bytes at once: exactly `receive` of each, in order, with the data of a message
+  /// passing through copied a run at a time. Not virtual, so firmware that does not call it does not link it.
+  void receive(byte_view bytes) noexcept {
+    const std::uint8_t* p = bytes.begin();
+    const std::uint8_t* const end = bytes.end();
+    while (p != end) {
+      p = forward_.put_run(p, end);
+      if (p != end) receive_slow(*p++);
+    }
+  }
+  /// Link side: fills `out` with up to out.size() bytes to send and returns how many: exactly as many calls of
+  /// `transmit`, stopping at the first that has none, with forwarded bytes copied a run at a time.
+  [[nodiscard]] std::size_t transmit(byte_buffer out) noexcept {
+    std::size_t n = 0;
+    while (n < out.size()) {
+      n += forward_.take_run(out.data() + n, out.size() - n);
+      if (n == out.size()) break;
+      const int next = transmit_slow();
+      if (next < 0) break;
+      out[n++] = static_cast<std::uint8_t>(next);
+    }
+    return n;
   }
 
   /// Link side: bytes waiting in the forward buffer.
-  std::size_t forward_backlog() const noexcept { return link_.forward_backlog(); }
+  std::size_t forward_backlog() const noexcept { return forward_.size(); }
 
   // ---- the program side ----
 
   /// Program side: NETSTAT, errors since it was last cleared (docs/protocol.md 1.6); cleared only by
   /// `clear_netstat`.
-  std::uint8_t netstat() const noexcept { return link_.netstat().read(); }
+  std::uint8_t netstat() const noexcept { return netstat_.read(); }
   /// Program side: clears NETSTAT.
-  void clear_netstat() noexcept { link_.netstat().clear(); }
+  void clear_netstat() noexcept { netstat_.clear(); }
   /// Program side: room left in the transmit queue, in bytes (a message takes its data + 2).
-  std::size_t transmit_free() const noexcept { return link_.transmit_free(); }
+  std::size_t transmit_free() const noexcept { return queue_.free(); }
 
-  /// Either side: the link's counters now.
-  link_counters forwarding_counters() const noexcept { return link_.counters(); }
-
-  /// The longest own frame the node sends, header and end of message included (docs/protocol.md 1.5: the
-  /// forward buffer absorbs what arrives meanwhile).
-  static constexpr std::size_t max_own_frame = Link::max_own_frame;
-  /// The transmit queue's capacity in bytes (`transmit_free()` when nothing waits).
-  static constexpr std::size_t transmit_capacity = Link::transmit_capacity;
-  /// The forward buffer's capacity in bytes.
-  static constexpr std::size_t forward_capacity = Link::forward_capacity;
+  /// Either side: the forwarding counters now (each read whole; not all at one instant).
+  link_counters forwarding_counters() const noexcept {
+    link_counters c;
+    c.forwards_lost = forwards_lost_.load();
+    c.forwards_cut = forwards_cut_.load();
+    c.forwards_ended_idle = forwards_ended_idle_.load();
+    c.messages_forwarded = messages_forwarded_.load();
+    c.messages_dropped = this->dropped();
+    c.messages_sent = messages_sent_.load();
+    return c;
+  }
 
  protected:
   node() noexcept = default;
-  /// A node whose decoder and link use `crc` (a CRC object such as `crc16_runtime`).
-  template <class Crc>
-  explicit node(const Crc& crc) noexcept : link_(crc), decoder_(crc) {}
+  /// A node whose decoder and own frames use `crc` (a CRC object such as `crc16_runtime`).
+  explicit node(const crc_type& crc) noexcept : detail::crc_holder<crc_type>(crc), decoder_(crc) {}
   /// Copies a node (both sides idle).
   node(const node&) = default;
   /// Copies a node (both sides idle).
   node& operator=(const node&) = default;
   ~node() = default;
 
+  /// Program side: queues one of the node's own messages whole: `buffer_too_small` if the transmit queue has
+  /// no room for all of it or it is longer than `max_own_frame` (nothing is queued), or the message's own field
+  /// error.
+  [[nodiscard]] encode_result queue(const message& m) noexcept {
+    const encode_status checked = detail::check_message(m);
+    if (checked != encode_status::ok) return {checked, 0};
+    const std::size_t length = frame_length(m);
+    if (length > queue_.free() || length > max_own_frame) return {encode_status::buffer_too_small, 0};
+    if (m.type == message_type::character) {
+      stage_characters(m.hops, m.text);  // straight into the queue: no staging copy of the text
+    } else {
+      std::uint8_t frame[framing_length + variable_data_length];
+      (void)encode<crc_type, layout_type>(frame, m, this->crc());  // checked, and it fits
+      queue_.stage(0, frame, length);
+      queue_.publish(length);
+    }
+    return {encode_status::ok, length};
+  }
+  /// Program side: queues `text` (each character 0..127: checked by the caller) as consecutive character
+  /// messages to `hops`, each as long as an own message may be (`max_own_characters`, the last one shorter),
+  /// as many whole messages as the transmit queue has room for. Returns how many characters were queued. The
+  /// split depends on the text only, so a caller that goes on with the rest later sends the same messages.
+  std::size_t queue_text(std::uint8_t hops, byte_view text) noexcept {
+    std::size_t done = 0;
+    while (done < text.size()) {
+      std::size_t n = text.size() - done;
+      if (n > max_own_characters) n = max_own_characters;
+      if (n + framing_length > queue_.free()) break;
+      stage_characters(hops, byte_view(text.data() + done, n));
+      done += n;
+    }
+    return done;
+  }
+  /// Program side: an own message could not be queued: NETSTAT bit 0.
+  void raise_tx_timeout() noexcept { netstat_.raise_tx_timeout(); }
+  /// Link side: raises NETSTAT `bits` (1..4).
+  void raise_netstat(std::uint8_t bits) noexcept { netstat_.raise(bits); }
+  /// Link side: forwarding on (a keypad in network mode) or off (local mode: messages through it are dropped
+  /// and counted).
+  void set_forwarding(bool forwarding) noexcept {
+    static_assert(Switchable, "this node always forwards");
+    this->on = forwarding;
+  }
+
   /// Frame errors so far (link side writes).
   std::uint32_t frame_errors() const noexcept { return frame_errors_.load(); }
   /// CRC errors so far (link side writes).
   std::uint32_t crc_errors() const noexcept { return crc_errors_.load(); }
 
-  Link link_;  ///< the link (forward buffer, transmit queue, NETSTAT, its counters)
+  /// Link side, in `deliver`: the type of the message delivered (still in the decoder).
+  message_type delivered_type() const noexcept { return decoder_.type(); }
+  /// Link side, in `deliver`: the data of the message delivered, when it is not a character transfer.
+  const std::uint8_t* delivered_payload() const noexcept { return decoder_.payload(); }
+  /// Link side, in `deliver`: the whole message delivered by `step`.
+  decode_result delivered(detail::decode_step step) const noexcept { return decoder_.result(step); }
+  /// The decoder's character store (a Motion Coordinator's receive buffer: the program side reads it).
+  auto& character_store() noexcept { return decoder_.store(); }
+  /// The decoder's character store, read-only.
+  const auto& character_store() const noexcept { return decoder_.store(); }
 
  private:
-  single_writer<std::uint32_t> frame_errors_;  // link side
-  single_writer<std::uint32_t> crc_errors_;    // link side
+  // The receive side's state in one byte: `local` (between messages, or in one for the node: its bytes go to
+  // the decoder), `dropping` the rest of a message, or `forward` | T, forwarding a message of type T.
+  enum class receiving : std::uint8_t { local = 0, dropping = 1, forward = 0x80 };
+  bool forwarding_message() const noexcept { return (static_cast<unsigned>(receiving_) & 0x80u) != 0; }
+  std::uint8_t forward_type() const noexcept { return static_cast<std::uint8_t>(receiving_) & 0x07u; }
 
- protected:
-  Decoder decoder_;  ///< the decoder of messages for this node (link side)
+  // The forwarding bound (docs/protocol.md 1.5): the longest legal data of a message, by its header's type.
+  // Type 1 and the reserved types 5..7: the character maximum; 2: a direct variable transfer; 3, 4: one.
+  static constexpr std::uint16_t longest_data[8] = {0, max_characters, variable_data_length, 1, 1,
+                                                    max_characters, max_characters, max_characters};
 
- private:
-#if !defined(__OPTIMIZE_SIZE__)
-  // The next steps (hosts): the common bytes of traffic through the node, each in a function whose common
-  // path saves no register (the rest goes on to the general paths, tail calls).
-  TRIONET_NOINLINE void receive_next_data(std::uint8_t byte) noexcept {
-    if (link_.renew(byte) || link_.next_data(byte)) return;
-    receive_data_general(byte);
-  }
-  TRIONET_NOINLINE void receive_next_control(std::uint8_t byte) noexcept {
-    if (!link_.next_control(byte)) return receive_control_general(byte);
-    if (type_of(byte) != 0) passed_header();
-  }
-#endif
-  // The general paths: a data byte that the fast path refused, and a header or end of message.
-  TRIONET_NOINLINE void receive_data_general(std::uint8_t byte) noexcept {
-    if (link_.route_data(byte) == byte_route::local) decode(byte);
-  }
-  TRIONET_NOINLINE void receive_control_general(std::uint8_t byte) noexcept {
-    const byte_route r = link_.route_control(byte);
-    if (r == byte_route::local) {
-      decode(byte);
-    } else if (type_of(byte) != 0) {
+  // The state machine (see the file comment): one received byte that the fast path did not take.
+  TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
+    if (is_data(byte)) {
+      if (receiving_ == receiving::local) return decode(byte);
+      if (receiving_ == receiving::dropping) return;
+      const detail::append_status appended = forward_.append(byte);
+      if (appended == detail::append_status::ok) return;
+      return lose(appended == detail::append_status::full ? forwards_lost_ : forwards_cut_);
+    }
+    if (type_of(byte) == 0) {  // an end of message
+      if (receiving_ == receiving::local) return decode(byte);
+      if (forwarding_message() && !forward_.end(decrement_hops(byte))) lose(forwards_lost_);
+      receiving_ = receiving::local;  // the message has ended, lost or not: nothing of it is left to drop
+      return;
+    }
+    // A header ends the message passing through (its destination will see it cut short): `begin` ends it in
+    // the forward buffer, `close` otherwise.
+    if (hops_of(byte) <= 1 || !this->forwarding()) {
+      if (forwarding_message()) forward_.close();
+      if (hops_of(byte) <= 1) {  // for this node (A = 0: the decoder reports it)
+        receiving_ = receiving::local;
+        return decode(byte);
+      }
       passed_header();
+      receiving_ = receiving::dropping;  // a keypad in local mode
+      if constexpr (Switchable) this->drops.increment();
+      return;
     }
-  }
-  // A byte for the node's decoder.
-  TRIONET_FAST_PATH void decode(std::uint8_t byte) noexcept { handle(decoder_.step(byte)); }
-
-  // What a step of the decoder completed: errors are counted here, messages go to the node.
-  void handle(decode_step step) noexcept {
-    if (step != 0) completed(step);  // 0: incomplete, the common case
-  }
-  TRIONET_NOINLINE void completed(decode_step step) noexcept {
-    const decode_status status = status_of(step);
-    if (status == decode_status::ok || status == decode_status::no_room) {
-      static_cast<Node*>(this)->deliver(step);
-    } else {
-      count_error(status);
-    }
-  }
-  // A message for the node that the decoder discarded: a CRC error, else a frame error (the only other
-  // status of a completed step).
-  void count_error(decode_status status) noexcept {
-    if (status == decode_status::crc_error) {
-      crc_errors_.increment();
-      link_.netstat().raise(netstat_rx_crc_error);
-    } else {
-      frame_errors_.increment();
-      link_.netstat().raise(netstat_rx_frame_error);
-    }
+    passed_header();
+    messages_forwarded_.increment();
+    receiving_ = static_cast<receiving>(0x80u | type_of(byte));
+    if (!forward_.begin(static_cast<std::uint8_t>(byte - 0x08), longest_data[type_of(byte)])) {
+      lost(forwards_lost_);  // no room for its header (A > 1: decrement_hops without its check): nothing of
+    }                        // it is in the forward buffer
   }
 
-  // The bulk receive: traffic through the node a run at a time (into the forward buffer, or the stand-in
-  // given), bytes for the node to the decoder (out of line, so that the forwarding loop stays small).
-  template <class... Straight>
-  TRIONET_ALWAYS_INLINE void receive_bytes(byte_view bytes, Straight&... straight) noexcept {
-    const std::uint8_t* p = bytes.begin();
-    const std::uint8_t* const end = bytes.end();
-    for (;;) {
-      const auto passed = link_.receive_passing(p, end, straight...);
-      if (passed.header) passed_header();
-      p = passed.stop;
-      if (TRIONET_LIKELY(p == end)) return;
-      p = receive_local(p, end);
-    }
+  // The message being forwarded is lost (counted in `counter`): what of it is still in the forward buffer goes
+  // if none of it has gone out, and the rest of it is dropped.
+  void lose(detail::single_writer<std::uint32_t>& counter) noexcept {
+    forward_.lose(longest_data[forward_type()]);
+    lost(counter);
   }
-
-  // `relay` when it cannot go straight through (out of line, so that the straight path stays small).
-  TRIONET_NOINLINE std::size_t receive_then_transmit(byte_view in, byte_buffer out) noexcept {
-    receive(in);
-    return transmit(out);
+  void lost(detail::single_writer<std::uint32_t>& counter) noexcept {
+    counter.increment();
+    netstat_.raise(netstat_tx_buffer_error);
+    receiving_ = receiving::dropping;
   }
 
   // A header passed through the node: it ends any message the node was receiving, and the decoder is then
   // between messages.
-  TRIONET_ALWAYS_INLINE void passed_header() noexcept {
+  void passed_header() noexcept {
     if (TRIONET_LIKELY(decoder_.idle())) return;
-    passed_header_slow();
+    if (decoder_.in_message()) return handle(decoder_.close(frame_error::interrupted));
+    decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
   }
-  TRIONET_NOINLINE void passed_header_slow() noexcept {
-    if (decoder_.in_message()) {
-      end_local_message();
-    } else {
-      decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
+
+  // A byte for the node's decoder, and what it completed: errors are counted here, messages go to the node.
+  TRIONET_ALWAYS_INLINE void decode(std::uint8_t byte) noexcept { handle(decoder_.step(byte)); }
+  void handle(detail::decode_step step) noexcept {
+    if (step != 0) completed(step);  // 0: incomplete, the common case
+  }
+  TRIONET_NOINLINE void completed(detail::decode_step step) noexcept {
+    const decode_status status = detail::status_of(step);
+    if (status == decode_status::ok || status == decode_status::no_room) {
+      static_cast<Node*>(this)->deliver(step);
+    } else if (status == decode_status::crc_error) {
+      crc_errors_.increment();
+      netstat_.raise(netstat_rx_crc_error);
+    } else {  // the only other status of a completed step
+      frame_errors_.increment();
+      netstat_.raise(netstat_rx_frame_error);
     }
   }
 
-  // A header through the node ended the message the node was receiving.
-  void end_local_message() noexcept { handle(decoder_.close(frame_error::interrupted)); }
-
-  // Bytes for the node at `p`: one control byte, or a run of message data for the decoder. Returns the next.
-  TRIONET_NOINLINE const std::uint8_t* receive_local(const std::uint8_t* p, const std::uint8_t* end) noexcept {
-    if (!is_data(*p)) {  // a control byte for the node (it never goes to the forward buffer)
-      receive_control_general(*p);
-      return p + 1;
+  // The transmitter's general path: own frames, the wrapped-round part of the forward buffer, message
+  // boundaries. The next byte, or -1 for none.
+  TRIONET_NOINLINE int transmit_slow() noexcept {
+    std::uint8_t byte = 0;
+    if (forward_.parked()) {  // in an own frame, which was queued whole
+      if (!queue_.pop(byte)) {  // cannot happen
+        forward_.unpark();
+        return -1;
+      }
+      if (classify(byte) == byte_class::end_of_message) {
+        forward_.unpark();
+        messages_sent_.increment();
+      }
+      return byte;
     }
-    const std::uint8_t* const run = find_control(p, end);
-    const auto n = static_cast<std::size_t>(run - p);
-    (void)link_.receive_data(p, n);  // byte_route::local
-    // Data alone completes no message (its end of message is a control byte, above): the decoder can only
-    // report stray data here.
-    decoder_.push(byte_view(p, n), [this](const decode_result& result) { count_error(result.status); });
-    return run;
+    if (forward_.next_part()) return forward_.take();  // bytes that arrived meanwhile
+    // The forward buffer is empty. A forwarded message open on the receive side has gone out so far
+    // (cut-through): its next byte has not arrived. Otherwise the transmitter is between messages.
+    if (forwarding_message() || !queue_.pop(byte)) return -1;
+    forward_.park();
+    return byte;
   }
 
+  // Program side: one character message, staged and published whole. Precondition: it fits.
+  void stage_characters(std::uint8_t hops, byte_view text) noexcept {
+    queue_.stage(0, make_header(hops, static_cast<std::uint8_t>(message_type::character)));
+    queue_.stage(1, text.data(), text.size());
+    queue_.stage(1 + text.size(), make_end_of_message(hops));
+    queue_.publish(text.size() + framing_length);
+  }
+
+  // The forward buffer's indices first, then the small members, the buffers last: a Cortex-M0+ reaches the
+  // first 32 bytes of the node with one byte load or store, the next ones take an address computation more.
+  detail::forward_buffer<ForwardCapacity> forward_;           // link side
+  detail::netstat_register netstat_;                          // each side writes one byte
+  receiving receiving_ = receiving::local;                    // link side
+  detail::single_writer<std::uint16_t> messages_forwarded_;   // link side
+  detail::single_writer<std::uint16_t> messages_sent_;        // link side
+  detail::single_writer<std::uint32_t> forwards_lost_;        // link side
+  detail::single_writer<std::uint32_t> forwards_cut_;         // link side
+  detail::single_writer<std::uint32_t> forwards_ended_idle_;  // link side
+  detail::single_writer<std::uint32_t> frame_errors_;         // link side
+  detail::single_writer<std::uint32_t> crc_errors_;           // link side
+  detail::spsc_fifo<TransmitCapacity> queue_;  // the transmit queue: the program side produces, the link side consumes
+  Decoder decoder_;                            // the decoder of messages for this node (link side)
 };
 
 }  // namespace trionet::ring

@@ -105,7 +105,9 @@ inline void read_variable_data(const std::uint8_t* data, std::uint16_t& vr, std:
 #endif
 }
 
-namespace detail {
+}  // namespace trionet::ring
+
+namespace trionet::detail {
 // The 12 field bytes in the default layout.
 constexpr void write_default_fields(std::uint8_t* out, std::uint16_t vr, std::int64_t value) noexcept {
   out[0] = static_cast<std::uint8_t>(vr & 0x7F);
@@ -116,7 +118,9 @@ constexpr void write_default_fields(std::uint8_t* out, std::uint16_t vr, std::in
     bits >>= 7;
   }
 }
-}  // namespace detail
+}  // namespace trionet::detail
+
+namespace trionet::ring {
 
 /// The 12 field bytes V0 V1 X0..X9 of `vr` (0..16383) and the Q32.32 `value`, in the given layout.
 constexpr void write_variable_fields(std::uint8_t* out, std::uint16_t vr, std::int64_t value,

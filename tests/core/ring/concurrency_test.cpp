@@ -32,7 +32,8 @@ TEST(RingConcurrency, KeypadLinkInterruptAndKeyScan) {
   expect_passed(r);
 }
 
-// The link side in bulk, as a DMA-fed UART: runs of bytes received and transmitted at once, or relayed.
+// The link side in bulk, as a DMA-fed UART: runs of bytes received at once, transmitted at once or a byte at
+// a time.
 TEST(RingConcurrency, MotionCoordinatorDmaLinkAndProgramThread) {
   trionet::stress::config cfg;
   cfg.link_steps = 100000;

@@ -35,9 +35,9 @@ std::vector<event> both_ways(const std::vector<std::uint8_t>& bytes) {
 }
 
 // A store of 64 characters behind a decoder whose maximum is 16.
-using roomy = ring::basic_decoder<ring::character_buffer<64>, 16>;
+using roomy = ring::basic_decoder<trionet::detail::character_buffer<64>, 16>;
 // A store of 8 characters behind a decoder whose maximum is 16.
-using cramped = ring::basic_decoder<ring::character_buffer<8>, 16>;
+using cramped = ring::basic_decoder<trionet::detail::character_buffer<8>, 16>;
 
 TEST(RingCharacterMaximum, ATransferOfTheMaximumIsTaken) {
   const std::string sixteen(16, 'M');

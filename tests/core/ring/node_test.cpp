@@ -202,6 +202,34 @@ TEST(RingForwarding, AnEndOfMessageThatFindsTheForwardBufferFullLosesTheMessageW
   }
 }
 
+// A header that finds the forward buffer full loses only its own message: the messages before it, which ended
+// with room to spare for their bound, stay whole in the buffer (byte by byte and in bulk).
+TEST(RingForwarding, AHeaderThatFindsTheForwardBufferFullLosesOnlyItsOwnMessage) {
+  for (const arrival how : {arrival::byte_by_byte, arrival::bulk, arrival::bulk_in_pieces}) {
+    SCOPED_TRACE(static_cast<int>(how));
+    trionet::vr_table<16> vr;
+    ring::motion_coordinator<256, 64, 32> mc(vr);  // a forward buffer of 64 bytes
+    ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
+    std::uint8_t b = 0;
+    ASSERT_TRUE(mc.transmit(b));  // the own message has begun: what arrives now waits
+    const auto first = chars(3, std::string(40, 'a'));   // 42 bytes
+    const auto second = chars(3, std::string(20, 'b'));  // 22 bytes: the buffer is full after it
+    std::vector<std::uint8_t> burst = first;
+    burst.insert(burst.end(), second.begin(), second.end());
+    const auto third = chars(3, "LOST");
+    burst.insert(burst.end(), third.begin(), third.end());
+    arrive(mc, burst, how);
+    EXPECT_EQ(mc.forwarding_counters().messages_forwarded, 3u);
+    EXPECT_EQ(mc.forwarding_counters().forwards_lost, 1u);
+    EXPECT_EQ(mc.netstat(), ring::netstat_tx_buffer_error);
+    std::vector<std::uint8_t> expected = chars(1, "OWN");
+    expected.erase(expected.begin());  // the header already went out
+    for (const auto& passed : {chars(2, std::string(40, 'a')), chars(2, std::string(20, 'b'))})
+      expected.insert(expected.end(), passed.begin(), passed.end());
+    EXPECT_EQ(drain(mc), expected);
+  }
+}
+
 // A forwarded message that has partly gone out when the forward buffer overflows is cut short: what went out
 // stays out, the rest is dropped (its destination sees a frame error).
 TEST(RingForwarding, AMessagePartlySentWhenTheForwardBufferOverflowsIsCutShort) {
@@ -369,7 +397,7 @@ TEST(RingMotionCoordinator, LongerThanTheCharacterMaximumIsABadLength) {
   feed(mc, chars(1, std::string(257, 'b')));
   EXPECT_EQ(mc.counters().frame_errors, 1u);
   EXPECT_EQ(mc.characters_waiting(), 0u);
-  ring::motion_coordinator<256, 32, 32, ring::crc16_ccitt_false, 40> forty(vr);  // a maximum of 40
+  ring::motion_coordinator<256, 32, 32, 40> forty(vr);  // a maximum of 40
   feed(forty, chars(1, std::string(41, 'c')));
   EXPECT_EQ(forty.counters().frame_errors, 1u);
   EXPECT_EQ(forty.counters().receive_overflows, 0u);
@@ -419,7 +447,7 @@ TEST(RingMotionCoordinator, SendMapsBasicAddressesAndTypes) {
 TEST(RingMotionCoordinator, SendsWithItsOwnCrcPolicy) {
   using xmodem = ring::crc16<0x1021, 0x0000>;
   trionet::vr_table<256> vr_a, vr_b;
-  ring::motion_coordinator<256, 48, 48, xmodem> a(vr_a), b(vr_b);
+  ring::motion_coordinator<256, 48, 48, ring::default_max_characters, xmodem> a(vr_a), b(vr_b);
   ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_status::ok);
   const auto sent = drain(a);
   std::uint8_t expected[16];
@@ -429,7 +457,7 @@ TEST(RingMotionCoordinator, SendsWithItsOwnCrcPolicy) {
   EXPECT_EQ(vr_b[200], 99.0);
   EXPECT_EQ(b.netstat(), 0);
   // The table-free variant sends the same bytes as the table one.
-  ring::motion_coordinator<256, 48, 48, ring::crc16_ccitt_false_bitwise> c(vr_a);
+  ring::motion_coordinator<256, 48, 48, ring::default_max_characters, ring::crc16_ccitt_false_bitwise> c(vr_a);
   ASSERT_EQ(c.send_variable(10, 200, 99), ring::send_status::ok);
   EXPECT_EQ(drain(c), frame_of(ring::message::variable(1, 200, trionet::q32_from_integer(99))));
 }
@@ -608,7 +636,8 @@ void insert_junk(std::vector<std::uint8_t>& stream, std::mt19937_64& rng) {
 }
 
 // Regression: a message passing through the node ends the decoder's run of stray data (or its skipping of an
-// A = 0 message), so stray data after it is a new frame error, in the bulk and relay forms as byte by byte.
+// A = 0 message), so stray data after it is a new frame error, in the bulk forms (whole, and in pieces of 3) as
+// byte by byte.
 TEST(RingMotionCoordinator, PassingMessageEndsStrayRunInEveryForm) {
   const std::vector<std::uint8_t> passing = chars(2, "THROUGH");
   std::vector<std::uint8_t> stray_then_passing = {0x41, 0x42};  // stray data
@@ -618,25 +647,27 @@ TEST(RingMotionCoordinator, PassingMessageEndsStrayRunInEveryForm) {
   skipped_then_passing.insert(skipped_then_passing.end(), passing.begin(), passing.end());
   skipped_then_passing.push_back(0x43);  // stray data: a frame error
   for (const auto& stream : {stray_then_passing, skipped_then_passing}) {
-    trionet::vr_table<4> vr_one, vr_bulk, vr_relay;
-    ring::motion_coordinator<> one(vr_one), bulk(vr_bulk), relayed(vr_relay);
+    trionet::vr_table<4> vr_one, vr_bulk, vr_pieces;
+    ring::motion_coordinator<> one(vr_one), bulk(vr_bulk), pieces(vr_pieces);
     for (std::uint8_t b : stream) one.receive(b);
     bulk.receive(byte_view(stream.data(), stream.size()));
+    for (std::size_t at = 0; at < stream.size(); at += 3)
+      pieces.receive(byte_view(stream.data() + at, std::min<std::size_t>(3, stream.size() - at)));
     std::uint8_t out[64];
-    const std::size_t sent =
-        relayed.relay(byte_view(stream.data(), stream.size()), trionet::byte_buffer(out, 64));
+    const std::size_t sent = pieces.transmit(trionet::byte_buffer(out, 64));
     EXPECT_EQ(std::vector<std::uint8_t>(out, out + sent), drain(bulk));
     EXPECT_EQ(one.counters().frame_errors, 2u);  // stray data or A = 0 before, stray data after
     EXPECT_EQ(bulk.counters().frame_errors, one.counters().frame_errors);
-    EXPECT_EQ(relayed.counters().frame_errors, one.counters().frame_errors);
+    EXPECT_EQ(pieces.counters().frame_errors, one.counters().frame_errors);
   }
 }
 
-// relay(in, out) is exactly receive(in) then transmit(out), whether it goes straight through (forward buffer
-// empty, between own messages, everything fits) or not.
-TEST(RingMotionCoordinator, RelayIsReceiveThenTransmit) {
+// The bulk transmit fills at most the buffer it is given (buffers of exactly `pull` bytes on the heap, so that
+// the sanitizer build catches a write past them), and the bulk forms in random pieces give exactly what one
+// byte at a time gives, over damaged streams with the node's own traffic now and then.
+TEST(RingMotionCoordinator, BulkTransmitStaysInItsBufferAndMatchesByteAtATime) {
   std::mt19937_64 rng(2024);
-  std::uint64_t straight_candidates = 0, lost = 0;
+  std::uint64_t forwarded = 0, lost = 0;
   for (int round = 0; round < 300; ++round) {
     std::vector<std::uint8_t> stream;
     for (int i = 0; i < 30; ++i) {
@@ -649,40 +680,38 @@ TEST(RingMotionCoordinator, RelayIsReceiveThenTransmit) {
       stream.insert(stream.end(), frame.begin(), frame.end());
     }
     for (int i = 0; i < 8; ++i) stream[rng() % stream.size()] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
-    trionet::vr_table<16> vr_two, vr_relayed;
-    ring::motion_coordinator<64, 16, 24> two(vr_two), relayed(vr_relayed);
-    std::vector<std::uint8_t> out_two, out_relayed;
+    trionet::vr_table<16> vr_one, vr_bulk;
+    ring::motion_coordinator<64, 16, 24> one(vr_one), bulk(vr_bulk);
+    std::vector<std::uint8_t> out_one, out_bulk;
     for (std::size_t at = 0; at < stream.size();) {
       const std::size_t n = std::min<std::size_t>(stream.size() - at, 1 + rng() % 24);
       if (rng() % 4 == 0) {  // own traffic now and then
         const int address = 10 + static_cast<int>(rng() % 3);
-        expect_same(two.print(address, "OWN"), relayed.print(address, "OWN"));
+        expect_same(one.print(address, "OWN"), bulk.print(address, "OWN"));
       }
       const std::size_t pull = rng() % 40;
-      if (two.forward_backlog() == 0 && n <= 16 && n <= pull) ++straight_candidates;
-      // Buffers of exactly `pull` bytes on the heap, so that the sanitizer build catches a write past them.
-      std::vector<std::uint8_t> buffer_two(pull), buffer_relayed(pull);
-      two.receive(byte_view(stream.data() + at, n));
-      const std::size_t got_two = two.transmit(trionet::byte_buffer(buffer_two.data(), pull));
-      const std::size_t got_relayed =
-          relayed.relay(byte_view(stream.data() + at, n), trionet::byte_buffer(buffer_relayed.data(), pull));
-      ASSERT_LE(got_relayed, pull);
-      out_two.insert(out_two.end(), buffer_two.begin(), buffer_two.begin() + static_cast<long>(got_two));
-      out_relayed.insert(out_relayed.end(), buffer_relayed.begin(),
-                         buffer_relayed.begin() + static_cast<long>(got_relayed));
-      ASSERT_EQ(out_two, out_relayed) << "round " << round << " at " << at;
+      for (std::size_t i = 0; i < n; ++i) one.receive(stream[at + i]);
+      std::uint8_t b = 0;
+      for (std::size_t i = 0; i < pull && one.transmit(b); ++i) out_one.push_back(b);
+      std::vector<std::uint8_t> buffer(pull);
+      bulk.receive(byte_view(stream.data() + at, n));
+      const std::size_t got = bulk.transmit(trionet::byte_buffer(buffer.data(), pull));
+      ASSERT_LE(got, pull);
+      out_bulk.insert(out_bulk.end(), buffer.begin(), buffer.begin() + static_cast<long>(got));
+      ASSERT_EQ(out_one, out_bulk) << "round " << round << " at " << at;
       at += n;
     }
-    EXPECT_EQ(drain(two), drain(relayed));
-    EXPECT_EQ(two.netstat(), relayed.netstat());
-    EXPECT_EQ(read_all(two, 4), read_all(relayed, 4));
-    EXPECT_TRUE(same(two.forwarding_counters(), relayed.forwarding_counters()));
-    EXPECT_TRUE(same(two.counters(), relayed.counters()));
-    for (std::size_t v = 0; v < 16; ++v) EXPECT_EQ(vr_two[v], vr_relayed[v]);
-    lost += two.forwarding_counters().forwards_lost;
+    EXPECT_EQ(drain(one), drain(bulk));
+    EXPECT_EQ(one.netstat(), bulk.netstat());
+    EXPECT_EQ(read_all(one, 4), read_all(bulk, 4));
+    EXPECT_TRUE(same(one.forwarding_counters(), bulk.forwarding_counters()));
+    EXPECT_TRUE(same(one.counters(), bulk.counters()));
+    for (std::size_t v = 0; v < 16; ++v) EXPECT_EQ(vr_one[v], vr_bulk[v]);
+    forwarded += one.forwarding_counters().messages_forwarded;
+    lost += one.forwarding_counters().forwards_lost;
   }
-  EXPECT_GT(straight_candidates, 1000u);  // the straight path was exercised...
-  EXPECT_GT(lost, 10u);                   // ... and so was the forward buffer overflowing
+  EXPECT_GT(forwarded, 1000u);  // forwarding was exercised...
+  EXPECT_GT(lost, 10u);         // ... and so was the forward buffer overflowing
 }
 
 // The bulk forms (a DMA buffer in, a transmit buffer out) behave exactly as the byte-at-a-time forms.
@@ -748,10 +777,10 @@ TEST(RingMotionCoordinator, BulkReceiveAndTransmitMatchByteAtATime) {
   EXPECT_GT(lost, 10u);
 }
 
-// A UART interrupt per byte (one byte in, then one out) at the library's default capacities: the per-byte
-// steps after the fast path (the next grant at the forward buffer's end, a forwarded end of message or header)
-// against the general path (the bulk forms take every byte there), over long character messages, headers
-// that cut into an open grant, losses while the node's own messages go out, and damaged bytes.
+// A UART interrupt per byte (one byte in, then one out) at the library's default capacities, against the bulk
+// forms a byte at a time and a bulk receive with a per-byte transmit: the forward buffer's grant running out
+// at its end, forwarded ends of message and headers, over long character messages, headers that cut into an
+// open grant, losses while the node's own messages go out, and damaged bytes.
 TEST(RingMotionCoordinator, OneByteEachWayMatchesTheBulkForms) {
   std::mt19937_64 rng(7);
   std::uint64_t forwarded = 0, lost = 0, cut = 0;
@@ -772,15 +801,15 @@ TEST(RingMotionCoordinator, OneByteEachWayMatchesTheBulkForms) {
       stream.insert(stream.end(), frame.begin(), frame.end());
     }
     for (int i = 0; i < 6; ++i) stream[rng() % stream.size()] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
-    trionet::vr_table<16> vr_one, vr_bulk, vr_relayed;
-    ring::motion_coordinator<> one(vr_one), bulk(vr_bulk), relayed(vr_relayed);
-    std::vector<std::uint8_t> out_one, out_bulk, out_relayed;
+    trionet::vr_table<16> vr_one, vr_bulk, vr_mixed;
+    ring::motion_coordinator<> one(vr_one), bulk(vr_bulk), mixed(vr_mixed);
+    std::vector<std::uint8_t> out_one, out_bulk, out_mixed;
     for (std::size_t i = 0; i < stream.size(); ++i) {
       if (i % 97 == 0) {  // an own message now and then: forwarded bytes wait while it goes out
         const int address = 10 + static_cast<int>(rng() % 2);
         const ring::print_result printed = one.print(address, "OWN MESSAGE");
         expect_same(printed, bulk.print(address, "OWN MESSAGE"));
-        expect_same(printed, relayed.print(address, "OWN MESSAGE"));
+        expect_same(printed, mixed.print(address, "OWN MESSAGE"));
       }
       const bool pull = rng() % 8 != 0;  // now and then the transmitter is busy: a backlog builds up
       one.receive(stream[i]);
@@ -789,26 +818,26 @@ TEST(RingMotionCoordinator, OneByteEachWayMatchesTheBulkForms) {
       bulk.receive(byte_view(&stream[i], 1));
       std::uint8_t buffer[1];
       if (pull && bulk.transmit(trionet::byte_buffer(buffer, 1)) == 1) out_bulk.push_back(buffer[0]);
-      const std::size_t n = relayed.relay(byte_view(&stream[i], 1), trionet::byte_buffer(buffer, pull ? 1 : 0));
-      if (n == 1) out_relayed.push_back(buffer[0]);
+      mixed.receive(byte_view(&stream[i], 1));
+      if (pull && mixed.transmit(b)) out_mixed.push_back(b);
       ASSERT_EQ(out_one, out_bulk) << "round " << round << ", byte " << i;
-      ASSERT_EQ(out_one, out_relayed) << "round " << round << ", byte " << i;
+      ASSERT_EQ(out_one, out_mixed) << "round " << round << ", byte " << i;
     }
     const auto rest = drain(one);
     EXPECT_EQ(rest, drain(bulk));
-    EXPECT_EQ(rest, drain(relayed));
+    EXPECT_EQ(rest, drain(mixed));
     EXPECT_EQ(one.netstat(), bulk.netstat());
-    EXPECT_EQ(one.netstat(), relayed.netstat());
+    EXPECT_EQ(one.netstat(), mixed.netstat());
     const std::string text = read_all(one, 4);
     EXPECT_EQ(text, read_all(bulk, 4));
-    EXPECT_EQ(text, read_all(relayed, 4));
+    EXPECT_EQ(text, read_all(mixed, 4));
     EXPECT_TRUE(same(one.forwarding_counters(), bulk.forwarding_counters()));
     EXPECT_TRUE(same(one.counters(), bulk.counters()));
-    EXPECT_TRUE(same(one.forwarding_counters(), relayed.forwarding_counters()));
-    EXPECT_TRUE(same(one.counters(), relayed.counters()));
+    EXPECT_TRUE(same(one.forwarding_counters(), mixed.forwarding_counters()));
+    EXPECT_TRUE(same(one.counters(), mixed.counters()));
     for (std::size_t v = 0; v < 16; ++v) {
       EXPECT_EQ(vr_one[v], vr_bulk[v]);
-      EXPECT_EQ(vr_one[v], vr_relayed[v]);
+      EXPECT_EQ(vr_one[v], vr_mixed[v]);
     }
     forwarded += one.forwarding_counters().messages_forwarded;
     lost += one.forwarding_counters().forwards_lost;

@@ -130,7 +130,7 @@ TEST(RingVariableLayout, MotionCoordinatorsSendAndReceiveInTheirLayout) {
   using msf = ring::variable_layout<ring::group_order::most_significant_first,
                                     ring::group_order::most_significant_first>;
   using reflected = ring::crc16<0x8005, 0xFFFF, 0x0000, ring::crc_table::lookup, true, true>;  // MODBUS
-  using node = ring::motion_coordinator<256, 32, 32, reflected, ring::default_max_characters, msf>;
+  using node = ring::motion_coordinator<256, 32, 32, ring::default_max_characters, reflected, msf>;
   trionet::vr_table<256> vr_a, vr_b;
   node a(vr_a), b(vr_b);
   ASSERT_EQ(a.send_variable(10, 200, 99.0), ring::send_status::ok);  // BASIC address 10: the next node
@@ -152,7 +152,7 @@ TEST(RingVariableLayout, NodesTakeACrcChosenAtRunTime) {
   using msf = ring::variable_layout<ring::group_order::most_significant_first,
                                     ring::group_order::most_significant_first>;
   const ring::crc16_runtime modbus(ring::crc16_parameters{0x8005, 0xFFFF, true, true, 0});
-  using mc = ring::motion_coordinator<256, 32, 32, ring::crc16_runtime, ring::default_max_characters, msf>;
+  using mc = ring::motion_coordinator<256, 32, 32, ring::default_max_characters, ring::crc16_runtime, msf>;
   trionet::vr_table<256> vr_a, vr_b;
   mc a(vr_a, ring::default_defkey, modbus), b(vr_b, ring::default_defkey, modbus);
   ASSERT_EQ(a.send_variable(10, 200, 99.0), ring::send_status::ok);

@@ -3,6 +3,10 @@
 //   trionet::host::fd_link link(fd, node);
 //   for (;;) link.pump(10);   // moves what read() gives into node.receive(), node.transmit() into write()
 //
+// Given a ring node itself (a `motion_coordinator` or `keypad`), the link uses the node's bulk calls: what one
+// read() gives goes to receive(byte_view) at once, and transmit(byte_buffer) fills what one write() takes.
+// Given any other `byte_port` (e.g. one that watches a node's bytes), it calls the port a byte at a time.
+//
 // The node itself never blocks; `pump` waits at most `timeout_ms` in poll(). Bytes the node has handed over
 // but the descriptor did not yet take are kept here and written first next time: nothing is lost on a
 // short write. A pump that waits the whole `timeout_ms` without a byte tells the node its line is idle
@@ -19,7 +23,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 
+#include "trionet/span.hpp"
 #include "trionet/transport.hpp"
 
 namespace trionet::host {
@@ -34,7 +40,18 @@ struct pump_result {
 
 class fd_link {
  public:
+  /// A link that calls `node` a byte at a time.
   fd_link(int fd, byte_port& node) noexcept : fd_(fd), node_(&node) {}
+  /// A link that feeds a ring node in bulk (see the file comment).
+  template <class Node, class = decltype(std::declval<Node&>().receive(byte_view{})),
+            class = decltype(std::declval<Node&>().transmit(byte_buffer{}))>
+  fd_link(int fd, Node& node) noexcept
+      : fd_(fd),
+        node_(&node),
+        receive_bulk_([](byte_port& port, byte_view in) noexcept { static_cast<Node&>(port).receive(in); }),
+        transmit_bulk_([](byte_port& port, byte_buffer out) noexcept {
+          return static_cast<Node&>(port).transmit(out);
+        }) {}
 
   /// One pass: wait up to `timeout_ms` for the descriptor, read what is there, write what the node has.
   pump_result pump(int timeout_ms);
@@ -52,8 +69,13 @@ class fd_link {
   std::size_t unsent() const noexcept { return out_length_ - out_offset_; }
 
  private:
+  void receive(byte_view in) noexcept;
+  std::size_t transmit(byte_buffer out) noexcept;
+
   int fd_;
   byte_port* node_;
+  void (*receive_bulk_)(byte_port&, byte_view) noexcept = nullptr;         // the node's bulk calls, if any
+  std::size_t (*transmit_bulk_)(byte_port&, byte_buffer) noexcept = nullptr;
   std::uint8_t out_[256] = {};
   std::size_t out_length_ = 0;
   std::size_t out_offset_ = 0;

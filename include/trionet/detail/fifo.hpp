@@ -3,7 +3,7 @@
 // queues own frames, the link side sends them) and a Motion Coordinator's receive buffer (the link side
 // stores characters, the program side reads them with GET#) are such queues.
 //
-// The producer owns `tail_`, the consumer owns `head_` (`single_writer`, see single_writer.hpp). The producer
+// The producer owns `tail_`, the consumer owns `head_` (`single_writer`, see detail/single_writer.hpp). The producer
 // may stage bytes past the tail without publishing them, and publishes a whole frame or message at once with
 // `publish`, so the consumer never sees part of one. Cost: Capacity (+ Extra) bytes and two indices (one byte
 // each up to a capacity of 128, else two bytes); every operation O(1), the bulk ones O(n). No heap.
@@ -14,11 +14,11 @@
 #include <cstring>
 #include <type_traits>
 
-#include "trionet/single_writer.hpp"
+#include "trionet/detail/attributes.hpp"
+#include "trionet/detail/single_writer.hpp"
 
-namespace trionet {
+namespace trionet::detail {
 
-namespace detail {
 /// std::memcpy for the short runs a node moves (part of a message, a variable transfer, a DMA chunk): on
 /// 64-bit cores, 8 to 16 bytes as two overlapping words inline, which beats a library call. `to` and `from`
 /// do not overlap.
@@ -40,26 +40,6 @@ inline void copy_bytes(std::uint8_t* to, const std::uint8_t* from, std::size_t n
 /// The smallest unsigned type that holds 0..Max.
 template <std::size_t Max>
 using index_for = std::conditional_t<Max <= 0xFFu, std::uint8_t, std::uint16_t>;
-}  // namespace detail
-
-/// The queues' indices are `single_writer`s. Defining TRIONET_STRESS_BREAK_QUEUE_INDEX makes them plain
-/// variables instead, which breaks the concurrency contract: it exists only so that the concurrency stress
-/// test (scripts/concurrency-test) can show that it fails, under ThreadSanitizer, when the contract is broken.
-#if defined(TRIONET_STRESS_BREAK_QUEUE_INDEX)
-namespace detail {
-template <class T>
-struct broken_index {
-  T value{};
-  T load() const noexcept { return value; }
-  T acquire() const noexcept { return value; }
-  void store(T v) noexcept { value = v; }
-  void release(T v) noexcept { value = v; }
-};
-}  // namespace detail
-#define TRIONET_QUEUE_INDEX ::trionet::detail::broken_index
-#else
-#define TRIONET_QUEUE_INDEX ::trionet::single_writer
-#endif
 
 /// A single-producer, single-consumer byte queue of `Capacity` bytes (see the file comment). `Extra` bytes
 /// after the queue's own (`slots()[Capacity ..]`) belong to the producer as scratch space.
@@ -72,8 +52,8 @@ class spsc_fifo {
 
  public:
   /// An index of the queue (see above).
-  using index = std::conditional_t<power_of_two, detail::index_for<(Capacity <= 128 ? 255 : 65535)>,
-                                   detail::index_for<2 * Capacity - 1>>;
+  using index = std::conditional_t<power_of_two, index_for<(Capacity <= 128 ? 255 : 65535)>,
+                                   index_for<2 * Capacity - 1>>;
 
   /// How many bytes the queue holds.
   static constexpr std::size_t capacity() noexcept { return Capacity; }
@@ -99,8 +79,8 @@ class spsc_fifo {
     if (n > ready) n = ready;
     const std::size_t at = slot(head);
     const std::size_t first = n < Capacity - at ? n : Capacity - at;
-    detail::copy_bytes(bytes, data_ + at, first);
-    if (n != first) detail::copy_bytes(bytes + first, data_, n - first);
+    copy_bytes(bytes, data_ + at, first);
+    if (n != first) copy_bytes(bytes + first, data_, n - first);
     head_.release(advance(head, n));
     return n;
   }
@@ -114,7 +94,10 @@ class spsc_fifo {
     return ready < to_end ? ready : to_end;
   }
   /// Consumer: removes the `n` oldest bytes. Precondition: n <= available().
-  void consume(std::size_t n) noexcept { head_.release(advance(head_.load(), n)); }
+  void consume(std::size_t n) noexcept {
+    TRIONET_ASSERT(n <= available());
+    head_.release(advance(head_.load(), n));
+  }
 
   // ---- the producer's side ----
 
@@ -122,15 +105,22 @@ class spsc_fifo {
   std::size_t free() const noexcept { return Capacity - distance(head_.acquire(), tail_.load()); }
   /// Producer: writes `byte` `k` places after the last published byte, without publishing it.
   /// Precondition: k < free().
-  void stage(std::size_t k, std::uint8_t byte) noexcept { data_[slot(advance(tail_.load(), k))] = byte; }
+  void stage(std::size_t k, std::uint8_t byte) noexcept {
+    TRIONET_ASSERT(k < free());
+    data_[slot(advance(tail_.load(), k))] = byte;
+  }
   /// Producer: writes `n` bytes from `k` places after the last published byte on, without publishing them.
   /// Precondition: k + n <= free(). (A byte at a time: own frames are short, and the code stays small.)
   void stage(std::size_t k, const std::uint8_t* bytes, std::size_t n) noexcept {
+    TRIONET_ASSERT(k + n <= free());
     const index tail = tail_.load();
     for (std::size_t i = 0; i < n; ++i) data_[slot(advance(tail, k + i))] = bytes[i];
   }
-  /// Producer: hands the next `n` staged bytes to the consumer, all at once.
-  void publish(std::size_t n) noexcept { tail_.release(advance(tail_.load(), n)); }
+  /// Producer: hands the next `n` staged bytes to the consumer, all at once. Precondition: n <= free().
+  void publish(std::size_t n) noexcept {
+    TRIONET_ASSERT(n <= free());
+    tail_.release(advance(tail_.load(), n));
+  }
   /// Producer: appends a byte; false (and nothing changes) when full.
   [[nodiscard]] bool push(std::uint8_t byte) noexcept {
     if (free() == 0) return false;
@@ -172,9 +162,9 @@ class spsc_fifo {
     }
   }
 
-  TRIONET_QUEUE_INDEX<index> head_;  // the consumer's
-  TRIONET_QUEUE_INDEX<index> tail_;  // the producer's
+  single_writer<index> head_;  // the consumer's
+  single_writer<index> tail_;  // the producer's
   std::uint8_t data_[Capacity + Extra] = {};
 };
 
-}  // namespace trionet
+}  // namespace trionet::detail

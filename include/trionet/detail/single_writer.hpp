@@ -16,9 +16,9 @@
 #include <atomic>
 #include <type_traits>
 
-#include "trionet/attributes.hpp"
+#include "trionet/detail/attributes.hpp"
 
-namespace trionet {
+namespace trionet::detail {
 
 /// A value written by one side only and read by both (see the file comment). Copying copies the value, so a
 /// node that holds one stays copyable; copy a node only while neither side is running.
@@ -57,4 +57,4 @@ class single_writer {
   std::atomic<T> value_;
 };
 
-}  // namespace trionet
+}  // namespace trionet::detail
