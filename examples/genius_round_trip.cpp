@@ -33,8 +33,8 @@ int main() {
   }
 
   // The seed's layout: SBA 4 and 6 at one end of a 2000 ft bus, SBA 5 at the other.
-  const genius::device bad[] = {{4, 0, 1}, {5, 2000, 1}, {6, 0, 1}};
-  const genius::device fixed[] = {{4, 0, 1}, {5, 0, 1}, {6, 2000, 1}};
+  const genius::device_position bad[] = {{4, 0, 1}, {5, 2000, 1}, {6, 0, 1}};
+  const genius::device_position fixed[] = {{4, 0, 1}, {5, 0, 1}, {6, 2000, 1}};
   const genius::bus_timing timing = genius::default_timing(genius::rate::standard_153k6);
   std::printf("seed layout: %zu collision(s)\n", genius::simulate_scan(bad, timing, 4).collisions);
   std::printf("SBAs in order along the bus: %zu collision(s)\n",

@@ -567,17 +567,17 @@ int timing_main(const std::vector<std::string>& words) {
   std::uint8_t after = 0;
   if (!parse_sba(args.options["--after"], after)) return fail("--after must be an SBA 0..31");
   if (!args.has("--device")) return fail("timing needs at least one --device SBA@FEET");
-  std::vector<genius::device> devices;
+  std::vector<genius::device_position> devices;
   for (const std::string& text : split_lines(args.options["--device"])) {
     const std::size_t at = text.find('@');
-    genius::device d;
+    genius::device_position d;
     double feet = 0;
     if (at == std::string::npos || !parse_sba(text.substr(0, at), d.sba) ||
         !parse_bounded(text.substr(at + 1), 0, max_feet, feet)) {
       return fail("--device '" + host::printable(text) + "' must be SBA@FEET with SBA 0..31 and FEET 0..1000000");
     }
     d.position_ft = feet;
-    for (const genius::device& other : devices) {
+    for (const genius::device_position& other : devices) {
       if (other.sba == d.sba) return fail("SBA " + std::to_string(d.sba) + " is given twice");
     }
     devices.push_back(d);
@@ -595,7 +595,7 @@ int timing_main(const std::vector<std::string>& words) {
   }
 
   const genius::turn_analysis analysis =
-      genius::analyse_turns(span<const genius::device>(devices.data(), devices.size()), timing, after);
+      genius::analyse_turns(span<const genius::device_position>(devices.data(), devices.size()), timing, after);
   if (analysis.status == genius::layout_status::sender_not_on_bus) {
     return fail("--after " + std::to_string(after) + " is not one of the --device entries");
   }
@@ -624,8 +624,8 @@ int timing_main(const std::vector<std::string>& words) {
     return verdict;
   }
 
-  const genius::device* sender = nullptr;
-  for (const genius::device& d : devices) {
+  const genius::device_position* sender = nullptr;
+  for (const genius::device_position& d : devices) {
     if (d.sba == after) sender = &d;
   }
   std::printf("rate %s (%s): bit time %s us, skip time %s us (%s)\n", props.name, props.description,

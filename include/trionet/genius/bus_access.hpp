@@ -119,8 +119,8 @@ struct bus_timing {
   return std::fabs(to_ft - from_ft) * timing.propagation_us_per_2000ft / 2000.0;
 }
 
-/// A device on the bus. `data_bytes` is used only by the bus scan (length of its transmission).
-struct device {
+/// Where a device sits on the bus, for the analysis. `data_bytes` is used only by the bus scan (length of its transmission).
+struct device_position {
   std::uint8_t sba = 0;          ///< its Serial Bus Address, 0..31
   double position_ft = 0;        ///< where it sits on the line, in feet
   std::uint16_t data_bytes = 1;  ///< data characters it sends per turn (bus scan only)
@@ -197,7 +197,7 @@ inline bool finite(double x) noexcept {
   return std::isfinite(x);
 }
 
-inline layout_status check_layout(span<const device> devices, const bus_timing& timing,
+inline layout_status check_layout(span<const device_position> devices, const bus_timing& timing,
                                   std::uint8_t after) noexcept {
   if (!finite(timing.skip_us) || !(timing.skip_us > 0) || !finite(timing.propagation_us_per_2000ft) ||
       timing.propagation_us_per_2000ft < 0 || !finite(timing.detection_us) || timing.detection_us < 0 ||
@@ -205,7 +205,7 @@ inline layout_status check_layout(span<const device> devices, const bus_timing& 
     return layout_status::bad_timing;
   }
   std::uint32_t seen = 0;
-  for (const device& d : devices) {
+  for (const device_position& d : devices) {
     if (d.sba > 31) return layout_status::sba_out_of_range;
     if (!finite(d.position_ft) || d.position_ft < 0) return layout_status::bad_position;
     const std::uint32_t bit = 1u << d.sba;
@@ -216,8 +216,8 @@ inline layout_status check_layout(span<const device> devices, const bus_timing& 
   return layout_status::ok;
 }
 
-inline const device* find_device(span<const device> devices, std::uint8_t sba) noexcept {
-  for (const device& d : devices) {
+inline const device_position* find_device(span<const device_position> devices, std::uint8_t sba) noexcept {
+  for (const device_position& d : devices) {
     if (d.sba == sba) return &d;
   }
   return nullptr;
@@ -228,17 +228,17 @@ inline const device* find_device(span<const device> devices, std::uint8_t sba) n
 /// Computes every other device's turn start after the Stop of SBA `after` ended at its position (time 0),
 /// the margin between each consecutive pair of turns, and flags margins below `timing.detection_us`.
 /// Cost: O(32 * devices); no allocation. Not meant for an ISR (floating point, ~1.5 KB result).
-[[nodiscard]] inline turn_analysis analyse_turns(span<const device> devices, const bus_timing& timing,
+[[nodiscard]] inline turn_analysis analyse_turns(span<const device_position> devices, const bus_timing& timing,
                                                  std::uint8_t after) noexcept {
   turn_analysis result;
   result.after = after;
   result.status = detail::check_layout(devices, timing, after);
   if (result.status != layout_status::ok) return result;
-  const device* sender = detail::find_device(devices, after);
+  const device_position* sender = detail::find_device(devices, after);
   double lowest = sender->position_ft, highest = sender->position_ft;
   for (unsigned offset = 1; offset < 32; ++offset) {
     const auto sba = static_cast<std::uint8_t>((after + offset) % 32u);
-    const device* d = detail::find_device(devices, sba);
+    const device_position* d = detail::find_device(devices, sba);
     if (d == nullptr) continue;
     lowest = d->position_ft < lowest ? d->position_ft : lowest;
     highest = d->position_ft > highest ? d->position_ft : highest;
@@ -288,20 +288,20 @@ struct bus_scan {
 /// collider latest in SBA order had sent the Stop that the others hear. A transmission lasts
 /// (data_bytes + 2) characters: Start, data, Stop. The scan ends when `after` has transmitted again.
 /// Cost: O(steps * devices^2), at most 64 steps; no allocation. Not meant for an ISR.
-[[nodiscard]] inline bus_scan simulate_scan(span<const device> devices, const bus_timing& timing,
+[[nodiscard]] inline bus_scan simulate_scan(span<const device_position> devices, const bus_timing& timing,
                                             std::uint8_t after) noexcept {
   bus_scan result;
   result.status = detail::check_layout(devices, timing, after);
   if (result.status != layout_status::ok) return result;
   const double character_us = 11.0 * timing.bit_time_us;
-  const device* last = detail::find_device(devices, after);
+  const device_position* last = detail::find_device(devices, after);
   double last_end = 0;
   while (result.count < max_scan_transmissions) {
     // Timer expiry of each other device, in time order (insertion sort; at most 31 entries).
-    const device* order[32];
+    const device_position* order[32];
     double expiry[32];
     std::size_t candidates = 0;
-    for (const device& d : devices) {
+    for (const device_position& d : devices) {
       if (d.sba == last->sba) continue;
       const double at = last_end + propagation_us(timing, last->position_ft, d.position_ft) +
                         timing.skip_us * sba_offset(last->sba, d.sba);
@@ -328,12 +328,12 @@ struct bus_scan {
       }
       if (!detected) sending[senders++] = i;
     }
-    const device* next = order[sending[0]];
+    const device_position* next = order[sending[0]];
     double next_end = 0;
     bool back_to_start = false;
     if (senders > 1) ++result.collisions;
     for (std::size_t k = 0; k < senders && result.count < max_scan_transmissions; ++k) {
-      const device* d = order[sending[k]];
+      const device_position* d = order[sending[k]];
       const double start = expiry[sending[k]];
       const double end = start + character_us * (d->data_bytes + 2.0);
       result.transmissions[result.count++] = scan_transmission{d->sba, start, end, senders > 1};

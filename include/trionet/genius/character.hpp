@@ -53,6 +53,30 @@ constexpr std::uint16_t word_mask = 0x7ff;         ///< the 11 bits a word may u
                                     (c.control ? control_bit_mask : 0u));
 }
 
+// A character as one 9-bit UART word (docs/protocol.md 3.4), what a device's UART sends and receives: bit 0
+// is the control bit, bits 8..1 the data byte. A UART sends bit 0 first, between its own start and stop
+// bits, so the wire order is start, control, data least significant bit first, stop, as drawn above:
+//
+//   UART word bit:  8   7   6   5   4   3   2   1   0
+//                   d7  d6  d5  d4  d3  d2  d1  d0  control
+//
+// The 11-bit word above is the UART word shifted up by one, with the stop bit added.
+
+constexpr std::uint16_t uart_word_mask = 0x1ff;  ///< the 9 bits a UART word uses
+
+/// `c` as a 9-bit UART word. Cost: a few instructions; ISR-safe.
+[[nodiscard]] constexpr std::uint16_t to_uart_word(character c) noexcept {
+  return static_cast<std::uint16_t>((static_cast<unsigned>(c.byte) << 1u) | (c.control ? 1u : 0u));
+}
+/// The character of a 9-bit UART word (bits above bit 8 are ignored). Cost: a few instructions; ISR-safe.
+[[nodiscard]] constexpr character from_uart_word(std::uint16_t word) noexcept {
+  return character{static_cast<std::uint8_t>((word >> 1u) & 0xffu), (word & 1u) != 0};
+}
+/// The 11-bit wire word (numbering above) of a 9-bit UART word: start 0, the UART word, stop 1.
+[[nodiscard]] constexpr std::uint16_t wire_word(std::uint16_t uart_word) noexcept {
+  return static_cast<std::uint16_t>(stop_bit_mask | ((uart_word & uart_word_mask) << 1u));
+}
+
 /// What a received 11-bit word or bit sequence turned out to be.
 enum class character_status : std::uint8_t {
   ok,               ///< a well-formed character

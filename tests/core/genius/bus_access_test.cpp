@@ -10,12 +10,12 @@ namespace {
 using namespace trionet::genius;
 using trionet::span;
 
-span<const device> view(const std::vector<device>& devices) {
+span<const device_position> view(const std::vector<device_position>& devices) {
   return {devices.data(), devices.size()};
 }
 
 // The seed: SBA 4 and 6 at one end of a 2000 ft bus, SBA 5 at the other, 153.6 kbaud standard.
-const std::vector<device> seed_layout = {{4, 0}, {5, 2000}, {6, 0}};
+const std::vector<device_position> seed_layout = {{4, 0}, {5, 2000}, {6, 0}};
 
 TEST(GeniusSeedWorkedExample, Skip26usGivesSba5At29Sba6At52Margin20) {
   bus_timing timing = default_timing(rate::standard_153k6);
@@ -98,7 +98,7 @@ TEST(GeniusRates, TableOfProtocolSection33) {
 }
 
 TEST(GeniusTurns, OrderWrapsRoundSba31) {
-  const std::vector<device> devices = {{2, 0}, {30, 0}, {0, 0}, {31, 0}};
+  const std::vector<device_position> devices = {{2, 0}, {30, 0}, {0, 0}, {31, 0}};
   const turn_analysis a = analyse_turns(view(devices), default_timing(rate::baud_76k8), 30);
   ASSERT_EQ(a.turn_count, 3u);
   const double skip = rule_skip_us(rate::baud_76k8);
@@ -131,7 +131,7 @@ TEST(GeniusTurns, RateLimitsAreReported) {
                   .longer_than_rate_allows);
   EXPECT_FALSE(analyse_turns(view({{1, 0}, {2, 2500}}), default_timing(rate::extended_153k6), 1)
                    .longer_than_rate_allows);
-  std::vector<device> many;
+  std::vector<device_position> many;
   for (std::uint8_t sba = 0; sba < 17; ++sba) many.push_back({sba, 0});
   EXPECT_TRUE(analyse_turns(view(many), default_timing(rate::baud_38k4), 0).more_devices_than_rate_allows);
   EXPECT_FALSE(analyse_turns(view(many), default_timing(rate::baud_76k8), 0).more_devices_than_rate_allows);
@@ -164,7 +164,7 @@ TEST(GeniusBusScan, SeedLayoutCollidesAtTheRuleSkipTime) {
 
 TEST(GeniusBusScan, ResequencingSbasAlongTheBusRemovesTheCollision) {
   // Same devices and cable, SBAs now in order along the bus: 4 and 5 at one end, 6 at the other.
-  const std::vector<device> resequenced = {{4, 0}, {5, 0}, {6, 2000}};
+  const std::vector<device_position> resequenced = {{4, 0}, {5, 0}, {6, 2000}};
   const bus_scan scan = simulate_scan(view(resequenced), default_timing(rate::standard_153k6), 4);
   ASSERT_EQ(scan.status, layout_status::ok);
   EXPECT_EQ(scan.collisions, 0u);
@@ -190,7 +190,7 @@ TEST(GeniusBusScan, TheSeedsOtherFixesAlsoWork) {
 }
 
 TEST(GeniusBusScan, ColocatedDevicesTakeTurnsInSbaOrder) {
-  std::vector<device> devices = {{9, 100}, {1, 100}, {3, 100}, {20, 100}};
+  std::vector<device_position> devices = {{9, 100}, {1, 100}, {3, 100}, {20, 100}};
   devices[2].data_bytes = 4;
   const bus_timing timing = default_timing(rate::baud_38k4);
   const bus_scan scan = simulate_scan(view(devices), timing, 3);
