@@ -778,7 +778,7 @@ struct genius_bus::state {
   // character k's start bit (that start bit cancels it: a timer due earlier must expire the exact way).
   bool follow_from(std::size_t r, const source& s, std::size_t k) {
     receiver& rc = receivers[r];
-    if (!cuts.empty() || !s.open || s.device < 0) return false;
+    if (!config.follow || !cuts.empty() || !s.open || s.device < 0) return false;
     if (rc.device >= 0) {
       const station_state& st = stations[static_cast<std::size_t>(rc.device)];
       if (!st.powered || st.dev->sending()) return false;
@@ -1041,8 +1041,8 @@ struct genius_bus::state {
         }
         break;
       case genius_fault_kind::cut:
-        unfollow_all();
         cuts.push_back(cut_window{f.position_ft, now, now + ps_of_us(f.duration_us)});
+        unfollow_all();  // no one follows while a cut is open
         if (on_trace) trace("line cut at " + std::to_string(f.position_ft) + " ft for " + std::to_string(f.duration_us) + " us");
         schedule(now, event_kind::cut_edge, 0);
         schedule(now + ps_of_us(f.duration_us), event_kind::cut_edge, 0);
@@ -1142,7 +1142,13 @@ genius_bus_result genius_bus::run() {
   for (std::size_t r = 0; r < s.receivers.size(); ++r) s.look(r);
 
   std::uint64_t since_prune = 0;
-  while (!s.events.empty() && !s.done) {
+  bool finishing = false;
+  while (!s.events.empty()) {
+    if (s.done && !finishing) {
+      // The last scan is complete: run on until every device has heard its opening Stop.
+      finishing = true;
+      limit = std::min(limit, s.now + s.max_prop + 2 * s.character);
+    }
     const event e = s.events.top();
     if (e.time() > limit) break;
     s.events.pop();
@@ -1213,6 +1219,12 @@ genius_bus_result genius_bus::run() {
       s.prune();
     }
   }
+  // Followers take what they would have received by then, as an event per word would have given them.
+  const std::int64_t last = s.now;
+  s.now = s.events.empty() ? s.now : limit;
+  s.config.follow = false;
+  s.unfollow_all();
+  s.now = last;
   s.result.end_us = us_of_ps(s.now);
   s.result.complete = s.done;
   // The first scan's turns: those armed by the opener's first Stop, in SBA order after it.
@@ -1229,8 +1241,8 @@ genius_bus_result genius_bus::run() {
         tr.due_us = t.due_us - rec.end_us;
         tr.cancelled = t.cancelled;
         tr.by = t.by;
-        tr.arrived_us = t.arrived_us - rec.end_us;
-        tr.detected_us = t.detected_us - rec.end_us;
+        tr.arrived_us = t.cancelled ? t.arrived_us - rec.end_us : 0;
+        tr.detected_us = t.cancelled ? t.detected_us - rec.end_us : 0;
         tr.transmitted = t.transmitted;
         tr.passed = t.passed;
         s.result.first_scan_turns.push_back(tr);

@@ -76,6 +76,9 @@ struct genius_bus_config {
   std::uint64_t seed = 1;         ///< noise patterns and the data the devices send
   bool new_data_every_turn = true;  ///< each device's inputs (and the controller's outputs) change every turn
   bool record_turns = true;       ///< keep the turns, transmissions and scans (off for long soaks and benches)
+  /// A listener alone with one transmission takes its characters in a batch (the same calls at the same
+  /// simulated times; genius_bus.cpp, "following"). Off: an event per start bit and per word, always.
+  bool follow = true;
 };
 
 /// The scan's time origin: the end of a Stop of the scan's opener (the controller, else the lowest SBA that
