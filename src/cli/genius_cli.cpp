@@ -11,6 +11,7 @@
 
 #include "capture_cli.hpp"
 #include "cli.hpp"
+#include "genius_bus_cli.hpp"
 #include "learn_cli.hpp"
 #include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
@@ -50,11 +51,15 @@ constexpr const char* timing_usage =
     "collision risk), so that a script or CI job can fail on it.\n";
 
 constexpr const char* scan_time_usage =
-    "usage: trionet genius scan-time --rate 153.6s|153.6e|76.8|38.4 --device BYTES[,BYTES...] ... [--json]\n"
+    "usage: trionet genius scan-time --rate 153.6s|153.6e|76.8|38.4 --device BYTES[,BYTES...] ... [--minimum-ms M]\n"
+    "                                [--json]\n"
+    "       trionet genius scan-time --table\n"
     "The scan time of a Genius bus by GE's published figures (GFK-0825F): each device contributes a fixed\n"
-    "term plus a term per byte of its inputs and outputs (BYTES, inputs + outputs together); the bus's scan\n"
-    "time is the sum over its devices. --device is repeatable and takes a comma-separated list. The results\n"
-    "are exact (GE's figures in milliseconds); the computed 11-bit character time is shown beside them.\n";
+    "term plus a term per byte of its inputs and outputs (BYTES, inputs + outputs together); the sum is over\n"
+    "the devices, and the scan time is never below the bus controller's minimum, M ms (default 3, 0 for none).\n"
+    "--device is repeatable and takes a comma-separated list. The results are exact (GE's figures in\n"
+    "milliseconds); the computed 11-bit character time is shown beside them. --table prints GE's printed\n"
+    "table beside the formula and marks the cells that are not the formula rounded to 0.01 ms.\n";
 
 const char* const rate_names = "153.6s 153.6e 76.8 38.4";
 
@@ -89,7 +94,9 @@ const option_list timing_options = {
 const option_list scan_time_options = {
     {"--rate", "R", rate_names, "the bus's bit rate: 153.6s, 153.6e, 76.8 or 38.4"},
     {"--device", "BYTES[,BYTES...]", "", "devices with their bytes of inputs and outputs together", true},
+    {"--minimum-ms", "M", "", "the bus controller's minimum scan time in ms (default 3, 0 for none)"},
     {"--json", nullptr, "", "the results as JSON"},
+    {"--table", nullptr, "", "GE's printed table beside the formula (no other option)"},
 };
 
 std::string hex2(unsigned value) {
@@ -672,15 +679,68 @@ int timing_main(const std::vector<std::string>& words) {
 // ---------------------------------------------------------------------------------------------------
 // scan-time: GE's published scan-time figures (docs/protocol.md 3.3), per device and for the bus.
 
+// Milliseconds as exact decimal text from nanoseconds ("0.943", "0.0715", "4.831"), no floating point.
+std::string exact_ms(std::uint64_t ns) {
+  std::string text = std::to_string(ns / 1000000u);
+  std::string fraction = std::to_string(ns % 1000000u);
+  fraction.insert(0, 6 - fraction.size(), '0');
+  while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+  return fraction.empty() ? text : text + "." + fraction;
+}
+
+// GE's printed table beside the formula (docs/genius.md, "Scan time").
+int scan_time_table() {
+  constexpr genius::rate rates[] = {genius::rate::standard_153k6, genius::rate::extended_153k6,
+                                    genius::rate::baud_76k8, genius::rate::baud_38k4};
+  std::printf("GE's printed scan-time table (GFK-0825F) beside GE's formula, one device, ms\n");
+  std::string header = "  bytes";
+  for (const genius::rate r : rates) {
+    const std::string name = genius::properties(r).name;
+    header += "  " + name + std::string(15 - name.size(), ' ');
+  }
+  while (header.back() == ' ') header.pop_back();
+  std::printf("%s\n", header.c_str());
+  unsigned differ = 0;
+  std::uint64_t worst_us = 0;
+  for (std::size_t row = 0; row < 5; ++row) {
+    const std::uint32_t bytes = genius::published_table_bytes[row];
+    std::string line = pad_left(std::to_string(bytes), 7);
+    for (std::size_t col = 0; col < 4; ++col) {
+      const unsigned printed = genius::published_table_centi_ms[row][col];
+      const std::uint64_t formula_ns = genius::device_scan_time_ns(rates[col], bytes);
+      const bool same = genius::formula_centi_ms(rates[col], bytes) == printed;
+      char cell[48];
+      std::snprintf(cell, sizeof cell, "%u.%02u", printed / 100, printed % 100);
+      line += "  " + pad_left(cell, 5) + " " + pad_left(exact_ms(formula_ns), 7) + (same ? "  " : " *");
+      if (!same) {
+        ++differ;
+        const std::uint64_t printed_ns = std::uint64_t{printed} * 10000u;
+        const std::uint64_t gap_ns = printed_ns > formula_ns ? printed_ns - formula_ns : formula_ns - printed_ns;
+        if (gap_ns / 1000u > worst_us) worst_us = gap_ns / 1000u;
+      }
+    }
+    while (line.back() == ' ') line.pop_back();
+    std::printf("%s\n", line.c_str());
+  }
+  std::printf("* the printed cell is not the formula rounded to 0.01 ms: %u cells, by up to %s ms\n", differ,
+              exact_ms(worst_us * 1000u).c_str());
+  return exit_ok;
+}
+
 int scan_time_main(const std::vector<std::string>& words) {
   arguments args;
   std::string error;
   if (!parse_arguments(words, scan_time_options, args, error)) return fail(error);
-  if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
+  if (!args.positionals.empty()) return fail("unexpected argument '" + host::printable(args.positionals[0]) + "'");
+  if (args.flag("--table")) {
+    if (args.has("--rate") || args.has("--device") || args.has("--minimum-ms") || args.flag("--json"))
+      return fail("--table takes no other option");
+    return scan_time_table();
+  }
   if (!args.has("--rate")) return fail("scan-time needs --rate 153.6s|153.6e|76.8|38.4");
   genius::rate rate{};
   if (!genius::rate_from_name(args.options["--rate"], rate)) {
-    return fail("unknown rate '" + args.options["--rate"] + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
+    return fail("unknown rate '" + host::printable(args.options["--rate"]) + "' (expected 153.6s, 153.6e, 76.8 or 38.4)");
   }
   if (!args.has("--device")) return fail("scan-time needs at least one --device BYTES");
   std::vector<std::uint32_t> bytes;
@@ -691,59 +751,70 @@ int scan_time_main(const std::vector<std::string>& words) {
       const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
       long long value = 0;
       if (!parse_integer(item, 0, 4294967295LL, value)) {
-        return fail("--device '" + list + "': each BYTES must be a whole number 0..4294967295");
+        return fail("--device '" + host::printable(list) + "': each BYTES must be a whole number 0..4294967295");
       }
       bytes.push_back(static_cast<std::uint32_t>(value));
       if (comma == std::string::npos) break;
       from = comma + 1;
     }
   }
+  std::uint64_t minimum_ns = genius::default_minimum_scan_ns;
+  if (args.has("--minimum-ms")) {
+    // Up to three decimals (whole microseconds), so that the figure stays exact.
+    double ms = 0;
+    if (!host::parse_real(args.options["--minimum-ms"], 0, 1000, ms) ||
+        std::fabs(ms * 1000 - std::round(ms * 1000)) > 1e-6) {
+      return fail("--minimum-ms must be 0..1000 with at most three decimals (0: no minimum)");
+    }
+    minimum_ns = static_cast<std::uint64_t>(std::llround(ms * 1000)) * 1000u;
+  }
   const genius::rate_properties props = genius::properties(rate);
   const genius::scan_time_result bus =
-      genius::bus_scan_time(rate, span<const std::uint32_t>(bytes.data(), bytes.size()));
+      genius::bus_scan_time(rate, span<const std::uint32_t>(bytes.data(), bytes.size()), minimum_ns);
   if (bus.status == genius::scan_time_status::too_many_devices) {
     return fail(std::to_string(bytes.size()) + " devices; " + props.name + " allows " +
                 std::to_string(props.max_devices));
   }
   if (!bus) return fail(genius::to_string(bus.status));
 
-  // Milliseconds as exact decimal text from nanoseconds ("0.943", "0.0715", "4.831"), no floating point.
-  const auto ms = [](std::uint64_t ns) {
-    std::string text = std::to_string(ns / 1000000u);
-    std::string fraction = std::to_string(ns % 1000000u);
-    fraction.insert(0, 6 - fraction.size(), '0');
-    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
-    return fraction.empty() ? text : text + "." + fraction;
-  };
   const genius::scan_time_terms terms = genius::published_scan_time_terms(rate);
   // The computed character time, rounded to the nanosecond: a separate figure, not used in the sums.
   const auto character_ns = static_cast<std::uint64_t>(std::llround(genius::character_time_us(rate) * 1000.0));
 
   if (args.flags.count("--json") != 0) {
-    std::string out = "{\"rate\":" + json_string(props.name) + ",\"fixed_ms\":" + ms(terms.fixed_ns) +
-                      ",\"per_byte_ms\":" + ms(terms.per_byte_ns) + ",\"devices\":[";
+    std::string out = "{\"rate\":" + json_string(props.name) + ",\"fixed_ms\":" + exact_ms(terms.fixed_ns) +
+                      ",\"per_byte_ms\":" + exact_ms(terms.per_byte_ns) + ",\"devices\":[";
     for (std::size_t i = 0; i < bytes.size(); ++i) {
       if (i != 0) out += ',';
       out += "{\"io_bytes\":" + std::to_string(bytes[i]) +
-             ",\"scan_time_ms\":" + ms(genius::device_scan_time_ns(rate, bytes[i])) + "}";
+             ",\"scan_time_ms\":" + exact_ms(genius::device_scan_time_ns(rate, bytes[i])) + "}";
     }
-    out += "],\"io_bytes\":" + std::to_string(bus.io_bytes) + ",\"total_ms\":" + ms(bus.total_ns) +
-           ",\"character_time_ms\":" + ms(character_ns) + "}";
+    out += "],\"io_bytes\":" + std::to_string(bus.io_bytes) + ",\"sum_ms\":" + exact_ms(bus.sum_ns) +
+           ",\"minimum_ms\":" + exact_ms(minimum_ns) + ",\"scan_ms\":" + exact_ms(bus.scan_ns) +
+           ",\"minimum_applies\":" + (bus.minimum_applies ? "true" : "false") +
+           ",\"character_time_ms\":" + exact_ms(character_ns) + "}";
     std::printf("%s\n", out.c_str());
     return exit_ok;
   }
   std::printf("rate %s (%s): %s ms per device + %s ms per byte of inputs and outputs (GE GFK-0825F)\n",
-              props.name, props.description, ms(terms.fixed_ns).c_str(), ms(terms.per_byte_ns).c_str());
+              props.name, props.description, exact_ms(terms.fixed_ns).c_str(), exact_ms(terms.per_byte_ns).c_str());
   std::printf("  device  io_bytes  scan_time_ms\n");
   for (std::size_t i = 0; i < bytes.size(); ++i) {
     std::printf("  %6zu  %8u  %12s\n", i + 1, static_cast<unsigned>(bytes[i]),
-                ms(genius::device_scan_time_ns(rate, bytes[i])).c_str());
+                exact_ms(genius::device_scan_time_ns(rate, bytes[i])).c_str());
   }
-  std::printf("bus: %zu device%s, %llu byte%s, %s ms\n", bus.devices, bus.devices == 1 ? "" : "s",
+  std::printf("bus: %zu device%s, %llu byte%s: sum %s ms, scan time %s ms", bus.devices, bus.devices == 1 ? "" : "s",
               static_cast<unsigned long long>(bus.io_bytes), bus.io_bytes == 1 ? "" : "s",
-              ms(bus.total_ns).c_str());
+              exact_ms(bus.sum_ns).c_str(), exact_ms(bus.scan_ns).c_str());
+  if (bus.minimum_applies) {
+    std::printf(" (the bus controller's minimum of %s ms applies)\n", exact_ms(minimum_ns).c_str());
+  } else if (minimum_ns != 0) {
+    std::printf(" (above the minimum of %s ms)\n", exact_ms(minimum_ns).c_str());
+  } else {
+    std::printf(" (no minimum)\n");
+  }
   std::printf("computed character time (11 bits at %u bit/s): %s ms, not used above\n",
-              static_cast<unsigned>(props.baud), ms(character_ns).c_str());
+              static_cast<unsigned>(props.baud), exact_ms(character_ns).c_str());
   return exit_ok;
 }
 
@@ -754,6 +825,10 @@ const command genius_commands[] = {
     {"timing", "turn start times and margins after a Stop (bus access)", timing_usage, timing_main, timing_options},
     {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
      scan_time_main, scan_time_options},
+    {"simulate", "a bus of device nodes taking their turns: collisions, deliveries, scan time", genius_simulate_usage,
+     genius_simulate_main, genius_simulate_options()},
+    {"plan", "SBAs without collision risk for devices along a bus (or a check of SBAs given)", genius_plan_usage,
+     genius_plan_main, genius_plan_options()},
     {"learn", "crc: find the CRC-6 from captured transmissions, write it into a profile", genius_learn_usage,
      genius_learn_main, genius_learn_options()},
 };
@@ -764,7 +839,7 @@ bool parse_genius_token(std::string_view text, std::uint16_t& word) {
   return parse_token(text, word);
 }
 
-const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time, learn)", genius_commands,
+const part genius_part = {"genius", "GE Genius bus (encode, decode, timing, scan-time, simulate, plan, learn)", genius_commands,
                           sizeof genius_commands / sizeof genius_commands[0], ""};
 
 }  // namespace trionet::cli
