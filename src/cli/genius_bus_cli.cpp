@@ -273,7 +273,7 @@ int simulate_main(const words& all) {
   }
   const genius_bus_result r = bus.run();
   if (splitter) {
-    splitter->flush(sink);
+    // A transmission still under way when the run ends stays out of the capture (it has no Stop yet).
     capture_file.flush();
     if (written != host::pcapng_write_status::ok || !capture_file) return fail_io("cannot write " + args.options.at("--pcap"));
   }
@@ -533,7 +533,8 @@ const char* const genius_simulate_usage =
     "  stop:SBA@T+D     SBA stops in the middle of its next transmission from T on, then is off for D us\n"
     "  cut:FEET@T+D     the line cut at FEET for D us\n"
     "--trace prints every transmission, collision, fault and passed turn as it happens; --pcap writes the\n"
-    "characters a receiver at the opener's place heard (docs/wireshark.md); --json prints one object.\n";
+    "characters a receiver at the opener's place heard, one record per transmission (a transmission still\n"
+    "under way when the run ends is left out; docs/wireshark.md); --json prints one object.\n";
 
 const char* const genius_plan_usage =
     "usage: trionet genius plan --rate 153.6s|153.6e|76.8|38.4 --device NAME@FEET[=SBA] ... [--json] [--check]\n"

@@ -110,6 +110,16 @@ struct source {
   bool whole = false;
   int group = -1;  // collision group
   std::int64_t id = 0;
+  // check_losses: each station's state when the transmission began
+  struct listener {
+    bool powered;
+    std::uint64_t cycles;
+    std::uint64_t heard;
+    std::uint64_t errors;
+  };
+  std::vector<listener> listeners;
+  std::uint32_t heard_by = 0;  // stations that heard it whole (bit per station index)
+  std::uint32_t checked = 0;   // stations whose loss check is done
 };
 
 struct cut_window {
@@ -164,7 +174,8 @@ enum class event_kind : std::uint8_t {
   deliver,       // `who`: receiver
   catch_up,      // `who`: a following receiver
   timer,         // `who`: station
-  tx_end,        // `id`: source
+  tx_end,        // `who`: station
+  loss_check,    // `generation`: index into the loss checks
 };
 
 // 16 bytes: the heap moves these most. Ties (same time and priority) pop in an order fixed by the heap's
@@ -194,8 +205,10 @@ std::uint8_t priority_of(event_kind k) {
       return 3;
     case event_kind::tx_end:
       return 4;
+    case event_kind::loss_check:
+      return 5;
   }
-  return 5;
+  return 6;
 }
 
 }  // namespace
@@ -243,6 +256,7 @@ struct genius_bus::state {
   std::int64_t source_base = 0;     // id of sources.front()
   std::vector<source*> active;  // sources that may still be heard (a deque's elements do not move)
   std::vector<cut_window> cuts;
+  std::vector<cut_window> cut_history;  // every cut (check_losses)
   std::priority_queue<event, std::vector<event>, std::greater<event>> events;
   std::uint64_t seq = 0;
   std::int64_t now = 0;
@@ -258,6 +272,11 @@ struct genius_bus::state {
   std::unique_ptr<genius::transmission_parser<8192, 64>> parser;  // reads what each transmission carried
   std::vector<std::size_t> followers;
   std::vector<record> got_scratch, expected_scratch;
+  std::vector<std::int64_t> loss_checks;  // sources to check (check_losses)
+  std::vector<unsigned> loss_attempts;
+  std::vector<bool> loss_done;
+  std::size_t oldest_check = 0;  // every check before it is done: sources from its on are kept
+  std::int64_t faults_end = 0;
   std::vector<std::uint8_t> scratch;
 
   // ---- sources ----
@@ -383,7 +402,16 @@ struct genius_bus::state {
       }
       if (best == never) return never;
       if (best > 0 && line(r, best - 1) && !line(r, best)) {
+        // Of the sources that fall at that moment, the one heard here (not behind a cut, 0 now).
         who = best_id;
+        for (const source* sp : active) {
+          const source& s = *sp;
+          const std::int64_t at = best - s.prop[r];
+          if (next_edge(s, at) == at && !level(s, at) && (cuts.empty() || !blocked(s, receivers[r], best))) {
+            who = s.id;
+            break;
+          }
+        }
         return best;
       }
       from = best + 1;
@@ -458,6 +486,7 @@ struct genius_bus::state {
       const source& f = sources.front();
       if (f.open || source_end(f, character) >= horizon) break;
       if (std::find(recent.begin(), recent.end(), source_base) != recent.end()) break;
+      if (oldest_check < loss_checks.size() && source_base >= loss_checks[oldest_check]) break;
       sources.pop_front();
       ++source_base;
     }
@@ -552,6 +581,7 @@ struct genius_bus::state {
       if (st.stop_after_us >= 0 && us_of_ps(now) >= st.stop_after_us) {
         // The `stop` fault: it goes off half way through its second character.
         st.off_for = ps_of_us(st.stop_for_us);
+        faults_end = std::max(faults_end, now + character + character / 2 + st.off_for);
         schedule(now + character + character / 2, event_kind::power_off, static_cast<std::uint32_t>(i));
         st.stop_after_us = -1;
       }
@@ -572,6 +602,77 @@ struct genius_bus::state {
     }
     schedule(char_start + character, event_kind::tx_end, static_cast<std::uint32_t>(i));
     notify(id);
+    if (config.check_losses && s.listeners.empty()) {
+      for (const station_state& other : stations) {
+        std::uint64_t heard = 0, errors = 0;
+        totals(other, heard, errors);
+        src(id).listeners.push_back({other.powered, other.report.power_cycles, heard, errors});
+      }
+    }
+  }
+
+  // What a station has heard and every error it has counted, over all its power cycles.
+  static void totals(const station_state& st, std::uint64_t& heard, std::uint64_t& errors) {
+    const genius::device_counters now = st.dev->counters();
+    const genius::device_counters& before = st.report.counters;
+    heard = std::uint64_t{before.transmissions_heard} + now.transmissions_heard;
+    errors = std::uint64_t{before.framing_errors} + now.framing_errors + before.crc_errors + now.crc_errors +
+             before.wire_errors + now.wire_errors + before.lost_transmissions + now.lost_transmissions +
+             before.collisions + now.collisions + before.delivery_overflows + now.delivery_overflows +
+             before.skipped + now.skipped;
+  }
+
+  void loss_check(std::size_t k) {
+    const std::int64_t id = loss_checks[k];
+    if (id < source_base) return;
+    source& t = src(id);
+    if (t.group >= 0 || !t.whole || t.listeners.size() != stations.size()) {
+      loss_done[k] = true;
+      while (oldest_check < loss_done.size() && loss_done[oldest_check]) ++oldest_check;
+      return;
+    }
+    const unsigned attempt = loss_attempts[k]++;
+    bool later = false;
+    for (std::size_t i = 0; i < stations.size(); ++i) {
+      if (((t.checked >> i) & 1u) != 0) continue;
+      if (static_cast<int>(i) == t.device) continue;
+      const station_state& st = stations[i];
+      const source::listener& before = t.listeners[i];
+      if (!before.powered || !st.powered || st.report.power_cycles != before.cycles) continue;
+      bool cut_off = false;
+      for (const cut_window& c : cut_history) {
+        if (c.from < t.end + max_prop && t.start < c.to &&
+            ((t.position_ft < c.position_ft) != (st.spec.position_ft < c.position_ft)))
+          cut_off = true;
+      }
+      if (cut_off) continue;
+      std::uint64_t heard = 0, errors = 0;
+      totals(st, heard, errors);
+      if (((t.heard_by >> i) & 1u) != 0 || errors != before.errors) {
+        ++result.losses_checked;
+        t.checked |= 1u << i;
+        continue;
+      }
+      // Still inside what it takes for a transmission (noise may have stretched it): its gap timer will tell.
+      if ((st.dev->in_transmission() || receivers[i].receiving) && attempt < 32) {
+        later = true;
+        continue;
+      }
+      ++result.losses_checked;
+      t.checked |= 1u << i;
+      ++result.losses_uncounted;
+      if (result.loss_details.size() < 10) {
+        result.loss_details.push_back("SBA " + std::to_string(st.spec.sba) + " neither heard nor counted SBA " +
+                                      std::to_string(stations[static_cast<std::size_t>(t.device)].spec.sba) +
+                                      "'s transmission of " + std::to_string(us_of_ps(t.start)) + " us");
+      }
+    }
+    if (later) {
+      schedule(now + character, event_kind::loss_check, 0, static_cast<std::uint32_t>(k));
+      return;
+    }
+    loss_done[k] = true;
+    while (oldest_check < loss_done.size() && loss_done[oldest_check]) ++oldest_check;
   }
 
   // A Stop was put on the bus: what the transmission carried, and a record for the turns it arms.
@@ -635,6 +736,13 @@ struct genius_bus::state {
     }
     if (on_trace) trace("SBA " + std::to_string(st.spec.sba) + (s.whole ? " ends its transmission (" : " stops, cut short (") +
           std::to_string(s.words.size()) + " characters)");
+    if (config.check_losses && s.whole) {
+      loss_checks.push_back(id);
+      loss_attempts.push_back(0);
+      loss_done.push_back(false);
+      schedule(s.end + max_prop + 2 * character + bit, event_kind::loss_check, 0,
+               static_cast<std::uint32_t>(loss_checks.size() - 1));
+    }
     if (s.whole && s.device == opener) {
       const double end = us_of_ps(s.stop_start + character);
       if (!result.scan_ends_us.empty()) result.scan_us.push_back(end - result.scan_ends_us.back());
@@ -708,8 +816,14 @@ struct genius_bus::state {
     const genius::character c = genius::from_uart_word(static_cast<std::uint16_t>(wire >> 1));
     const bool stop = framed && c.control && genius::read_control(c.byte).kind == genius::control_kind::stop;
     const bool was_sending = st.dev->sending();
+    const genius::device_counters before = st.dev->counters();
     const genius::link_request request =
         framed ? st.dev->receive(static_cast<std::uint16_t>(wire >> 1)) : st.dev->framing_error();
+    const genius::device_counters after = st.dev->counters();
+    if (after.crc_errors != before.crc_errors) note_event(rc.who, false);
+    if (after.transmissions_heard != before.transmissions_heard) {
+      if (source* s = origin_of(i, rc)) s->heard_by |= 1u << i;
+    }
     if (stop && !was_sending) heard_stop(i, rc, request, end);
     if (was_sending && !st.dev->sending()) refresh_turn_data(st);  // its transmission is over (whole or cut)
     return request;
@@ -873,14 +987,42 @@ struct genius_bus::state {
     while (!followers.empty()) unfollow(followers.back());
   }
 
+  // A corrupted transmission met a CRC-6 check (`escaped`: and passed it), keyed by the source whose edge
+  // began the character: once per corruption, however many devices saw it.
+  std::vector<std::pair<std::int64_t, bool>> events_seen;
+  void note_event(std::int64_t key, bool escaped) {
+    for (auto& e : events_seen) {
+      if (e.first != key) continue;
+      if (escaped && !e.second) {
+        e.second = true;
+        ++result.escape_events;
+      }
+      return;
+    }
+    events_seen.emplace_back(key, escaped);
+    if (events_seen.size() > 64) events_seen.erase(events_seen.begin());
+    ++result.corrupt_events;
+    if (escaped) ++result.escape_events;
+  }
+
+  // The transmission whose Stop receiver `i` was sampling: the source whose edge began the character, or
+  // failing that (noise that fell a moment earlier began it) the transmission whose Stop began within a bit
+  // of that edge.
+  source* origin_of(std::size_t i, const receiver& rc) {
+    if (rc.who >= source_base && rc.who - source_base < static_cast<std::int64_t>(sources.size())) {
+      source& s = src(rc.who);
+      if (s.device >= 0 && s.stop_start != never && s.stop_start + s.prop[i] == rc.edge) return &s;
+    }
+    for (source* s : active) {
+      if (s->device >= 0 && s->stop_start != never && std::llabs(s->stop_start + s->prop[i] - rc.edge) < bit) return s;
+    }
+    return nullptr;
+  }
+
   // Device `i` heard a Stop: the turn it armed (for the records) and its deliveries (checked).
   void heard_stop(std::size_t i, const receiver& rc, const genius::link_request& request, std::int64_t end) {
     station_state& st = stations[i];
-    source* origin = nullptr;
-    if (rc.who >= source_base && rc.who - source_base < static_cast<std::int64_t>(sources.size())) {
-      source& s = src(rc.who);
-      if (s.device >= 0 && s.stop_start != never && s.stop_start + s.prop[i] == rc.edge) origin = &s;
-    }
+    source* origin = origin_of(i, rc);
     if (config.record_turns && origin != nullptr && origin->stop_index >= 0 && st.dev->turn_armed() &&
         request.timer == genius::timer_action::arm) {
       genius_stop_record& rec = result.stops[static_cast<std::size_t>(origin->stop_index)];
@@ -924,9 +1066,21 @@ struct genius_bus::state {
       if (k >= expected_count || got[k].data != expected[k].data) {
         ++result.wrong_data;
         ++st.report.wrong_data;
+        note_event(rc.who, true);
       }
-      if (on_trace) trace("SBA " + std::to_string(st.spec.sba) + ": a delivery from SBA " + std::to_string(got[k].sender) +
-            " that its sender did not send");
+      if (on_trace) {
+        const auto hex = [](const record& x) {
+          std::string text = std::string(genius::to_string(x.kind)) + " from " + std::to_string(x.sender) + ":";
+          char byte[4];
+          for (const std::uint8_t b : x.data) {
+            std::snprintf(byte, sizeof byte, " %02x", b);
+            text += byte;
+          }
+          return text;
+        };
+        trace("SBA " + std::to_string(st.spec.sba) + ": a delivery its sender did not send (" + hex(got[k]) +
+              (k < expected_count ? "; sent " + hex(expected[k]) : "; nothing sent") + ")");
+      }
     }
   }
 
@@ -947,8 +1101,8 @@ struct genius_bus::state {
   void power_off(std::size_t i, std::int64_t off_for) {
     station_state& st = stations[i];
     if (!st.powered) return;
-    if (receivers[i].follow >= 0) unfollow(i);
-    st.powered = false;
+    st.powered = false;                          // first: so that catching up does not follow anew
+    if (receivers[i].follow >= 0) unfollow(i);  // what it received up to now
     st.timer_due = never;
     receiver& rc = receivers[i];
     rc.receiving = false;
@@ -1001,6 +1155,7 @@ struct genius_bus::state {
     a.deliveries += b.deliveries;
     a.delivery_overflows += b.delivery_overflows;
     a.idle_restarts += b.idle_restarts;
+    a.skipped += b.skipped;
     return a;
   }
 
@@ -1023,16 +1178,19 @@ struct genius_bus::state {
         }
         s.open = false;
         s.end = end;
+        faults_end = std::max(faults_end, end);
         if (on_trace) trace("noise burst at " + std::to_string(f.position_ft) + " ft for " + std::to_string(f.duration_us) + " us");
         notify(add_source(std::move(s)));
         break;
       }
       case genius_fault_kind::power_off:
+        faults_end = std::max(faults_end, now + ps_of_us(f.duration_us));
         for (std::size_t i = 0; i < stations.size(); ++i) {
           if (stations[i].spec.sba == f.sba) power_off(i, ps_of_us(f.duration_us));
         }
         break;
       case genius_fault_kind::stop:
+        faults_end = std::max(faults_end, now);  // until it takes effect (append)
         for (station_state& st : stations) {
           if (st.spec.sba == f.sba) {
             st.stop_after_us = us_of_ps(now);
@@ -1042,6 +1200,8 @@ struct genius_bus::state {
         break;
       case genius_fault_kind::cut:
         cuts.push_back(cut_window{f.position_ft, now, now + ps_of_us(f.duration_us)});
+        cut_history.push_back(cuts.back());
+        faults_end = std::max(faults_end, now + ps_of_us(f.duration_us));
         unfollow_all();  // no one follows while a cut is open
         if (on_trace) trace("line cut at " + std::to_string(f.position_ft) + " ft for " + std::to_string(f.duration_us) + " us");
         schedule(now, event_kind::cut_edge, 0);
@@ -1213,6 +1373,9 @@ genius_bus_result genius_bus::run() {
       case event_kind::tx_end:
         s.tx_end(e.who);
         break;
+      case event_kind::loss_check:
+        s.loss_check(e.generation);
+        break;
     }
     if (++since_prune >= 256) {
       since_prune = 0;
@@ -1226,6 +1389,7 @@ genius_bus_result genius_bus::run() {
   s.unfollow_all();
   s.now = last;
   s.result.end_us = us_of_ps(s.now);
+  s.result.faults_end_us = us_of_ps(s.faults_end);
   s.result.complete = s.done;
   // The first scan's turns: those armed by the opener's first Stop, in SBA order after it.
   if (s.config.record_turns) {

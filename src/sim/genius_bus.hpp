@@ -79,6 +79,9 @@ struct genius_bus_config {
   /// A listener alone with one transmission takes its characters in a batch (the same calls at the same
   /// simulated times; genius_bus.cpp, "following"). Off: an event per start bit and per word, always.
   bool follow = true;
+  /// Check every whole transmission against every device that listened while it passed (powered throughout,
+  /// not cut off from the sender): it heard it, or counted an error (genius_bus_result::losses_*).
+  bool check_losses = false;
 };
 
 /// The scan's time origin: the end of a Stop of the scan's opener (the controller, else the lowest SBA that
@@ -143,7 +146,16 @@ struct genius_bus_result {
   std::uint64_t deliveries = 0;
   std::uint64_t wrong_deliveries = 0;
   std::uint64_t wrong_data = 0;
+  /// Corrupted transmissions that reached a CRC-6 check, counted once however many devices checked them (a
+  /// corruption on the line is the same for every device that samples it): those that failed it somewhere,
+  /// and those delivered somewhere with bytes their sender did not send (escapes).
+  std::uint64_t corrupt_events = 0;
+  std::uint64_t escape_events = 0;
   std::vector<genius_device_report> devices;
+  double faults_end_us = 0;   ///< when the last fault ended (a `stop` from when it took effect)
+  std::uint64_t losses_checked = 0;    ///< check_losses: (transmission, listener) pairs checked
+  std::uint64_t losses_uncounted = 0;  ///< of which the listener neither heard it nor counted an error
+  std::vector<std::string> loss_details;  ///< the first few uncounted losses, described
   double end_us = 0;          ///< simulated time at the end
   std::uint64_t events = 0;   ///< simulation events processed
   bool complete = false;      ///< all `scans` scans completed (else the time bound ended the run)

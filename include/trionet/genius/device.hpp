@@ -173,6 +173,7 @@ struct device_counters {
   std::uint32_t deliveries = 0;          ///< records put in the delivery queue
   std::uint32_t delivery_overflows = 0;  ///< transmissions for it dropped whole for lack of room
   std::uint32_t idle_restarts = 0;       ///< idle restarts (the quiet bus, power-up included)
+  std::uint32_t skipped = 0;             ///< characters skipped to the next Start (after an error, at power-up)
 };
 
 /// What a delivery is.
@@ -585,6 +586,7 @@ class device : private trionet::detail::crc_holder<Crc> {
     c.deliveries = delivered_.load();
     c.delivery_overflows = delivery_overflows_.load();
     c.idle_restarts = idle_restarts_.load();
+    c.skipped = skipped_.load();
     return c;
   }
 
@@ -859,13 +861,19 @@ class device : private trionet::detail::crc_holder<Crc> {
       }
     } else if (sender == no_sender && !resync_) {
       wire_error_outside();
+    } else {
+      skipped_.increment();  // the end of a transmission it had dropped, or whose Start it missed
     }
     if (sender == no_sender) return arm(armed::quiet, quiet_ticks());  // a Stop whose Start it missed
     return after_stop_of(sender, false);
   }
 
   link_request outside() noexcept {
-    if (!resync_ && bus_sender_ == no_sender) wire_error_outside();
+    if (!resync_ && bus_sender_ == no_sender) {
+      wire_error_outside();
+    } else {
+      skipped_.increment();
+    }
     return after_character();
   }
 
@@ -995,6 +1003,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   single_writer<std::uint32_t> delivered_;
   single_writer<std::uint32_t> delivery_overflows_;
   single_writer<std::uint32_t> idle_restarts_;
+  single_writer<std::uint32_t> skipped_;
   length_type turn_length_[3] = {};
   std::uint8_t turn_[3][TurnCapacity] = {};
   directed_slot slots_[DirectedSlots] = {};

@@ -1,0 +1,168 @@
+// `trionet genius simulate` and `trionet genius plan`: the seed's example as a simulated bus, its collision,
+// the planner's answer for the seed's layout, and clear refusals of bad arguments.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "support/run_cli.hpp"
+
+namespace {
+
+using trionet::test::expect_usage_error;
+using trionet::test::run_cli;
+using trionet::test::slurp;
+
+const char* const seed = "--rate 153.6s --device 4@0 --device 5@2000 --device 6@0";
+
+TEST(GeniusSimulateCli, SeedExampleWithSkip26UsPrintsTheSeedsNumbers) {
+  const auto r = run_cli(std::string("genius simulate ") + seed + " --skip-us 26 --scans 3");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("first scan, after the Stop of SBA 4 (time 0):\n"
+                       "  SBA  turn_us  what\n"
+                       "    5   29.000  transmitted\n"
+                       "    6   52.000  cancelled: SBA 5's start bit arrived at 32.000 us, margin 20.000 us\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("collisions: 0;"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(", 0 not what their sender sent\n"), std::string::npos) << r.out;
+}
+
+TEST(GeniusSimulateCli, JsonLastLineHoldsCollisionsScansTurnsAndScanTime) {
+  const auto r = run_cli(std::string("genius simulate ") + seed + " --skip-us 26 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_FALSE(r.out.empty());
+  ASSERT_EQ(r.out.back(), '\n');
+  const std::string last = r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
+  EXPECT_EQ(last.front(), '{');
+  EXPECT_NE(last.find("\"collisions\":0,"), std::string::npos) << last;
+  EXPECT_NE(last.find("\"scans\":10,"), std::string::npos) << last;
+  EXPECT_NE(last.find("\"turns\":[{\"sba\":5,\"start_us\":29,\"what\":\"transmitted\"},{\"sba\":6,\"start_us\":52,"
+                      "\"what\":\"cancelled\",\"by\":5,\"arrived_us\":32,\"margin_us\":20}]"),
+            std::string::npos)
+      << last;
+  EXPECT_NE(last.find("\"scan_ms\":{\"median\":1.483,\"max\":1.483}"), std::string::npos) << last;
+  EXPECT_NE(last.find("\"ge_scan_ms\":{\"sum\":3.0435,\"scan\":3.0435,\"minimum_applies\":false}"), std::string::npos)
+      << last;
+}
+
+TEST(GeniusSimulateCli, SeedLayoutWithTheRulesSkipTimeCollidesEveryScan) {
+  const auto r = run_cli(std::string("genius simulate ") + seed + " --scans 5 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"turns\":[{\"sba\":5,\"start_us\":9.51,\"what\":\"transmitted\"},{\"sba\":6,\"start_us\":"
+                       "13.021,\"what\":\"transmitted\"}]"),
+            std::string::npos)
+      << r.out;
+  // The bus's count comes before the devices' own.
+  const std::size_t at = r.out.find("\"collisions\":");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_GE(std::stoi(r.out.substr(at + 13)), 5) << r.out;
+  EXPECT_NE(r.out.find("\"wrong_deliveries\":0,"), std::string::npos) << r.out;
+}
+
+TEST(GeniusSimulateCli, EachRemedyRunsWithoutACollision) {
+  for (const char* layout : {"--rate 153.6s --device 4@0 --device 5@2000 --device 7@0",
+                             "--rate 153.6s --device 4@0 --device 5@0 --device 6@2000",
+                             "--rate 153.6e --device 4@0 --device 5@2000 --device 6@0",
+                             "--rate 76.8 --device 4@0 --device 5@2000 --device 6@0"}) {
+    const auto r = run_cli(std::string("genius simulate ") + layout + " --json");
+    EXPECT_EQ(r.exit_code, 0) << layout << ": " << r.err;
+    EXPECT_NE(r.out.find("\"collisions\":0,"), std::string::npos) << layout << ": " << r.out;
+    EXPECT_NE(r.out.find("\"complete\":true"), std::string::npos) << layout;
+  }
+}
+
+TEST(GeniusSimulateCli, AControllerSendsOutputsAndFaultsAreRecoveredFrom) {
+  const auto r = run_cli(
+      "genius simulate --rate 153.6s --device 0@0:4/2 --device 3@400:2/8 --device 31@100:0/0 --controller 31 "
+      "--scans 20 --fault noise:200@5000+60 --fault off:3@9000+4000 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"opener\":31,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"complete\":true"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"wrong_deliveries\":0,"), std::string::npos) << r.out;
+}
+
+TEST(GeniusSimulateCli, TraceShowsTheCollisionAsItHappens) {
+  const auto r = run_cli(std::string("genius simulate ") + seed + " --scans 1 --trace");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("us  SBA 5 starts a transmission\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("us  collision: SBA 6 and SBA 5\n"), std::string::npos) << r.out;
+}
+
+TEST(GeniusSimulateCli, PcapHoldsTheTransmissionsTheDecoderReads) {
+  const std::string path = "/tmp/trionet-genius-simulate-" + std::to_string(::getpid()) + ".pcapng";
+  const auto r = run_cli(std::string("genius simulate ") + seed + " --skip-us 26 --scans 2 --pcap " + path);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const auto decoded = run_cli("genius decode --pcap " + path);
+  EXPECT_EQ(decoded.exit_code, 0) << decoded.err;
+  EXPECT_NE(decoded.out.find("transmission from SBA 5, broadcast"), std::string::npos) << decoded.out;
+  EXPECT_NE(decoded.out.find(" transmissions, 0 errors, 0 characters skipped\n"), std::string::npos) << decoded.out;
+  std::remove(path.c_str());
+}
+
+TEST(GeniusSimulateCli, BadArgumentsExit2WithAMessage) {
+  expect_usage_error("genius simulate --device 4@0", "--rate");
+  expect_usage_error("genius simulate --rate 153.6s", "--device");
+  expect_usage_error("genius simulate --rate 153.6s --device 4", "--device '4'");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0:300", "--device '4@0:300'");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --device 4@10", "SBA 4 is given twice");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --controller 9", "controller");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --fault noise@1", "--fault");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --fault off:9@1+1", "SBA 9");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --scans 0", "--scans");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --detect-us 7", "--detect-us");
+  expect_usage_error("genius simulate --rate 153.6s --device 4@0 --skip-us 0", "--skip-us");
+}
+
+TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
+  const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "the devices in the order given, from SBA 0 at 153.6s (153.6 kbaud standard):\n"
+            "  name     feet  SBA\n"
+            "  A           0    0\n"
+            "  B        2000    1\n"
+            "  C           0    2\n"
+            "  smallest margin 0.51 us (after A's Stop, C's turn after B's start bit); detection 3.26 us\n"
+            "collision risk: 1 margin below the detection time\n"
+            "plan at 153.6s (153.6 kbaud standard), without collision risk:\n"
+            "  name     feet  SBA\n"
+            "  A           0    0\n"
+            "  B        2000    1\n"
+            "  C           0    3\n"
+            "  smallest margin 6.51 us (after C's Stop, B's turn after A's start bit); detection 3.26 us\n"
+            "remedy: skip an SBA: SBA 2 left unused: C's turn comes 2 skip times after B's, so that C detects B's "
+            "start bit (3.00 us away) before its own turn\n"
+            "turn overhead per scan: 214.33 us (32 skip times and the propagation between turns)\n");
+}
+
+TEST(GeniusPlanCli, ChecksSbasGivenAndExits3WithCheck) {
+  const char* const given = "genius plan --rate 153.6s --device A@0=4 --device B@2000=5 --device C@0=6";
+  EXPECT_EQ(run_cli(given).exit_code, 0);
+  EXPECT_EQ(run_cli(std::string(given) + " --check").exit_code, 3);
+  const auto ok = run_cli("genius plan --rate 153.6s --device A@0=4 --device B@0=5 --device C@2000=6 --check");
+  EXPECT_EQ(ok.exit_code, 0);
+  EXPECT_NE(ok.out.find("no collision risk"), std::string::npos) << ok.out;
+}
+
+TEST(GeniusPlanCli, ABusTooLongForTheRateMovesTo153k6Extended) {
+  const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@3000 --device C@100 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"plan\":{\"rate\":\"153.6e\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("{\"remedy\":\"153.6e\",\"why\":\"from 153.6s to 153.6e: the bus is 3000 ft long and 153.6s "
+                       "allows 2000 ft"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST(GeniusPlanCli, BadArgumentsExit2WithAMessage) {
+  expect_usage_error("genius plan --device A@0", "--rate");
+  expect_usage_error("genius plan --rate 153.6s --device A", "--device 'A'");
+  expect_usage_error("genius plan --rate 153.6s --device A@0=32", "--device 'A@0=32'");
+  expect_usage_error("genius plan --rate 153.6s --device A@0=1 --device B@0", "every device");
+  expect_usage_error("genius plan --rate 153.6s --device A@0 --device A@10", "given twice");
+  expect_usage_error("genius plan --rate 153.6s --device A@0=3 --device B@10=3", "SBA 3 is given twice");
+}
+
+}  // namespace
