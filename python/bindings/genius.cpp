@@ -76,11 +76,11 @@ genius::bus_timing timing_of(const py::dict& d) {
 }
 
 // Devices from (sba, position_ft, data_bytes) tuples.
-std::vector<genius::device> devices_of(const py::list& list) {
-  std::vector<genius::device> out;
+std::vector<genius::device_position> devices_of(const py::list& list) {
+  std::vector<genius::device_position> out;
   for (const py::handle item : list) {
     const auto t = item.cast<py::tuple>();
-    genius::device d;
+    genius::device_position d;
     const unsigned sba = t[0].cast<unsigned>();
     d.sba = static_cast<std::uint8_t>(sba > 255 ? 255 : sba);
     d.position_ft = t[1].cast<double>();
@@ -212,10 +212,10 @@ void bind_genius(py::module_& m) {
   });
   m.def("default_timing", [](unsigned r) { return timing_dict(genius::default_timing(rate_of(r))); });
   m.def("analyse_turns", [](const py::list& device_list, const py::dict& timing, unsigned after) {
-    const std::vector<genius::device> devices = devices_of(device_list);
+    const std::vector<genius::device_position> devices = devices_of(device_list);
     const genius::turn_analysis a =
-        genius::analyse_turns(span<const genius::device>(devices.data(), devices.size()), timing_of(timing),
-                              static_cast<std::uint8_t>(after > 255 ? 255 : after));
+        genius::analyse_turns(span<const genius::device_position>(devices.data(), devices.size()),
+                              timing_of(timing), static_cast<std::uint8_t>(after > 255 ? 255 : after));
     py::dict d;
     d["status"] = static_cast<unsigned>(a.status);
     d["after"] = a.after;
@@ -237,10 +237,10 @@ void bind_genius(py::module_& m) {
     return d;
   });
   m.def("simulate_scan", [](const py::list& device_list, const py::dict& timing, unsigned after) {
-    const std::vector<genius::device> devices = devices_of(device_list);
+    const std::vector<genius::device_position> devices = devices_of(device_list);
     const genius::bus_scan s =
-        genius::simulate_scan(span<const genius::device>(devices.data(), devices.size()), timing_of(timing),
-                              static_cast<std::uint8_t>(after > 255 ? 255 : after));
+        genius::simulate_scan(span<const genius::device_position>(devices.data(), devices.size()),
+                              timing_of(timing), static_cast<std::uint8_t>(after > 255 ? 255 : after));
     py::dict d;
     d["status"] = static_cast<unsigned>(s.status);
     py::list transmissions;
@@ -260,7 +260,7 @@ void bind_genius(py::module_& m) {
   m.def("bus_scan_time", [](unsigned r, const std::vector<std::uint32_t>& io_bytes) {
     const genius::scan_time_result s =
         genius::bus_scan_time(rate_of(r), span<const std::uint32_t>(io_bytes.data(), io_bytes.size()));
-    return py::make_tuple(static_cast<unsigned>(s.status), s.total_ns, s.io_bytes, s.devices);
+    return py::make_tuple(static_cast<unsigned>(s.status), s.sum_ns, s.io_bytes, s.devices);
   });
 }
 

@@ -101,7 +101,7 @@ def test_a_bus_scan_comes_round(run_cli):
 def test_scan_time_is_ges_figure_and_the_tools(run_cli):
     cli = json.loads(run_cli(["genius", "scan-time", "--rate", "153.6s", "--device", "4,8,16", "--json"]))
     s = genius.bus_scan_time("153.6s", [4, 8, 16])
-    assert s.total_ns == round(cli["total_ms"] * 1e6) == 4831000 and s.io_bytes == 28 and s.devices == 3
+    assert s.total_ns == round(cli["sum_ms"] * 1e6) == 4831000 and s.io_bytes == 28 and s.devices == 3
     assert genius.device_scan_time_ns(genius.Rate.baud_38k4, 0) == 2583000
     assert genius.rate_properties(genius.rate_from_name("153.6e"))["max_length_ft"] == 3500
     with pytest.raises(ValueError):

@@ -177,7 +177,7 @@ const char* what_name(const genius_turn_record& t) {
 int simulate_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all, genius_simulate_options(), args, error)) return fail(error);
+  if (!parse_arguments(all, genius_simulate_option_list(), args, error)) return fail(error);
   if (!args.positionals.empty()) return fail("unexpected argument '" + host::printable(args.positionals[0]) + "'");
   genius_bus_config config;
   int status = exit_ok;
@@ -402,7 +402,7 @@ int simulate_main(const words& all) {
 int plan_main(const words& all) {
   arguments args;
   std::string error;
-  if (!parse_arguments(all, genius_plan_options(), args, error)) return fail(error);
+  if (!parse_arguments(all, genius_plan_option_list(), args, error)) return fail(error);
   if (!args.positionals.empty()) return fail("unexpected argument '" + host::printable(args.positionals[0]) + "'");
   genius_plan_options options;
   int status = exit_ok;
@@ -545,7 +545,7 @@ const char* const genius_plan_usage =
     "resequence and skip an SBA (free: a scan's skip times add up to 32 whatever the SBAs), then 153.6e,\n"
     "then a lower rate. --check: exit status 3 when the SBAs given have a collision risk.\n";
 
-const option_list& genius_simulate_options() {
+const option_list& genius_simulate_option_list() {
   static const option_list options = {
       {"--rate", "R", "153.6s 153.6e 76.8 38.4", "the bus's bit rate: 153.6s, 153.6e, 76.8 or 38.4"},
       {"--device", "SBA@FEET[:IN_BYTES[/OUT_BYTES]]", "", "a device node, its position and its bytes", true},
@@ -563,7 +563,7 @@ const option_list& genius_simulate_options() {
   return options;
 }
 
-const option_list& genius_plan_options() {
+const option_list& genius_plan_option_list() {
   static const option_list options = {
       {"--rate", "R", "153.6s 153.6e 76.8 38.4", "the bus's bit rate: 153.6s, 153.6e, 76.8 or 38.4"},
       {"--device", "NAME@FEET[=SBA]", "", "a device, its position and (to check) its SBA", true},

@@ -10,7 +10,7 @@ int genius_simulate_main(const words& args);
 int genius_plan_main(const words& args);
 extern const char* const genius_simulate_usage;
 extern const char* const genius_plan_usage;
-const option_list& genius_simulate_options();
-const option_list& genius_plan_options();
+const option_list& genius_simulate_option_list();
+const option_list& genius_plan_option_list();
 
 }  // namespace trionet::cli

@@ -826,9 +826,9 @@ const command genius_commands[] = {
     {"scan-time", "the bus scan time by GE's published figures, per device and in total", scan_time_usage,
      scan_time_main, scan_time_options},
     {"simulate", "a bus of device nodes taking their turns: collisions, deliveries, scan time", genius_simulate_usage,
-     genius_simulate_main, genius_simulate_options()},
+     genius_simulate_main, genius_simulate_option_list()},
     {"plan", "SBAs without collision risk for devices along a bus (or a check of SBAs given)", genius_plan_usage,
-     genius_plan_main, genius_plan_options()},
+     genius_plan_main, genius_plan_option_list()},
     {"learn", "crc: find the CRC-6 from captured transmissions, write it into a profile", genius_learn_usage,
      genius_learn_main, genius_learn_options()},
 };

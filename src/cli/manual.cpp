@@ -60,7 +60,8 @@ constexpr example examples[] = {
      "trionet genius scan-time --rate 153.6s --device 16,16",
      "rate 153.6s (153.6 kbaud standard): 0.943 ms per device + 0.0715 ms per byte of inputs and outputs (GE "
      "GFK-0825F)\n  device  io_bytes  scan_time_ms\n       1        16         2.087\n"
-     "       2        16         2.087\nbus: 2 devices, 32 bytes, 4.174 ms\n"
+     "       2        16         2.087\n"
+     "bus: 2 devices, 32 bytes: sum 4.174 ms, scan time 4.174 ms (above the minimum of 3 ms)\n"
      "computed character time (11 bits at 153600 bit/s): 0.071615 ms, not used above\n"},
     {"profile", "The default profile, a start for writing one:", "trionet profile show > my.json", ""},
     {"profile", "An encoding with a profile's parameters (here the default's, so the frame is the usual one):",

@@ -16,7 +16,7 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 // Three devices side by side: only the skip time separates their turns.
-const std::vector<device> side_by_side = {{4, 0}, {5, 0}, {6, 0}};
+const std::vector<device_position> side_by_side = {{4, 0}, {5, 0}, {6, 0}};
 
 layout_status checked(const bus_timing& timing) {
   return analyse_turns({side_by_side.data(), side_by_side.size()}, timing, 4).status;

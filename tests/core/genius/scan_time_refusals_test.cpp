@@ -17,7 +17,8 @@ TEST(GeniusScanTimeRefusals, TooManyDevicesCarriesNoFigures) {
       bus_scan_time(rate::baud_38k4, trionet::span<const std::uint32_t>(seventeen.data(), seventeen.size()));
   EXPECT_FALSE(r);
   EXPECT_EQ(r.status, scan_time_status::too_many_devices);
-  EXPECT_EQ(r.total_ns, 0U);
+  EXPECT_EQ(r.sum_ns, 0U);
+  EXPECT_EQ(r.scan_ns, 0U);
   EXPECT_EQ(r.io_bytes, 0U);
   EXPECT_EQ(r.devices, 0U);
   const scan_time_result sixteen =
