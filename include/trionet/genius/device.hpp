@@ -48,7 +48,8 @@
 //     start_bit, timer_expired, transmit, and everything that a delivery does
 //   program side (one thread context: the main loop or one RTOS task): set_turn_data, clear_turn_data,
 //     queue_directed, directed_waiting, read, deliveries_waiting, netstat, clear_netstat
-//   either side: counters, sba, sending, in_transmission, turn_armed (link-side state, for monitors and tests)
+//   either side: counters, sba, sending, in_transmission, turn_armed (link-side state, for monitors and
+//   tests)
 // Deliveries cross in a single-producer, single-consumer queue (a transmission's records published whole,
 // at its Stop); a directed transmission in a ring of slots (one producer index, one consumer index); the
 // turn data in three buffers (the program writes one that the link side neither sends from nor can start
@@ -64,13 +65,13 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "trionet/crc_holder.hpp"
-#include "trionet/fifo.hpp"
+#include "trionet/detail/crc_holder.hpp"
+#include "trionet/detail/fifo.hpp"
+#include "trionet/detail/single_writer.hpp"
 #include "trionet/genius/bus_access.hpp"
 #include "trionet/genius/character.hpp"
 #include "trionet/genius/crc6.hpp"
 #include "trionet/genius/transmission.hpp"
-#include "trionet/single_writer.hpp"
 #include "trionet/span.hpp"
 
 namespace trionet::genius {
@@ -105,7 +106,8 @@ struct [[nodiscard]] link_request {
 
 /// A device's timing in timer ticks (docs/protocol.md 3.3, 3.4). With one tick per bit time (the default,
 /// `bit_timing`), `skip_ticks` is the rule's 1 (2 at 153.6e) and a character 11. A host model may count in
-/// finer ticks (the simulator counts picoseconds, so that any skip time, the seed's 26 us included, is exact).
+/// finer ticks (the simulator counts picoseconds, so that any skip time, the seed's 26 us included, is
+/// exact).
 struct device_timing {
   std::uint32_t skip_ticks = 1;        ///< one skip time
   std::uint32_t character_ticks = 11;  ///< one character (11 bit times)
@@ -128,13 +130,13 @@ struct device_timing {
 
 /// A device's NETSTAT bits: errors since the program last cleared them (`device::netstat`).
 enum netstat_bit : std::uint8_t {
-  netstat_collision = 1,          ///< a character it sent came back different (or a start bit beat its turn)
-  netstat_crc_error = 2,          ///< a Stop or End of block whose CRC-6 did not match
-  netstat_framing_error = 4,      ///< a character with a framing error
-  netstat_lost_transmission = 8,  ///< a transmission ended by silence before its Stop
-  netstat_wire_error = 16,        ///< a transmission discarded for its structure (docs/protocol.md 3.2)
-  netstat_delivery_overflow = 32, ///< a transmission for it did not fit the delivery queue (dropped whole)
-  netstat_idle_restart = 64,      ///< the bus was quiet for the idle time: turns restarted from SBA 0
+  netstat_collision = 1,           ///< a character it sent came back different (or a start bit beat its turn)
+  netstat_crc_error = 2,           ///< a Stop or End of block whose CRC-6 did not match
+  netstat_framing_error = 4,       ///< a character with a framing error
+  netstat_lost_transmission = 8,   ///< a transmission ended by silence before its Stop
+  netstat_wire_error = 16,         ///< a transmission discarded for its structure (docs/protocol.md 3.2)
+  netstat_delivery_overflow = 32,  ///< a transmission for it did not fit the delivery queue (dropped whole)
+  netstat_idle_restart = 64,       ///< the bus was quiet for the idle time: turns restarted from SBA 0
 };
 
 /// The bit's name, as spelled in `netstat_bit`.
@@ -160,20 +162,20 @@ constexpr const char* to_string(netstat_bit bit) noexcept {
 
 /// A device's counts since power-up, each read whole (not all at one instant). Each wraps at 2^32.
 struct device_counters {
-  std::uint32_t turns_taken = 0;         ///< turns in which it began a transmission
-  std::uint32_t turns_passed = 0;        ///< turns it let pass in silence (nothing to send)
-  std::uint32_t transmissions_sent = 0;  ///< its transmissions read back whole, Stop included
-  std::uint32_t collisions = 0;          ///< its transmissions cut by a collision
-  std::uint32_t characters = 0;          ///< well-framed characters received (its own read back included)
-  std::uint32_t framing_errors = 0;      ///< characters received with a framing error
-  std::uint32_t transmissions_heard = 0; ///< others' transmissions received whole with a good CRC-6
-  std::uint32_t crc_errors = 0;          ///< others' transmissions discarded for a CRC-6 mismatch
-  std::uint32_t wire_errors = 0;         ///< others' transmissions (or strays) discarded for their structure
-  std::uint32_t lost_transmissions = 0;  ///< transmissions ended by silence before their Stop
-  std::uint32_t deliveries = 0;          ///< records put in the delivery queue
-  std::uint32_t delivery_overflows = 0;  ///< transmissions for it dropped whole for lack of room
-  std::uint32_t idle_restarts = 0;       ///< idle restarts (the quiet bus, power-up included)
-  std::uint32_t skipped = 0;             ///< characters skipped to the next Start (after an error, at power-up)
+  std::uint32_t turns_taken = 0;          ///< turns in which it began a transmission
+  std::uint32_t turns_passed = 0;         ///< turns it let pass in silence (nothing to send)
+  std::uint32_t transmissions_sent = 0;   ///< its transmissions read back whole, Stop included
+  std::uint32_t collisions = 0;           ///< its transmissions cut by a collision
+  std::uint32_t characters = 0;           ///< well-framed characters received (its own read back included)
+  std::uint32_t framing_errors = 0;       ///< characters received with a framing error
+  std::uint32_t transmissions_heard = 0;  ///< others' transmissions received whole with a good CRC-6
+  std::uint32_t crc_errors = 0;           ///< others' transmissions discarded for a CRC-6 mismatch
+  std::uint32_t wire_errors = 0;          ///< others' transmissions (or strays) discarded for their structure
+  std::uint32_t lost_transmissions = 0;   ///< transmissions ended by silence before their Stop
+  std::uint32_t deliveries = 0;           ///< records put in the delivery queue
+  std::uint32_t delivery_overflows = 0;   ///< transmissions for it dropped whole for lack of room
+  std::uint32_t idle_restarts = 0;        ///< idle restarts (the quiet bus, power-up included)
+  std::uint32_t skipped = 0;  ///< characters skipped to the next Start (after an error, at power-up)
 };
 
 /// What a delivery is.
@@ -331,8 +333,8 @@ class netstat_bits {
   void clear() noexcept { cleared_.store(raised_.load()); }
 
  private:
-  single_writer<std::uint8_t> raised_;   // link side
-  single_writer<std::uint8_t> cleared_;  // program side
+  trionet::detail::single_writer<std::uint8_t> raised_;   // link side
+  trionet::detail::single_writer<std::uint8_t> cleared_;  // program side
 };
 
 // A turn-data buffer's index, shared by the two sides: sequentially consistent, so that of the program side's
@@ -366,7 +368,8 @@ class shared_index {
 template <std::size_t TurnCapacity = 32, std::size_t DeliveryCapacity = 96, std::size_t DirectedCapacity = 16,
           std::size_t DirectedSlots = 2, class Crc = crc6_g704>
 class device : private trionet::detail::crc_holder<Crc> {
-  static_assert(TurnCapacity >= 3 && TurnCapacity <= 65535, "turn data holds 3..65535 bytes (a body of 1 byte takes 3)");
+  static_assert(TurnCapacity >= 3 && TurnCapacity <= 65535,
+                "turn data holds 3..65535 bytes (a body of 1 byte takes 3)");
   static_assert(DeliveryCapacity >= delivery_header_bytes + 1,
                 "the delivery queue must hold at least one delivery of one byte (4 bytes)");
   static_assert(DirectedCapacity <= 253, "a directed transmission carries at most 253 data bytes");
@@ -376,11 +379,11 @@ class device : private trionet::detail::crc_holder<Crc> {
   static constexpr std::size_t turn_capacity = TurnCapacity;          ///< bytes of a turn-data body
   static constexpr std::size_t delivery_capacity = DeliveryCapacity;  ///< bytes of the delivery queue
   static constexpr std::size_t directed_capacity = DirectedCapacity;  ///< data bytes of one directed slot
-  static constexpr std::size_t directed_slots = DirectedSlots;        ///< directed transmissions that may wait
+  static constexpr std::size_t directed_slots = DirectedSlots;  ///< directed transmissions that may wait
 
   /// A device with SBA `sba` (0..31; higher values are masked to 5 bits), timing `timing` (`valid()`; counted
-  /// in the ticks of its timer), the CRC `crc` and the control-character layout `layout`. constexpr, so that a
-  /// device at namespace scope in firmware needs no start-up code.
+  /// in the ticks of its timer), the CRC `crc` and the control-character layout `layout`. constexpr, so that
+  /// a device at namespace scope in firmware needs no start-up code.
   constexpr explicit device(std::uint8_t sba, device_timing timing = bit_timing(rate::standard_153k6),
                             const Crc& crc = Crc{}, const control_layout& layout = control_layout{}) noexcept
       : trionet::detail::crc_holder<Crc>(crc),
@@ -480,7 +483,9 @@ class device : private trionet::detail::crc_holder<Crc> {
   }
 
   /// Either side: true while its own transmission is under way (its turn taken, the Stop not yet read back).
-  [[nodiscard]] bool sending() const noexcept { return state_ == state::sending || state_ == state::turn_due; }
+  [[nodiscard]] bool sending() const noexcept {
+    return state_ == state::sending || state_ == state::turn_due;
+  }
   /// Link side: true while its turn timer is armed (its turn due after the last Stop, not yet cancelled).
   [[nodiscard]] bool turn_armed() const noexcept { return armed_ == armed::turn; }
   /// Link side: true while another device's transmission is being received (a Start heard, no Stop yet).
@@ -522,7 +527,8 @@ class device : private trionet::detail::crc_holder<Crc> {
     if (destination > max_sba) return queue_status::destination_out_of_range;
     if (data.size() > DirectedCapacity) return queue_status::too_long;
     const std::uint8_t queued = queued_.load();
-    if (static_cast<std::uint8_t>(queued - directed_sent_.acquire()) >= DirectedSlots) return queue_status::full;
+    if (static_cast<std::uint8_t>(queued - directed_sent_.acquire()) >= DirectedSlots)
+      return queue_status::full;
     directed_slot& slot = slots_[queued % DirectedSlots];
     slot.destination = destination;
     const segment plain{false, 0, data};
@@ -621,7 +627,8 @@ class device : private trionet::detail::crc_holder<Crc> {
     return link_request{timer_action::arm, ticks, transmit};
   }
   std::uint32_t quiet_ticks() const noexcept {
-    return static_cast<std::uint32_t>(32u * timing_.skip_ticks + timing_.idle_characters * timing_.character_ticks);
+    return static_cast<std::uint32_t>(32u * timing_.skip_ticks +
+                                      timing_.idle_characters * timing_.character_ticks);
   }
   std::uint32_t gap_ticks() const noexcept {
     return static_cast<std::uint32_t>(timing_.idle_characters * timing_.character_ticks);
@@ -655,9 +662,8 @@ class device : private trionet::detail::crc_holder<Crc> {
     } else {
       turns_passed_.increment();
       // Nothing heard since the Stop: the idle restart comes 32 skip times + the idle characters after it.
-      return arm(armed::quiet,
-                 static_cast<std::uint32_t>((32u - turn_offset_) * timing_.skip_ticks +
-                                            timing_.idle_characters * timing_.character_ticks));
+      return arm(armed::quiet, static_cast<std::uint32_t>((32u - turn_offset_) * timing_.skip_ticks +
+                                                          timing_.idle_characters * timing_.character_ticks));
     }
     turns_taken_.increment();
     if (rx_open_) discard();
@@ -756,7 +762,8 @@ class device : private trionet::detail::crc_holder<Crc> {
     state_ = state::listening;
     bus_sender_ = no_sender;
     transmissions_sent_.increment();
-    if (source_ == source::directed) directed_sent_.release(static_cast<std::uint8_t>(directed_sent_.load() + 1));
+    if (source_ == source::directed)
+      directed_sent_.release(static_cast<std::uint8_t>(directed_sent_.load() + 1));
     return arm(armed::quiet, quiet_ticks());
   }
 
@@ -826,7 +833,8 @@ class device : private trionet::detail::crc_holder<Crc> {
       ++block_length_;
       if (block_for_me_) stage(c.byte);
     } else if (for_me_) {
-      if (record_ != record_kind::plain) open_record(broadcast_ ? delivery_kind::broadcast : delivery_kind::directed);
+      if (record_ != record_kind::plain)
+        open_record(broadcast_ ? delivery_kind::broadcast : delivery_kind::directed);
       stage(c.byte);
     }
     return after_character();
@@ -987,27 +995,29 @@ class device : private trionet::detail::crc_holder<Crc> {
   detail::netstat_bits netstat_;
   detail::shared_index published_;  // program side: the newest turn data (at first the empty buffer 0)
   detail::shared_index reading_;    // link side: the turn data it sends (or is claiming)
-  single_writer<std::uint32_t> broadcast_senders_{0xFFFFFFFFu};  // program side: whose broadcasts to deliver
-  single_writer<std::uint8_t> queued_;         // program side: directed transmissions queued
-  single_writer<std::uint8_t> directed_sent_;  // link side: directed transmissions sent whole
-  single_writer<std::uint32_t> turns_taken_;
-  single_writer<std::uint32_t> turns_passed_;
-  single_writer<std::uint32_t> transmissions_sent_;
-  single_writer<std::uint32_t> collisions_;
-  single_writer<std::uint32_t> characters_;
-  single_writer<std::uint32_t> framing_errors_;
-  single_writer<std::uint32_t> transmissions_heard_;
-  single_writer<std::uint32_t> crc_errors_;
-  single_writer<std::uint32_t> wire_errors_;
-  single_writer<std::uint32_t> lost_transmissions_;
-  single_writer<std::uint32_t> delivered_;
-  single_writer<std::uint32_t> delivery_overflows_;
-  single_writer<std::uint32_t> idle_restarts_;
-  single_writer<std::uint32_t> skipped_;
+  trionet::detail::single_writer<std::uint32_t> broadcast_senders_{
+      0xFFFFFFFFu};                                      // program side: whose broadcasts to deliver
+  trionet::detail::single_writer<std::uint8_t> queued_;  // program side: directed transmissions queued
+  trionet::detail::single_writer<std::uint8_t>
+      directed_sent_;  // link side: directed transmissions sent whole
+  trionet::detail::single_writer<std::uint32_t> turns_taken_;
+  trionet::detail::single_writer<std::uint32_t> turns_passed_;
+  trionet::detail::single_writer<std::uint32_t> transmissions_sent_;
+  trionet::detail::single_writer<std::uint32_t> collisions_;
+  trionet::detail::single_writer<std::uint32_t> characters_;
+  trionet::detail::single_writer<std::uint32_t> framing_errors_;
+  trionet::detail::single_writer<std::uint32_t> transmissions_heard_;
+  trionet::detail::single_writer<std::uint32_t> crc_errors_;
+  trionet::detail::single_writer<std::uint32_t> wire_errors_;
+  trionet::detail::single_writer<std::uint32_t> lost_transmissions_;
+  trionet::detail::single_writer<std::uint32_t> delivered_;
+  trionet::detail::single_writer<std::uint32_t> delivery_overflows_;
+  trionet::detail::single_writer<std::uint32_t> idle_restarts_;
+  trionet::detail::single_writer<std::uint32_t> skipped_;
   length_type turn_length_[3] = {};
   std::uint8_t turn_[3][TurnCapacity] = {};
   directed_slot slots_[DirectedSlots] = {};
-  spsc_fifo<DeliveryCapacity> deliveries_;
+  trionet::detail::spsc_fifo<DeliveryCapacity> deliveries_;
 };
 
 }  // namespace trionet::genius
