@@ -21,6 +21,17 @@ namespace trionet_fuzz {
   std::abort();
 }
 
+/// True when `text` has no byte below 0x20 and no DEL: a line a terminal shows as it is (what a message of
+/// the tool must be, whatever the input).
+template <class Text>
+bool printable_line(const Text& text) noexcept {
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) return false;
+  }
+  return true;
+}
+
 /// Reads the fuzz input front to back as choices; past the end every read gives 0 and `done()` is true.
 class input_reader {
  public:

@@ -68,8 +68,7 @@ int encode_command(const words& all) {
   if (!parse_args(all, can_message_options(), parsed, error)) return fail(error);
   can::frame out;
   if (!can_message_frame(parsed, out, error)) return fail(error);
-  std::printf("%s\n", host::format_candump_frame(out).c_str());
-  return exit_ok;
+  return write_stdout(host::format_candump_frame(out) + "\n") ? exit_ok : fail_output();
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -209,7 +208,7 @@ int decode_command(const words& all) {
   const int status = stream_stdin(out, [&reader](std::string_view chunk) { reader.push(chunk); });
   if (status != exit_ok) return status;
   reader.finish();
-  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+  return out.flush() ? exit_ok : fail_output();
 }
 
 // A table as text: columns left-aligned, two blanks between them, no blank at the end of a line.
@@ -256,7 +255,7 @@ int table_command(const words& all) {
   }
   output out;
   out.text() += aligned(receive) + "\n" + aligned(transmit);
-  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+  return out.flush() ? exit_ok : fail_output();
 }
 
 const command can_commands[] = {

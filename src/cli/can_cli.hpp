@@ -25,19 +25,27 @@ const option_list& can_message_options();
 /// False with `error` saying what is wrong.
 bool can_message_frame(const arguments& parsed, can::frame& out, std::string& error);
 
+/// What a frame read from the bus is, for the live commands' counters.
+enum class can_frame_class : std::uint8_t {
+  vr,           ///< a TN20-17 VR message of the exchange
+  vr_error,     ///< a frame on an exchange identifier that is no VR message (bad_dlc, bad_sign, bad_fraction)
+  other,        ///< a valid frame that is not the exchange's (foreign identifier, extended, remote, FD, XL ...)
+  error_frame,  ///< an error frame: a controller's report, not a frame on the bus
+};
+
 /// The event of one CAN frame, as `can decode` prints it: "vr" (id, from, to, vr, negative, int, frac, value)
 /// for a TN20-17 VR message of an exchange of `nodes` controllers; "frame" with its `kind` for a valid frame
 /// that is no VR message; "error" with the `reason` for a frame on an exchange identifier that is no VR
-/// message. The numbers are read in the active profile's byte order. `where(event&)` adds the position. True
-/// for a VR message.
+/// message. The numbers are read in the active profile's byte order. `where(event&)` adds the position.
+/// Returns what the frame is.
 template <class Where>
-bool append_can_frame_event(std::string& out, std::uint8_t nodes, const host::candump_record& r, Where&& where) {
+can_frame_class append_can_frame_event(std::string& out, std::uint8_t nodes, const host::candump_record& r, Where&& where) {
   const auto other = [&](const char* kind, std::uint32_t id) {
     event e(out, "frame");
     where(e);
     e.text("kind", kind).number("id", id).number("length", r.length);
     if (r.type == host::candump_frame_type::xl) e.number("vcid", r.can_id >> 16U & 0xFFU);
-    return false;
+    return r.type == host::candump_frame_type::error ? can_frame_class::error_frame : can_frame_class::other;
   };
   const std::uint32_t id = r.can_id;
   switch (r.type) {
@@ -61,7 +69,7 @@ bool append_can_frame_event(std::string& out, std::uint8_t nodes, const host::ca
     event e(out, "error");
     where(e);
     e.text("reason", can::to_string(decoded.status)).number("id", frame.identifier());
-    return false;
+    return can_frame_class::vr_error;
   }
   const can::vr_message& message = decoded.message;
   event e(out, "vr");
@@ -70,7 +78,7 @@ bool append_can_frame_event(std::string& out, std::uint8_t nodes, const host::ca
   e.number("vr", message.vr).boolean("negative", message.value.negative);
   e.number("int", message.value.integer_part).number("frac", message.value.fraction);
   e.real("value", trionet::to_double(message.value));
-  return true;
+  return can_frame_class::vr;
 }
 
 /// A frame received from SocketCAN as the fields of a candump record (classic, or an error frame).

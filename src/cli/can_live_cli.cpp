@@ -30,7 +30,8 @@ const char* const can_live_usage =
     "      put one VR frame on the bus and print it\n"
     "  trionet can node IFACE --node I [--nodes K] [--json] [--trace] [--pcap FILE] [--interface-name NAME]\n"
     "      be node I of the exchange: write the VRs it receives (events), and send the ones asked on\n"
-    "      standard input: send J VR VALUE | vr V [VALUE] | counters | quit\n"
+    "      standard input: send J VR VALUE | vr V [VALUE] | counters | quit (it ends at quit or when\n"
+    "      standard input ends)\n"
     "IFACE: a SocketCAN interface (can0, vcan0), or - for candump text: frames are read from standard input\n"
     "(`candump -L` lines or compact ID#DATA) and written to standard output as log lines\n"
     "\"(secs.micros) NAME ID#DATA\" (NAME from --interface-name, default can0, for canplayer); with `can node -`\n"
@@ -71,7 +72,7 @@ class bus {
     if (iface == "-") return true;
     const host::socketcan_open_result opened = socket_.open(iface);
     if (opened) return true;
-    error = "cannot open CAN interface " + iface + ": " + host::to_string(opened.status);
+    error = "cannot open CAN interface " + host::printable(iface) + ": " + host::to_string(opened.status);
     if (opened.system_error != 0) error += std::string(" (") + std::strerror(opened.system_error) + ")";
     if (opened.status == host::socketcan_status::socket)
       error += "; this kernel has no SocketCAN support: use - and candump text instead";
@@ -79,6 +80,8 @@ class bus {
   }
   [[nodiscard]] bool text() const noexcept { return iface_ == "-"; }
   [[nodiscard]] const std::string& name() const noexcept { return iface_; }
+  /// The descriptor frames arrive on: the socket, or standard input for candump text.
+  [[nodiscard]] int fd() const noexcept { return text() ? STDIN_FILENO : socket_.fd(); }
   host::socketcan_port& socket() noexcept { return socket_; }
 
   // Sends one frame: the socket (retrying a full queue for up to a second), or a candump log line.
@@ -86,14 +89,13 @@ class bus {
     if (text()) {
       host::candump_record record;
       record.has_timestamp = true;
-      record.seconds = time_ns / 1000000000u;
-      record.nanoseconds = static_cast<std::uint32_t>(time_ns % 1000000000u / 1000u * 1000u);
+      record.seconds = time_ns / 1000000000U;
+      record.nanoseconds = static_cast<std::uint32_t>(time_ns % 1000000000U / 1000U * 1000U);
       record.fraction_digits = 6;
       record.interface_name = text_name_;
       record.frame = frame;
-      const std::string line = host::format_candump_line(record) + "\n";
-      std::fwrite(line.data(), 1, line.size(), stdout);
-      return std::fflush(stdout) == 0 ? can::transmit_status::ok : can::transmit_status::failed;
+      return write_stdout(host::format_candump_line(record) + "\n") ? can::transmit_status::ok
+                                                                    : can::transmit_status::failed;
     }
     can::transmit_status status = can::transmit_status::busy;
     for (int tries = 0; tries < 100 && (status = socket_.send(frame)) == can::transmit_status::busy; ++tries) {
@@ -108,43 +110,53 @@ class bus {
   host::socketcan_port socket_;
 };
 
-// Bus counters for the end, a signal, or `counters`.
+// Bus counters for the end, a signal, or `counters`: every frame read, by what it is.
 struct bus_counters {
-  std::uint64_t frames = 0;
-  std::uint64_t vr_frames = 0;
-  std::uint64_t errors = 0;        // frames that are no VR message
-  std::uint64_t error_frames = 0;  // SocketCAN error frames (controller reports)
+  std::uint64_t frames = 0;        // every frame read, error frames included
+  std::uint64_t vr_frames = 0;     // TN20-17 VR messages
+  std::uint64_t vr_errors = 0;     // frames on an exchange identifier that are no VR message (bad_dlc ...)
+  std::uint64_t other = 0;         // valid frames that are not the exchange's (foreign, extended, remote, FD ...)
+  std::uint64_t error_frames = 0;  // error frames (controller reports), from SocketCAN or candump text
   std::uint64_t syntax = 0;        // candump lines that are not frames
 
-  void count(bool vr) {
+  void count(can_frame_class kind) {
     ++frames;
-    if (vr) {
-      ++vr_frames;
-    } else {
-      ++errors;
+    switch (kind) {
+      case can_frame_class::vr:
+        ++vr_frames;
+        break;
+      case can_frame_class::vr_error:
+        ++vr_errors;
+        break;
+      case can_frame_class::other:
+        ++other;
+        break;
+      case can_frame_class::error_frame:
+        ++error_frames;
+        break;
     }
   }
   void add(event& e) const {
-    e.number("frames", frames).number("vr", vr_frames).number("errors", errors);
+    e.number("frames", frames).number("vr", vr_frames).number("vr_errors", vr_errors).number("other", other);
     e.number("error_frames", error_frames).number("syntax", syntax);
   }
 };
 
 // One input line of candump text as a record, with its time (the line's own, else now).
 host::candump_status record_of_line(const std::string& line, host::candump_record& record, std::uint64_t& time_ns) {
-  host::candump_result parsed = host::parse_candump_line(line);
-  if (!parsed) return parsed.status;
-  record = std::move(parsed.record);
-  time_ns = record.has_timestamp ? record.seconds * 1000000000u + record.nanoseconds : live::now_ns();
+  const host::candump_status status = host::parse_candump_line(line, record);
+  if (status != host::candump_status::ok) return status;
+  time_ns = record.has_timestamp ? record.seconds * 1000000000U + record.nanoseconds : live::now_ns();
   return host::candump_status::ok;
 }
 
-// A classic frame into the capture (a frame of another kind has no SocketCAN record of a classic bus).
+// A frame into the capture: classic, error and CAN FD frames as SocketCAN records (a CAN XL frame has no
+// record here and is left out).
 void capture_frame(live::capture_file& capture, std::uint32_t interface, std::uint64_t time_ns,
                    const host::candump_record& r) {
-  if (!capture.is_open() || !r.classic_frame()) return;
-  const auto record = host::socketcan_record(r.frame);
-  capture.write(interface, time_ns, byte_view(record.data(), record.size()));
+  if (!capture.is_open()) return;
+  const std::vector<std::uint8_t> record = host::socketcan_record_of(r);
+  if (!record.empty()) capture.write(interface, time_ns, byte_view(record.data(), record.size()));
 }
 
 // A line of candump text that is not a frame: the event `can decode` prints for it, with its time.
@@ -152,6 +164,51 @@ void syntax_event(std::string& out, std::uint64_t line_number, host::candump_sta
   event(out, "error").time(live::now_ns()).number("line", line_number).text("reason", "syntax").text(
       "detail", host::to_string(status));
 }
+
+// Frames from the bus as records: candump lines from standard input (`-`) or SocketCAN frames, read after
+// the event loop found the bus readable. `frame(record, time_ns, line)` gets each frame (`line` 0 for
+// SocketCAN), `other_line(text, line, status)` each line of candump text that is not a frame and why (with
+// `can node -` those are the commands). Ends the loop when the input ends (`-`: a normal end) or the socket
+// fails (the link is lost).
+class bus_reader {
+ public:
+  explicit bus_reader(bus& b) : bus_(&b) {}
+
+  template <class Frame, class OtherLine>
+  void read(live::event_loop& loop, Frame&& frame, OtherLine&& other_line) {
+    if (bus_->text()) {
+      input_.read_some();
+      std::string line;
+      while (loop.running() && input_.next(line)) {
+        ++line_number_;
+        const host::candump_status status = record_of_line(line, record_, time_ns_);
+        if (status == host::candump_status::ok) {
+          frame(record_, time_ns_, line_number_);
+        } else {
+          other_line(line, line_number_, status);
+        }
+      }
+      if (input_.ended()) loop.stop();
+      return;
+    }
+    can::frame got;
+    const host::socketcan_receive_status status = bus_->socket().receive(got, 0);
+    if (status == host::socketcan_receive_status::ok) {
+      frame(candump_record_of(got), live::now_ns(), 0);
+    } else if (status == host::socketcan_receive_status::error_frame) {
+      frame(candump_record_of(got, true), live::now_ns(), 0);
+    } else if (status == host::socketcan_receive_status::failed && errno != EINTR && errno != EAGAIN) {
+      loop.lost(host::printable(bus_->name()) + ": " + std::strerror(errno));
+    }
+  }
+
+ private:
+  bus* bus_;
+  live::line_reader input_{STDIN_FILENO};
+  std::uint64_t line_number_ = 0;
+  host::candump_record record_;
+  std::uint64_t time_ns_ = 0;
+};
 
 // ---- can monitor ----
 
@@ -163,73 +220,46 @@ int monitor_main(const words& given) {
   std::uint8_t nodes = 0;
   if (!parse_node_count(args, nodes, error)) return fail("can monitor: " + error);
   bus can_bus;
-  if (!can_bus.open(args.positionals[0], "can0", error)) return fail("can monitor: " + error);
+  if (!can_bus.open(args.positionals[0], "can0", error)) return fail_io("can monitor: " + error);
   live::capture_file capture;
   std::uint32_t interface = 0;
   if (args.has("--pcap")) {
-    if (!capture.open(args.options.at("--pcap"), error)) return fail("can monitor: " + error);
+    if (!capture.open(args.options.at("--pcap"), error)) return fail_io("can monitor: " + error);
     interface = capture.add(can_bus.text() ? "candump" : can_bus.name(), host::capture_network::can);
   }
-  live::signal_watch signals;
   live::event_log log(args.flag("--json"));
+  live::event_loop loop(&log);
+  const std::size_t input = loop.watch(can_bus.fd(), POLLIN);
   bus_counters counters;
   const auto counters_event = [&]() {
     event e(log.text(), "counters");
     e.time(live::now_ns());
     counters.add(e);
   };
-  live::line_reader input(STDIN_FILENO);
-  std::uint64_t line_number = 0;
-  std::string ended;
-  while (!live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) counters_event();
-    log.flush();
-    if (can_bus.text()) {
-      pollfd p{STDIN_FILENO, POLLIN, 0};
-      if (::poll(&p, 1, 1000) <= 0) continue;
-      const bool more = input.read_some();
-      std::string line;
-      while (input.next(line)) {
-        ++line_number;
-        if (line.find_first_not_of(" \t") == std::string::npos) continue;
-        host::candump_record record;
-        std::uint64_t time_ns = 0;
-        const host::candump_status status = record_of_line(line, record, time_ns);
-        if (status != host::candump_status::ok) {
+  bus_reader reader(can_bus);
+  while (loop.running()) {
+    if (live::event_loop::report_requested()) counters_event();
+    if (!loop.wait(1000)) break;
+    if (!loop.readable(input)) continue;
+    reader.read(
+        loop,
+        [&](const host::candump_record& record, std::uint64_t time_ns, std::uint64_t line) {
+          capture_frame(capture, interface, time_ns, record);
+          counters.count(append_can_frame_event(log.text(), nodes, record, [&](event& e) {
+            e.time(time_ns);
+            if (line != 0) e.number("line", line);
+          }));
+        },
+        [&](const std::string&, std::uint64_t number, host::candump_status status) {
+          if (status == host::candump_status::empty) return;
           ++counters.syntax;
-          syntax_event(log.text(), line_number, status);
-          continue;
-        }
-        capture_frame(capture, interface, time_ns, record);
-        counters.count(append_can_frame_event(log.text(), nodes, record, [&](event& e) {
-          e.time(time_ns).number("line", line_number);
-        }));
-      }
-      if (!more) break;
-      continue;
-    }
-    can::frame frame;
-    const host::socketcan_receive_status got = can_bus.socket().receive(frame, 1000);
-    const std::uint64_t time_ns = live::now_ns();
-    const auto at = [time_ns](event& e) { e.time(time_ns); };
-    if (got == host::socketcan_receive_status::ok) {
-      const host::candump_record record = candump_record_of(frame);
-      capture_frame(capture, interface, time_ns, record);
-      counters.count(append_can_frame_event(log.text(), nodes, record, at));
-    } else if (got == host::socketcan_receive_status::error_frame) {
-      ++counters.error_frames;
-      append_can_frame_event(log.text(), nodes, candump_record_of(frame, true), at);
-    } else if (got == host::socketcan_receive_status::failed && !live::signal_watch::stop_requested() &&
-               errno != EINTR) {
-      ended = can_bus.name() + ": " + std::strerror(errno);
-      break;
-    }
+          syntax_event(log.text(), number, status);
+        });
   }
   counters_event();
-  log.flush();
-  if (!ended.empty()) std::fprintf(stderr, "trionet: can monitor: %s\n", ended.c_str());
-  if (!capture.good()) return fail("can monitor: writing the capture failed");
-  return exit_ok;
+  const int status = loop.finish("can monitor");
+  if (status == exit_ok && !capture.good()) return fail_io("can monitor: writing the capture failed");
+  return status;
 }
 
 // ---- can send ----
@@ -243,11 +273,12 @@ int send_main(const words& given) {
   if (!can_message_frame(args, frame, error)) return fail("can send: " + error);
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
-  if (!can_bus.open(args.positionals[0], name, error)) return fail("can send: " + error);
+  if (!can_bus.open(args.positionals[0], name, error)) return fail_io("can send: " + error);
   const can::transmit_status sent = can_bus.send(frame, live::now_ns());
+  if (can_bus.text() && output_failed()) return fail_output();
   if (sent != can::transmit_status::ok)
-    return fail("can send: " + can_bus.name() + " did not take the frame: " + can::to_string(sent));
-  if (!can_bus.text()) std::printf("%s\n", host::format_candump_frame(frame).c_str());
+    return fail_io("can send: " + host::printable(can_bus.name()) + " did not take the frame: " + can::to_string(sent));
+  if (!can_bus.text() && !write_stdout(host::format_candump_frame(frame) + "\n")) return fail_output();
   return exit_ok;
 }
 
@@ -286,29 +317,29 @@ int node_main(const words& given) {
   const bool trace = args.flag("--trace");
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
-  if (!can_bus.open(args.positionals[0], name, error)) return fail("can node: " + error);
-  std::FILE* events = can_bus.text() ? stderr : stdout;  // with candump text, standard output carries frames
+  if (!can_bus.open(args.positionals[0], name, error)) return fail_io("can node: " + error);
   live::capture_file capture;
   std::uint32_t interface = 0;
   if (args.has("--pcap")) {
-    if (!capture.open(args.options.at("--pcap"), error)) return fail("can node: " + error);
+    if (!capture.open(args.options.at("--pcap"), error)) return fail_io("can node: " + error);
     interface = capture.add(can_bus.text() ? "candump" : can_bus.name(), host::capture_network::can);
   }
   auto vrs = std::make_unique<node_vrs>();
   node_port port(can_bus, capture, interface);
   can::vr_exchange_node node(can::make_node_address(nodes, static_cast<std::uint8_t>(own)).address, port, *vrs,
-                            active_profile().can.byte_order);
-  live::event_log log(args.flag("--json"), events);
+                             active_profile().can.byte_order);
+  // With candump text, standard output carries the frames: the events go to standard error.
+  live::event_log log(args.flag("--json"), can_bus.text() ? STDERR_FILENO : STDOUT_FILENO);
+  live::event_loop loop(&log);
   bus_counters counters;
 
   // A frame from the bus: what the node makes of it, and with --trace also a frame for another node.
   std::string seen;
-  const auto received = [&](const host::candump_record& record, std::uint64_t time_ns) {
+  const auto received = [&](const host::candump_record& record, std::uint64_t time_ns, std::uint64_t) {
     capture_frame(capture, interface, time_ns, record);
     seen.clear();
     counters.count(append_can_frame_event(seen, nodes, record, [time_ns](event& e) { e.time(time_ns); }));
-    const can::receive_result r =
-        record.classic_frame() ? node.receive(record.frame) : can::receive_result{};
+    const can::receive_result r = record.classic_frame() ? node.receive(record.frame) : can::receive_result{};
     if (r.status == can::receive_status::foreign) {
       if (trace) log.text() += seen;
       return;
@@ -335,7 +366,6 @@ int node_main(const words& given) {
     e.number("foreign", c.foreign).number("bad_dlc", c.bad_dlc).number("bad_sign", c.bad_sign);
     e.number("bad_fraction", c.bad_fraction);
   };
-  bool quit = false;
   const auto reply_error = [&](const std::string& command, const std::string& reason) {
     event(log.text(), "error").time(live::now_ns()).text("command", command).text("reason", reason);
   };
@@ -350,6 +380,7 @@ int node_main(const words& given) {
           !parse_real(w[3], value))
         return reply_error(w[0], "usage: send J VR VALUE (J a node 1.." + std::to_string(nodes) + ", VR 0..255)");
       const can::send_status s = node.send_to_node(static_cast<std::uint8_t>(a), static_cast<std::uint16_t>(b), value);
+      if (can_bus.text() && output_failed()) return;  // the loop ends: the output is gone
       if (s != can::send_status::ok) return reply_error(w[0], can::to_string(s));
       event(log.text(), "sent").time(live::now_ns()).signed_number("to", a).signed_number("vr", b).real("value", value);
       return;
@@ -365,55 +396,32 @@ int node_main(const words& given) {
       return;
     }
     if (w[0] == "counters") return node_counters();
-    if (w[0] == "quit") {
-      quit = true;
-      return;
-    }
+    if (w[0] == "quit") return loop.stop();
     reply_error(w[0], "unknown command (send, vr, counters, quit)");
   };
 
-  live::signal_watch signals;
-  live::line_reader input(STDIN_FILENO);
-  std::string ended;
-  while (!quit && !live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) node_counters();
-    log.flush();
-    pollfd fds[2] = {{STDIN_FILENO, POLLIN, 0}, {can_bus.text() ? -1 : can_bus.socket().fd(), POLLIN, 0}};
-    const bool input_open = !input.ended();
-    if (!input_open) fds[0].fd = -1;
-    if (!input_open && can_bus.text()) break;  // candump text ended: the bus is gone
-    if (::poll(fds, 2, 1000) <= 0) continue;
-    if ((fds[0].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
-      input.read_some();
+  // Commands come on standard input; with candump text, so do the frames (bus_reader tells them apart).
+  // The node ends at `quit` or when its commands end.
+  bus_reader frames(can_bus);
+  const auto command_line = [&](const std::string& line, std::uint64_t, host::candump_status) { run(line); };
+  live::line_reader commands(STDIN_FILENO);
+  const std::size_t bus_slot = loop.watch(can_bus.fd(), POLLIN);
+  const std::size_t input_slot = loop.watch(can_bus.text() ? -1 : STDIN_FILENO, POLLIN);
+  while (loop.running()) {
+    if (live::event_loop::report_requested()) node_counters();
+    if (!loop.wait(1000)) break;
+    if (loop.readable(bus_slot)) frames.read(loop, received, command_line);
+    if (loop.running() && loop.readable(input_slot)) {
+      commands.read_some();
       std::string line;
-      while (!quit && input.next(line)) {
-        host::candump_record record;
-        std::uint64_t time_ns = 0;
-        if (can_bus.text() && record_of_line(line, record, time_ns) == host::candump_status::ok) {
-          received(record, time_ns);
-        } else {
-          run(line);
-        }
-      }
-    }
-    if ((fds[1].revents & POLLIN) != 0) {
-      can::frame frame;
-      const host::socketcan_receive_status got = can_bus.socket().receive(frame, 0);
-      if (got == host::socketcan_receive_status::ok) {
-        received(candump_record_of(frame), live::now_ns());
-      } else if (got == host::socketcan_receive_status::error_frame) {
-        ++counters.error_frames;
-      } else if (got == host::socketcan_receive_status::failed) {
-        ended = can_bus.name() + ": " + std::strerror(errno);
-        break;
-      }
+      while (loop.running() && commands.next(line)) run(line);
+      if (commands.ended()) loop.stop();
     }
   }
   node_counters();
-  log.flush();
-  if (!ended.empty()) std::fprintf(stderr, "trionet: can node: %s\n", ended.c_str());
-  if (!capture.good()) return fail("can node: writing the capture failed");
-  return exit_ok;
+  const int status = loop.finish("can node");
+  if (status == exit_ok && !capture.good()) return fail_io("can node: writing the capture failed");
+  return status;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "trionet/host/capture_view.hpp"
+#include "trionet/host/files.hpp"
 
 namespace trionet::cli {
 
@@ -15,8 +16,9 @@ void add_position(event& e, const capture_position& where) {
 
 int read_capture(const std::string& path, host::capture_network network, bool fields, std::uint8_t can_node_count,
                  const std::function<void(const host::pcapng_record&, const capture_position&, std::string&)>& decode) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return fail_io("cannot open " + path);
+  std::ifstream file;
+  const host::file_result usable = host::open_input_stream(path, file);
+  if (!usable) return fail_io(usable.message(path, "capture"));
   host::pcapng_reader reader(file);
   host::capture_view_options options;
   options.can_node_count = can_node_count;
@@ -28,7 +30,7 @@ int read_capture(const std::string& path, host::capture_network network, bool fi
     ++number;
     if (r.status == host::pcapng_read_status::not_pcapng || r.status == host::pcapng_read_status::read_failed) {
       out.flush();
-      return fail_io(path + ": " + host::to_string(r.status));
+      return fail_io(host::printable(path) + ": " + host::to_string(r.status));
     }
     if (!r) {
       event(out.text(), "capture_error").number("record", number).text("reason", host::to_string(r.status));
@@ -50,9 +52,9 @@ int read_capture(const std::string& path, host::capture_network network, bool fi
       add_position(e, where);
       e.text("network", host::to_string(r.record.network));
     }
-    if (!out.maybe_flush()) return fail_io("cannot write standard output");
+    if (!out.maybe_flush()) return fail_output();
   }
-  if (!out.flush()) return fail_io("cannot write standard output");
+  if (!out.flush()) return fail_output();
   return exit_ok;
 }
 

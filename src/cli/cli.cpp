@@ -3,9 +3,11 @@
 #include "profile_cli.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdarg>
 #include <charconv>
 #include <cmath>
 #include <cinttypes>
@@ -13,6 +15,14 @@
 #include <cstring>
 
 namespace trionet::cli {
+namespace {
+
+bool& fail_on_limit() {
+  static bool given = false;
+  return given;
+}
+
+}  // namespace
 
 namespace {
 
@@ -38,6 +48,10 @@ void message_line(const std::string& message) {
 
 }  // namespace
 
+void note(const std::string& message) {
+  message_line(message);
+}
+
 int fail(const std::string& message) {
   message_line(message);
   return exit_usage;
@@ -46,6 +60,82 @@ int fail(const std::string& message) {
 int fail_io(const std::string& message) {
   message_line(message);
   return exit_io;
+}
+
+namespace {
+
+// The first failure of standard output: its errno (0: none yet), and whether it was reported.
+int output_errno = 0;
+bool output_reported = false;
+
+}  // namespace
+
+std::string& appendf(std::string& out, const char* format, ...) {
+  char text[512];
+  va_list args;
+  va_start(args, format);
+  const int length = std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  if (length < 0) return out;
+  if (static_cast<std::size_t>(length) < sizeof text) return out.append(text, static_cast<std::size_t>(length));
+  std::string long_text(static_cast<std::size_t>(length) + 1, '\0');
+  va_start(args, format);
+  std::vsnprintf(long_text.data(), long_text.size(), format, args);
+  va_end(args);
+  long_text.pop_back();
+  return out += long_text;
+}
+
+int limit_reached(const std::string& message) {
+  message_line(message);
+  return fail_on_limit() ? exit_limit : exit_ok;
+}
+
+bool write_stdout(std::string_view text) {
+  if (output_errno != 0) return false;
+  if (std::fflush(stdout) != 0) {
+    output_errno = errno != 0 ? errno : EIO;
+    return false;
+  }
+  const char* p = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t wrote = ::write(STDOUT_FILENO, p, left);
+    if (wrote < 0 && errno == EINTR) continue;
+    if (wrote < 0 && errno == EAGAIN) {  // standard output left non-blocking by another program: wait
+      pollfd writable{STDOUT_FILENO, POLLOUT, 0};
+      (void)::poll(&writable, 1, 1000);
+      continue;
+    }
+    if (wrote <= 0) {
+      output_errno = wrote < 0 ? errno : EIO;
+      return false;
+    }
+    p += wrote;
+    left -= static_cast<std::size_t>(wrote);
+  }
+  return true;
+}
+
+bool output_failed() {
+  return output_errno != 0;
+}
+
+int fail_output() {
+  if (!output_reported) {
+    output_reported = true;
+    message_line(std::string("cannot write standard output: ") + std::strerror(output_errno != 0 ? output_errno : EIO));
+  }
+  return exit_io;
+}
+
+int finish_output(int status) {
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
+    if (output_errno == 0) output_errno = errno != 0 ? errno : EIO;
+  }
+  if (output_errno == 0 || status == exit_usage) return status;
+  return fail_output();
 }
 
 std::string version_line() {
@@ -93,11 +183,11 @@ int dispatch(const part& p, const words& args) {
   }
   const std::string& name = args.front();
   if (name == "--help" || name == "-h" || name == "help") {
-    std::fputs(part_usage(p).c_str(), stdout);
+    write_stdout(part_usage(p));
     return exit_ok;
   }
   if (name == "--version") {
-    std::printf("%s\n", version_line().c_str());
+    write_stdout(version_line() + "\n");
     return exit_ok;
   }
   for (std::size_t i = 0; i < p.count; ++i) {
@@ -105,60 +195,21 @@ int dispatch(const part& p, const words& args) {
     if (name != c.name) continue;
     words rest(args.begin() + 1, args.end());
     if (asks_for_help(rest)) {
-      std::fputs(c.usage, stdout);
+      write_stdout(c.usage);
       return exit_ok;
     }
-    // Every command encodes and decodes with the profile in effect: one option for all, taken here.
+    // Options every command takes, taken here: what a limit does to the exit status, and the profile in
+    // effect (every command encodes and decodes with it).
+    for (std::size_t at = 0; at < rest.size() && rest[at] != "--"; ++at) {
+      if (rest[at] != "--fail-on-limit") continue;
+      fail_on_limit() = true;
+      rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(at--));
+    }
     const int loaded = take_profile_option(rest);
     if (loaded != exit_ok) return loaded;
     return c.run(rest);
   }
-  return fail("unknown " + std::string(p.name) + " command '" + name + "' (expected " + command_names(p) + ")");
-}
-
-bool parse_arguments(const words& args, const std::set<std::string>& value_options,
-                     const std::set<std::string>& flag_options, arguments& out, std::string& error,
-                     const std::set<std::string>& repeatable) {
-  bool options_done = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& word = args[i];
-    // "-o" and other short options are options only where the command has them.
-    const bool looks_like_option = (word.size() > 2 && word.compare(0, 2, "--") == 0) ||
-                                   value_options.count(word) != 0 || flag_options.count(word) != 0;
-    if (options_done || !looks_like_option) {
-      if (word == "--" && !options_done) {
-        options_done = true;
-        continue;
-      }
-      out.positionals.push_back(word);
-      continue;
-    }
-    if (flag_options.count(word) != 0) {
-      out.flags.insert(word);
-      continue;
-    }
-    if (value_options.count(word) == 0) {
-      error = "unknown option " + host::printable(word);
-      return false;
-    }
-    if (i + 1 >= args.size()) {
-      error = "option " + word + " needs a value";
-      return false;
-    }
-    const std::string& value = args[++i];
-    auto found = out.options.find(word);
-    if (found != out.options.end()) {
-      if (repeatable.count(word) == 0) {
-        error = "option " + word + " given twice";
-        return false;
-      }
-      found->second += '\n';
-      found->second += value;
-    } else {
-      out.options.emplace(word, value);
-    }
-  }
-  return true;
+  return fail("unknown " + std::string(p.name) + " command '" + host::printable(name) + "' (expected " + command_names(p) + ")");
 }
 
 bool parse_arguments(const words& args, const option_list& options, arguments& out, std::string& error) {
@@ -181,6 +232,7 @@ option_list joined(option_list a, const option_list& b) {
 const option_list& common_options() {
   static const option_list options = {
       {"--profile", "FILE", "@file", "the wire parameters to use, a profile (JSON; trionet-profile(1))"},
+      {"--fail-on-limit", nullptr, "", "exit 4, not 0, when a limit cut the run short (trionet(1), EXIT STATUS)"},
       {"--help", nullptr, "", "print the help text and exit (also -h)"},
   };
   return options;
@@ -190,19 +242,7 @@ const option_list& common_options() {
 // output, input
 
 bool output::flush() {
-  if (failed_) return false;
-  const char* p = text_.data();
-  std::size_t left = text_.size();
-  while (left > 0) {
-    const ssize_t wrote = ::write(STDOUT_FILENO, p, left);
-    if (wrote < 0 && errno == EINTR) continue;
-    if (wrote <= 0) {
-      failed_ = true;
-      return false;
-    }
-    p += wrote;
-    left -= static_cast<std::size_t>(wrote);
-  }
+  if (!write_stdout(text_)) return false;
   text_.clear();
   return true;
 }
@@ -216,7 +256,7 @@ input::~input() {
 bool input::open(const std::string& path, std::string& error) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
-    error = "cannot open " + path + ": " + std::strerror(errno);
+    error = "cannot open " + host::printable(path) + ": " + std::strerror(errno);
     return false;
   }
   if (owned_) ::close(fd_);
@@ -307,15 +347,14 @@ event& event::signed_number(std::string_view name, std::int64_t value) {
 }
 
 event& event::real(std::string_view name, double value) {
-  char text[112];
+  char text[400];  // the key, and the longest plain decimal of a double (about 330 characters)
   const std::size_t at = put_key(text, name.substr(0, 64));
   if (!(value == value) || value > 1.7976931348623157e308 || value < -1.7976931348623157e308) {
     put(text, at);
     put("null", 4);
     return *this;
   }
-  // A whole number below 10^5 in magnitude: its shortest form is its digits (from 10^5 on, to_chars may
-  // choose 1e+05), written without the general conversion. -0 takes the general path, which keeps its sign.
+  // A whole number below 10^5 in magnitude: its digits, written without the general conversion. -0 takes the general path, which keeps its sign.
   if (value > -1e5 && value < 1e5 && !(value == 0.0 && std::signbit(value)) &&
       static_cast<double>(static_cast<std::int32_t>(value)) == value) {
     std::size_t end = at;
@@ -326,7 +365,9 @@ event& event::real(std::string_view name, double value) {
     put(text, end);
     return *this;
   }
-  const auto result = std::to_chars(text + at, text + sizeof text, value);
+  // Plain decimals, never an exponent ("0.0001", not "1e-04"): the shortest digits that read back as the
+  // same double.
+  const auto result = std::to_chars(text + at, text + sizeof text, value, std::chars_format::fixed);
   put(text, static_cast<std::size_t>(result.ptr - text));
   return *this;
 }

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "arguments.hpp"
 #include "trionet/host/text.hpp"
 
 namespace trionet::cli {
@@ -23,13 +24,46 @@ using host::parse_integer;
 constexpr int exit_ok = 0;     ///< the input was read (wire errors are events, not failures)
 constexpr int exit_io = 1;     ///< reading or writing failed
 constexpr int exit_usage = 2;  ///< misuse: bad arguments
-constexpr int exit_check = 3;  ///< a requested check failed (genius timing --check)
+constexpr int exit_check = 3;  ///< a requested check failed (genius timing --check), or nothing was learned
+constexpr int exit_limit = 4;  ///< a limit cut the work short and --fail-on-limit was given
+
+/// Appends printf-formatted text to `out` (the tool's output is put together in strings and written with
+/// write_stdout).
+std::string& appendf(std::string& out, const char* format, ...) __attribute__((format(printf, 2, 3)));
 
 /// Prints "trionet: <message>" on stderr and returns the usage exit code (2).
 int fail(const std::string& message);
 
 /// Prints "trionet: <message>" on stderr and returns the I/O failure exit code (1).
 int fail_io(const std::string& message);
+
+/// Prints "trionet: <message>" on stderr (a control character in it shown escaped).
+void note(const std::string& message);
+
+/// A limit cut the work short (a run's length, a count): prints "trionet: <message>" on stderr and returns
+/// 0, or exit_limit (4) when the command line has --fail-on-limit (taken by the dispatcher for every
+/// command).
+int limit_reached(const std::string& message);
+
+// ---------------------------------------------------------------------------------------------------------
+// standard output
+
+/// Writes `text` to standard output at once (stdio's buffer is flushed first, so the order holds). False
+/// when writing failed, then and ever after; the cause is kept for `fail_output`. SIGPIPE is ignored by the
+/// tool, so a closed pipe is such a failure (EPIPE), not a silent death.
+bool write_stdout(std::string_view text);
+
+/// True once writing standard output failed.
+bool output_failed();
+
+/// Prints "trionet: cannot write standard output: <cause>" (once, however often it is called) and returns
+/// exit_io (1).
+int fail_output();
+
+/// The exit status of a command that returned `status`: stdio's standard output is flushed, and if any
+/// write to standard output failed the status is exit_io with the message printed once (a command that
+/// writes with printf learns of a closed output here). Called by main() after every command.
+int finish_output(int status);
 
 /// A whole finite decimal real number (see host::parse_real), any magnitude a double holds.
 inline bool parse_real(std::string_view text, double& out) {
@@ -38,9 +72,6 @@ inline bool parse_real(std::string_view text, double& out) {
 
 // ---------------------------------------------------------------------------------------------------------
 // commands
-
-/// The words after a command's name.
-using words = std::vector<std::string>;
 
 /// One option of a command, or one of its operands: an entry of the command's option table, which
 /// `parse_arguments` reads and from which the man pages and the shell completion are written
@@ -86,7 +117,8 @@ struct part {
 
 /// Runs `trionet <part> <words...>`: no command prints the part's usage on stderr (exit 2); `--help`/`-h`
 /// prints it on stdout; `--version` prints the version; `<command> ... --help` (anywhere before `--`) prints
-/// the command's help; an unknown command is a usage error.
+/// the command's help; an unknown command is a usage error. The options every command takes are taken out
+/// before the command runs: `--profile FILE` and `--fail-on-limit`.
 int dispatch(const part& p, const words& args);
 
 /// The part's usage text: its commands with their summaries, then its notes.
@@ -101,26 +133,9 @@ extern const part genius_part;  ///< genius_cli.cpp
 extern const part profile_part;  ///< profile_cli.cpp
 
 // ---------------------------------------------------------------------------------------------------------
-// arguments
+// arguments (arguments.hpp: the words split into options, flags and positionals)
 
-/// Command-line words split into `--name value` options, bare `--flag`s and positionals.
-struct arguments {
-  std::map<std::string, std::string> options;
-  std::set<std::string> flags;
-  std::vector<std::string> positionals;
-
-  bool has(const std::string& name) const { return options.count(name) != 0; }
-  bool flag(const std::string& name) const { return flags.count(name) != 0; }
-};
-
-/// Splits `words` into options that take a value, flags, and positionals. Unknown options, a missing value
-/// or a repeated option are errors; `repeatable` options collect every value, joined by '\n'.
-/// "--" ends option parsing. Returns false with `error` set on failure.
-bool parse_arguments(const words& args, const std::set<std::string>& value_options,
-                     const std::set<std::string>& flag_options, arguments& out, std::string& error,
-                     const std::set<std::string>& repeatable = {});
-
-/// As above, with the options of a command's option table (its operands are positionals).
+/// Splits `args` with the options of a command's option table (its operands are positionals).
 bool parse_arguments(const words& args, const option_list& options, arguments& out, std::string& error);
 
 // ---------------------------------------------------------------------------------------------------------
@@ -138,13 +153,13 @@ class output {
   std::string& text() { return text_; }
   /// Writes when the buffer is past `flush_at`.
   bool maybe_flush() { return text_.size() < flush_at || flush(); }
-  /// Writes everything buffered to standard output. False if writing failed (then and ever after).
+  /// Writes everything buffered to standard output (write_stdout). False if writing failed (then and ever
+  /// after).
   bool flush();
-  bool failed() const { return failed_; }
+  bool failed() const { return output_failed(); }
 
  private:
   std::string text_;
-  bool failed_ = false;
 };
 
 /// Reads standard input (or a file) in chunks of at most 64 KiB, each as soon as it is available.
@@ -182,7 +197,7 @@ int stream_stdin(output& out, Feed&& feed) {
     }
     if (chunk.empty()) return exit_ok;
     feed(chunk);
-    if (!out.flush()) return fail_io("cannot write standard output");
+    if (!out.flush()) return fail_output();
   }
 }
 
@@ -204,7 +219,7 @@ class event {
 
   event& number(std::string_view name, std::uint64_t value);
   event& signed_number(std::string_view name, std::int64_t value);
-  /// A real number, shortest form; null if not finite.
+  /// A real number as a plain decimal (no exponent), the shortest that reads back; null if not finite.
   event& real(std::string_view name, double value);
   event& boolean(std::string_view name, bool value);
   /// A string field; the text is escaped (host::append_json_string).

@@ -1,7 +1,9 @@
 // `trionet genius ...`: encode and decode Genius transmissions, and the bus-access timing analysis.
 // Formats are documented in docs/genius.md.
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -216,8 +218,7 @@ int encode_main(const std::vector<std::string>& words) {
       line += (out[i].control ? "c:" : "") + hex2(out[i].byte);
     }
   }
-  std::printf("%s\n", line.c_str());
-  return exit_ok;
+  return write_stdout(line + "\n") ? exit_ok : fail_output();
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -427,7 +428,7 @@ int decode_capture(const arguments& args) {
   stream.summary();
   output out;
   out.text() = pending;
-  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+  return out.flush() ? exit_ok : fail_output();
 }
 
 int decode_main(const std::vector<std::string>& all) {
@@ -457,11 +458,11 @@ int decode_main(const std::vector<std::string>& all) {
   if (args.has("--write-pcap")) {
     const std::string& path = args.options.at("--write-pcap");
     capture_file.open(path, std::ios::binary | std::ios::trunc);
-    if (!capture_file) return fail_io("cannot write " + path);
+    if (!capture_file) return fail_io("cannot write the capture " + host::printable(path) + ": " + std::strerror(errno));
     writer = std::make_unique<host::pcapng_writer>(capture_file, version_line());
     const host::pcapng_interface_result line =
         writer->add_interface(std::string("genius ") + genius::properties(rate).name, host::capture_network::genius);
-    if (!line) return fail_io("cannot write " + path);
+    if (!line) return fail_io("cannot write the capture " + host::printable(path));
     stream.capture_to(writer.get(), line.id, genius::character_time_us(rate) * 1000.0);
   }
 
@@ -506,10 +507,10 @@ int decode_main(const std::vector<std::string>& all) {
     capture_file.flush();
     if (!stream.capture_ok() || !capture_file) {
       out.flush();
-      return fail_io("cannot write " + args.options.at("--write-pcap"));
+      return fail_io("cannot write the capture " + host::printable(args.options.at("--write-pcap")));
     }
   }
-  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+  return out.flush() ? exit_ok : fail_output();
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -563,7 +564,7 @@ int timing_main(const std::vector<std::string>& words) {
   arguments args;
   std::string error;
   if (!parse_arguments(words, timing_options, args, error)) return fail(error);
-  if (!args.positionals.empty()) return fail("unexpected argument '" + args.positionals[0] + "'");
+  if (!args.positionals.empty()) return fail("unexpected argument '" + host::printable(args.positionals[0]) + "'");
   if (!args.has("--rate")) return fail("timing needs --rate 153.6s|153.6e|76.8|38.4");
   genius::rate rate{};
   if (!genius::rate_from_name(args.options["--rate"], rate)) {
@@ -627,53 +628,53 @@ int timing_main(const std::vector<std::string>& words) {
              ",\"margin_us\":" + json_us(m.margin_us) + "}";
     }
     out += "]}";
-    std::printf("%s\n", out.c_str());
-    return verdict;
+    return write_stdout(out + "\n") ? verdict : fail_output();
   }
 
+  std::string text;
   const genius::device_position* sender = nullptr;
   for (const genius::device_position& d : devices) {
     if (d.sba == after) sender = &d;
   }
-  std::printf("rate %s (%s): bit time %s us, skip time %s us (%s)\n", props.name, props.description,
+  appendf(text, "rate %s (%s): bit time %s us, skip time %s us (%s)\n", props.name, props.description,
               fixed2(timing.bit_time_us).c_str(), fixed2(timing.skip_us).c_str(),
               explicit_skip ? "explicit" : "rule");
-  std::printf("propagation %s us per 2000 ft, detection time %s us\n",
+  appendf(text, "propagation %s us per 2000 ft, detection time %s us\n",
               format_real(timing.propagation_us_per_2000ft).c_str(), fixed2(timing.detection_us).c_str());
-  std::printf("after the Stop of SBA %u at %s ft:\n", static_cast<unsigned>(after),
+  appendf(text, "after the Stop of SBA %u at %s ft:\n", static_cast<unsigned>(after),
               format_real(sender->position_ft).c_str());
-  if (analysis.turn_count == 0) std::printf("  no other device\n");
-  if (analysis.turn_count != 0) std::printf("  SBA  position_ft  turn_start_us\n");
+  if (analysis.turn_count == 0) appendf(text, "  no other device\n");
+  if (analysis.turn_count != 0) appendf(text, "  SBA  position_ft  turn_start_us\n");
   for (std::size_t i = 0; i < analysis.turn_count; ++i) {
     const genius::turn& t = analysis.turns[i];
-    std::printf("  %s  %s  %s\n", pad_left(std::to_string(t.sba), 3).c_str(),
+    appendf(text, "  %s  %s  %s\n", pad_left(std::to_string(t.sba), 3).c_str(),
                 pad_left(format_real(t.position_ft), 11).c_str(), pad_left(fixed2(t.start_us), 13).c_str());
   }
   if (analysis.margin_count != 0)
-    std::printf("margins (second's turn minus the arrival of first's start bit at second):\n");
-  if (analysis.margin_count != 0) std::printf("  first  second  margin_us\n");
+    appendf(text, "margins (second's turn minus the arrival of first's start bit at second):\n");
+  if (analysis.margin_count != 0) appendf(text, "  first  second  margin_us\n");
   for (std::size_t i = 0; i < analysis.margin_count; ++i) {
     const genius::turn_margin& m = analysis.margins[i];
-    std::printf("  %s  %s  %s  %s\n", pad_left(std::to_string(m.first), 5).c_str(),
+    appendf(text, "  %s  %s  %s  %s\n", pad_left(std::to_string(m.first), 5).c_str(),
                 pad_left(std::to_string(m.second), 6).c_str(), pad_left(fixed2(m.margin_us), 9).c_str(),
                 m.margin_us < 0 ? "COLLISION (negative margin)"
                 : m.too_small   ? "TOO SMALL"
                                 : "ok");
   }
   if (analysis.too_small_count != 0) {
-    std::printf("%zu margin%s below the detection time: collision risk\n", analysis.too_small_count,
+    appendf(text, "%zu margin%s below the detection time: collision risk\n", analysis.too_small_count,
                 analysis.too_small_count == 1 ? "" : "s");
   }
   if (analysis.longer_than_rate_allows) {
-    std::printf("warning: the bus is %s ft long; %s allows %u ft\n",
+    appendf(text, "warning: the bus is %s ft long; %s allows %u ft\n",
                 format_real(analysis.bus_length_ft).c_str(), props.name,
                 static_cast<unsigned>(props.max_length_ft));
   }
   if (analysis.more_devices_than_rate_allows) {
-    std::printf("warning: %zu devices; %s allows %u\n", devices.size(), props.name,
+    appendf(text, "warning: %zu devices; %s allows %u\n", devices.size(), props.name,
                 static_cast<unsigned>(props.max_devices));
   }
-  return verdict;
+  return write_stdout(text) ? verdict : fail_output();
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -3,6 +3,8 @@
 // exactly one answer, writes the profile in effect with that answer into `-o FILE`.
 #include "learn_cli.hpp"
 
+#include <unistd.h>
+
 #include <cinttypes>
 #include <cstdio>
 #include <string>
@@ -17,6 +19,8 @@
 #include "ring_cli.hpp"
 #include "trionet/genius/character.hpp"
 #include "trionet/host/capture.hpp"
+#include "trionet/host/files.hpp"
+#include "trionet/host/progress.hpp"
 #include "trionet/q32.hpp"
 
 namespace trionet::cli {
@@ -91,32 +95,32 @@ namespace {
 constexpr std::size_t max_input = std::size_t{64} << 20U;
 
 int too_much_input() {
-  return fail("the input is larger than 64 MiB: a few frames suffice for learning (docs/profile.md)");
+  return fail_io("the capture holds more than 64 MiB of frames: a few frames suffice for learning (docs/profile.md)");
 }
 
-// The whole of FILE, or of standard input when there is none (or it is "-").
-int read_input(const std::vector<std::string>& positionals, std::string& text) {
+// The whole of FILE, or of standard input when there is none (or it is "-"), at most 64 MiB; `what` names
+// the command on the progress line.
+int read_input(const std::vector<std::string>& positionals, std::string& text, const char* what) {
   if (positionals.size() > 1) return fail("unexpected argument '" + host::printable(positionals[1]) + "'");
-  input in;
-  std::string error;
   const bool from_file = !positionals.empty() && positionals[0] != "-";
-  if (from_file && !in.open(positionals[0], error)) return fail_io(error);
-  std::string_view chunk;
-  while (true) {
-    if (!in.read(chunk, error)) return fail_io(error);
-    if (chunk.empty()) return exit_ok;
-    if (text.size() + chunk.size() > max_input) return too_much_input();
-    text.append(chunk.data(), chunk.size());
-  }
+  host::progress shown(what, "bytes read", 0);
+  const host::file_result read = from_file ? host::read_bounded_file(positionals[0], max_input, text, &shown)
+                                           : host::read_bounded_fd(STDIN_FILENO, max_input, text, &shown);
+  if (read) return exit_ok;
+  std::string message = read.message(from_file ? positionals[0] : "standard input");
+  if (read.status == host::file_status::too_large) message += " (64 MiB): a few frames suffice for learning";
+  return fail_io(message);
 }
 
 // The bytes of every record of `network` in a capture (events for records of other networks are printed).
-int read_capture_bytes(const std::string& path, host::capture_network network, std::vector<std::uint8_t>& out,
-                       std::vector<std::uint16_t>* genius_words = nullptr) {
+int read_capture_bytes(const std::string& path, host::capture_network network, const char* what,
+                       std::vector<std::uint8_t>& out, std::vector<std::uint16_t>* genius_words = nullptr) {
   bool too_much = false;
+  host::progress shown(what, "bytes of records read", 0);
   const int status = read_capture(
       path, network, false, active_profile().can.node_count,
       [&](const host::pcapng_record& record, const capture_position&, std::string&) {
+        shown.update(static_cast<double>(out.size() + (genius_words != nullptr ? 2 * genius_words->size() : 0)));
         too_much =
             too_much || out.size() + record.bytes.size() > max_input ||
             (genius_words != nullptr && genius_words->size() + record.bytes.size() / 2 > max_input / 2);
@@ -154,16 +158,16 @@ int each_word(const std::string& text, const char* expected, Take&& take) {
   return exit_ok;
 }
 
-// The ring bytes the arguments point at.
-int ring_input(const arguments& args, std::vector<std::uint8_t>& bytes) {
+// The ring bytes the arguments point at; `what` names the command on the progress line.
+int ring_input(const arguments& args, std::vector<std::uint8_t>& bytes, const char* what) {
   if (args.has("--pcap")) {
     if (args.flag("--raw") || !args.positionals.empty()) {
       return fail("--pcap reads a capture file: no --raw and no FILE with it");
     }
-    return read_capture_bytes(args.options.at("--pcap"), host::capture_network::ring, bytes);
+    return read_capture_bytes(args.options.at("--pcap"), host::capture_network::ring, what, bytes);
   }
   std::string text;
-  const int status = read_input(args.positionals, text);
+  const int status = read_input(args.positionals, text, what);
   if (status != exit_ok) return status;
   if (args.flag("--raw")) {
     bytes.assign(text.begin(), text.end());
@@ -201,7 +205,7 @@ void crc_events(std::string& out, const Classes& classes, int digits) {
 
 // Writes the profile with what was learned when asked to (-o) and it was learned; the exit status.
 int finish(bool learned, const arguments& args, const learn::profile& p, output& out) {
-  if (!out.flush()) return fail_io("cannot write standard output");
+  if (!out.flush()) return fail_output();
   if (!learned) return exit_check;
   if (!args.has("-o")) return exit_ok;
   return write_profile_file(p, args.options.at("-o"));
@@ -210,13 +214,16 @@ int finish(bool learned, const arguments& args, const learn::profile& p, output&
 int ring_learn_crc(const arguments& args) {
   if (args.has("--sent")) return fail("--sent applies to ring learn layout");
   std::vector<std::uint8_t> bytes;
-  const int status = ring_input(args, bytes);
+  const int status = ring_input(args, bytes, "ring learn crc");
   if (status != exit_ok) return status;
   const learn::frame_extraction found = learn::variable_transfers(byte_view(bytes.data(), bytes.size()));
   learn::crc_learn_options options;
   options.layout = active_profile().ring.layout;
   options.even_polynomials = args.flag("--even");
+  host::progress shown("ring learn crc", "polynomials tried", 0x20000);
+  options.progress = [&shown](double done, double) { shown.update(done); };
   const learn::crc_learn_result r = learn::learn_ring_crc(found.frames, options);
+  shown.finish();
   output out;
   crc_events(out.text(), r.classes, 4);
   {
@@ -235,7 +242,7 @@ int ring_learn_layout(const arguments& args) {
     return fail("ring learn layout needs --sent LIST (the VR numbers and values sent)");
   if (args.flag("--even")) return fail("--even applies to ring learn crc");
   std::string list;
-  const int read = read_input({args.options.at("--sent")}, list);
+  const int read = read_input({args.options.at("--sent")}, list, "ring learn layout");
   if (read != exit_ok) return read;
   const learn::sent_list_result sent = learn::parse_sent_list(list);
   if (!sent) {
@@ -243,7 +250,7 @@ int ring_learn_layout(const arguments& args) {
                 ": " + learn::to_string(sent.status) + " (expected \"VR VALUE\", VR 0..16383)");
   }
   std::vector<std::uint8_t> bytes;
-  const int status = ring_input(args, bytes);
+  const int status = ring_input(args, bytes, "ring learn layout");
   if (status != exit_ok) return status;
   const learn::frame_extraction found = learn::variable_transfers(byte_view(bytes.data(), bytes.size()));
   learn::layout_learn_options options;
@@ -289,11 +296,11 @@ int genius_input(const arguments& args, std::vector<genius::character>& characte
     }
     std::vector<std::uint8_t> unused;
     const int status =
-        read_capture_bytes(args.options.at("--pcap"), host::capture_network::genius, unused, &words);
+        read_capture_bytes(args.options.at("--pcap"), host::capture_network::genius, "genius learn crc", unused, &words);
     if (status != exit_ok) return status;
   } else {
     std::string text;
-    const int status = read_input(args.positionals, text);
+    const int status = read_input(args.positionals, text, "genius learn crc");
     if (status != exit_ok) return status;
     if (args.flag("--raw")) {
       if (text.size() % 2 != 0) return fail("--raw input has an odd number of bytes (2 bytes per character)");
@@ -330,7 +337,10 @@ int genius_learn_crc(const arguments& args) {
   samples.insert(samples.end(), found.stops.begin(), found.stops.end());
   learn::crc6_learn_options options;
   options.even_polynomials = args.flag("--even");
+  host::progress shown("genius learn crc", "polynomials tried", 64);
+  options.progress = [&shown](double done, double) { shown.update(done); };
   const learn::crc6_learn_result r = learn::learn_genius_crc(samples, options);
+  shown.finish();
   output out;
   crc_events(out.text(), r.classes, 2);
   {

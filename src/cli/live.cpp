@@ -1,6 +1,7 @@
 // Pieces the live-network commands share: see live.hpp.
 #include "live.hpp"
 
+#include <poll.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -17,14 +18,28 @@ std::uint64_t now_ns() {
   return static_cast<std::uint64_t>(t.tv_sec) * 1000000000u + static_cast<std::uint64_t>(t.tv_nsec);
 }
 
+void event_log::write(const std::string& text) {
+  if (fd_ == STDOUT_FILENO) {
+    write_stdout(text);
+    return;
+  }
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t wrote = ::write(fd_, text.data() + done, text.size() - done);
+    if (wrote < 0 && errno == EINTR) continue;
+    if (wrote <= 0) return;  // standard error is gone: nothing left to tell
+    done += static_cast<std::size_t>(wrote);
+  }
+}
+
 void event_log::flush() {
   if (text_.empty()) return;
   if (json_ && keep_ == 0) {
-    std::fwrite(text_.data(), 1, text_.size(), to_);
-    std::fflush(to_);
+    write(text_);
     text_.clear();
     return;
   }
+  std::string people;
   std::size_t at = 0;
   while (at < text_.size()) {
     std::size_t end = text_.find('\n', at);
@@ -35,12 +50,12 @@ void event_log::flush() {
       kept_.push_back(std::move(line));
       if (kept_.size() > keep_) kept_.pop_front();
     } else {
-      line += '\n';
-      std::fwrite(line.data(), 1, line.size(), to_);
+      people += line;
+      people += '\n';
     }
   }
   text_.clear();
-  if (keep_ == 0) std::fflush(to_);
+  if (!people.empty()) write(people);
 }
 
 namespace {
@@ -115,28 +130,22 @@ extern "C" void on_report(int) {
   report_flag = 1;
 }
 
-constexpr int watched[5] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGPIPE};
+constexpr int watched[4] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1};
 
 }  // namespace
 
 signal_watch::signal_watch() {
-  for (std::size_t i = 0; i < 5; ++i) {
+  for (std::size_t i = 0; i < 4; ++i) {
     struct sigaction action {};
     sigemptyset(&action.sa_mask);
     action.sa_flags = 0;  // no SA_RESTART: poll() returns EINTR at once
-    if (watched[i] == SIGUSR1) {
-      action.sa_handler = on_report;
-    } else if (watched[i] == SIGPIPE) {
-      action.sa_handler = SIG_IGN;
-    } else {
-      action.sa_handler = on_stop;
-    }
+    action.sa_handler = watched[i] == SIGUSR1 ? on_report : on_stop;
     ::sigaction(watched[i], &action, &old_[i]);
   }
 }
 
 signal_watch::~signal_watch() {
-  for (std::size_t i = 0; i < 5; ++i) ::sigaction(watched[i], &old_[i], nullptr);
+  for (std::size_t i = 0; i < 4; ++i) ::sigaction(watched[i], &old_[i], nullptr);
 }
 
 bool signal_watch::stop_requested() noexcept {
@@ -149,12 +158,51 @@ bool signal_watch::take_report_request() noexcept {
   return true;
 }
 
+// ---- the wait of a live command ----
+
+std::size_t event_loop::watch(int fd, short events) {
+  fds_.push_back(pollfd{fd, events, 0});
+  return fds_.size() - 1;
+}
+
+void event_loop::set(std::size_t index, int fd, short events) {
+  fds_[index].fd = fd;
+  fds_[index].events = events;
+}
+
+bool event_loop::wait(int timeout_ms) {
+  for (pollfd& p : fds_) p.revents = 0;
+  if (log_ != nullptr) log_->flush();
+  if (!running()) return false;
+  const int ready = ::poll(fds_.data(), fds_.size(), timeout_ms);
+  if (ready < 0 && errno != EINTR) lost(std::string("poll: ") + std::strerror(errno));
+  if (ready < 0) {
+    for (pollfd& p : fds_) p.revents = 0;
+  }
+  return running();
+}
+
+void event_loop::lost(std::string cause) {
+  if (lost_.empty()) lost_ = std::move(cause);
+}
+
+bool event_loop::running() const {
+  return !stopped_ && lost_.empty() && !signal_watch::stop_requested() && !output_failed();
+}
+
+int event_loop::finish(const std::string& command) {
+  if (log_ != nullptr) log_->flush();
+  if (output_failed()) return fail_output();
+  if (!lost_.empty()) return fail_io(command + ": " + lost_);
+  return exit_ok;
+}
+
 // ---- captures ----
 
 bool capture_file::open(const std::string& path, std::string& error) {
   file_.open(path, std::ios::binary | std::ios::trunc);
   if (!file_) {
-    error = "cannot write the capture " + path + ": " + std::strerror(errno);
+    error = "cannot write the capture " + host::printable(path) + ": " + std::strerror(errno);
     return false;
   }
   writer_ = std::make_unique<host::pcapng_writer>(file_);

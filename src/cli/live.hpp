@@ -2,6 +2,8 @@
 // wall clock, signals, a capture file, and command lines read from standard input.
 #pragma once
 
+#include <poll.h>
+
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -30,14 +32,16 @@ std::uint64_t now_ns();
 /// time; values as in JSON).
 class event_log {
  public:
-  explicit event_log(bool json, std::FILE* to = stdout) : json_(json), to_(to) {}
+  /// Events to standard output (`fd` 1, through write_stdout: a failure ends the command), or to standard
+  /// error (`fd` 2).
+  explicit event_log(bool json, int fd = 1) : json_(json), fd_(fd) {}
   ~event_log() { flush(); }
   event_log(const event_log&) = delete;
   event_log& operator=(const event_log&) = delete;
 
   /// Where an event is appended: `event(log.text(), "kind").time(t)...`.
   std::string& text() noexcept { return text_; }
-  /// Writes the events gathered so far and flushes the stream.
+  /// Writes the events gathered so far.
   void flush();
   /// From now on `flush` keeps the last `count` events as text for people instead of writing them (a
   /// screen shows them).
@@ -46,9 +50,11 @@ class event_log {
   [[nodiscard]] const std::deque<std::string>& kept() const noexcept { return kept_; }
 
  private:
+  void write(const std::string& text);
+
   std::string text_;
   bool json_;
-  std::FILE* to_;
+  int fd_;
   std::size_t keep_ = 0;
   std::deque<std::string> kept_;
 };
@@ -60,9 +66,9 @@ std::string text_for_people(std::string_view json_line);
 // ---- signals ----
 
 /// Ctrl-C, SIGTERM and SIGHUP ask the command to stop (it then puts back the port and the terminal, writes
-/// its counters and ends); SIGUSR1 asks for the counters now. SIGPIPE is ignored (a closed socket is an
-/// error from write). Installed without SA_RESTART, so a waiting poll() returns at once. Restores the old
-/// handlers on destruction.
+/// its counters and ends); SIGUSR1 asks for the counters now. (SIGPIPE is ignored by the whole tool: a
+/// closed socket or pipe is an error from write.) Installed without SA_RESTART, so a waiting poll() returns
+/// at once. Restores the old handlers on destruction.
 class signal_watch {
  public:
   signal_watch();
@@ -75,7 +81,56 @@ class signal_watch {
   static bool take_report_request() noexcept;
 
  private:
-  struct sigaction old_[5];
+  struct sigaction old_[4];
+};
+
+// ---- the wait of a live command ----
+
+/// The one wait every live command runs in: poll() over its descriptors (the port, standard input, a
+/// socket), woken at once by the signals `signal_watch` catches. Before each wait the event log is written,
+/// so an event is out as soon as it happened. The loop ends when the command is asked to stop (Ctrl-C,
+/// SIGTERM, SIGHUP), ends itself (`stop`: quit, its input ended), loses its link (`lost`), or its output
+/// fails; `finish` turns that into the exit status (docs/cli.md).
+class event_loop {
+ public:
+  /// `log` may be null (a command without events).
+  explicit event_loop(event_log* log) : log_(log) {}
+
+  /// Watches `fd` (not watched while negative) for `events`; the index for `set` and `ready`.
+  std::size_t watch(int fd, short events);
+  void set(std::size_t index, int fd, short events);
+
+  /// Writes the log, then waits at most `timeout_ms` (0: only looks; -1: no limit) for a watched descriptor
+  /// or a signal. False when the loop has ended (before or during the wait).
+  bool wait(int timeout_ms);
+  /// The events poll() found on a descriptor in the last wait (0 after a timeout).
+  [[nodiscard]] short events(std::size_t index) const noexcept { return fds_[index].revents; }
+  /// True when the last wait found the descriptor readable, closed or failed.
+  [[nodiscard]] bool readable(std::size_t index) const noexcept {
+    return (fds_[index].revents & (POLLIN | POLLHUP | POLLERR | POLLNVAL)) != 0;
+  }
+  /// True once per SIGUSR1 (the counters asked for).
+  static bool report_requested() noexcept { return signal_watch::take_report_request(); }
+
+  /// The command ends normally (quit, its input ended): exit status 0.
+  void stop() noexcept { stopped_ = true; }
+  /// The link is lost ("/dev/pts/3 closed", "can0: Network is down"): exit status 1 with that message.
+  void lost(std::string cause);
+  /// True until the loop has ended for any reason.
+  [[nodiscard]] bool running() const;
+  /// True when the link was lost.
+  [[nodiscard]] bool link_lost() const noexcept { return !lost_.empty(); }
+
+  /// Writes the log and gives the exit status: 1 with one message when the output failed or the link was
+  /// lost ("trionet: <command>: <cause>"), else 0.
+  int finish(const std::string& command);
+
+ private:
+  signal_watch signals_;
+  event_log* log_;
+  std::vector<pollfd> fds_;
+  bool stopped_ = false;
+  std::string lost_;
 };
 
 // ---- captures ----

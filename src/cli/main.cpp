@@ -1,5 +1,6 @@
 // `trionet`: encode, decode, simulate and analyse Trio fibre-ring, TN20-17 CAN and Genius bus traffic
 // (docs/cli.md). The parts and their command tables are in <part>_cli.cpp; cli.cpp dispatches.
+#include <csignal>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -22,22 +23,25 @@ std::string usage() {
     out += "  " + name + " " + p->summary + "\n";
   }
   out += "\nRun `trionet <part> --help` for a part's commands, `trionet <part> <command> --help` for a command's\n"
-         "options. Every command takes --profile FILE: the wire parameters to use (docs/profile.md).\n"
-         "Exit status: 0 the input was read (wire errors are reported as events), 1 reading or\n"
-         "writing failed, 2 bad arguments, 3 a --check failed or a learn command found no single answer.\n";
+         "options. Every command takes --profile FILE (the wire parameters to use, docs/profile.md) and\n"
+         "--fail-on-limit (a run a limit cut short exits 4, not 0). Options: --name value or --name=value.\n"
+         "Exit status (docs/cli.md has it command by command): 0 done (wire errors are reported as\n"
+         "events), 1 reading or writing failed or a live link was lost, 2 bad arguments, 3 a --check\n"
+         "failed or a learn command found no single answer, 4 a limit cut the run short (--fail-on-limit).\n";
   return out;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::vector<std::string> words(argv + 1, argv + argc);
+namespace {
+
+int run(const std::vector<std::string>& words) {
   if (words.empty()) {
     std::fputs(("trionet: a part is needed: ring, can, genius or profile\n" + usage()).c_str(), stderr);
     return trionet::cli::exit_usage;
   }
   if (words[0] == "--help" || words[0] == "-h" || words[0] == "help") {
-    std::fputs(usage().c_str(), stdout);
+    trionet::cli::write_stdout(usage());
     return trionet::cli::exit_ok;
   }
   // The man pages and the completion script, written from the command tables (manual.hpp).
@@ -61,11 +65,19 @@ int main(int argc, char** argv) {
     return std::fflush(stdout) == 0 ? trionet::cli::exit_ok : trionet::cli::fail_io("cannot write standard output");
   }
   if (words[0] == "--version") {
-    std::printf("%s\n", trionet::cli::version_line().c_str());
+    trionet::cli::write_stdout(trionet::cli::version_line() + "\n");
     return trionet::cli::exit_ok;
   }
   for (const part* p : parts) {
     if (words[0] == p->name) return trionet::cli::dispatch(*p, std::vector<std::string>(words.begin() + 1, words.end()));
   }
   return trionet::cli::fail("unknown part '" + trionet::host::printable(words[0]) + "' (expected ring, can, genius or profile)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed output is an error a command reports (EPIPE from write), not a silent death by SIGPIPE.
+  std::signal(SIGPIPE, SIG_IGN);
+  return trionet::cli::finish_output(run(std::vector<std::string>(argv + 1, argv + argc)));
 }

@@ -21,6 +21,8 @@ constexpr exit_status_entry exit_statuses[] = {
               "pcapng, an output that cannot be written, a live link that was lost"},
     {exit_usage, "bad arguments: one line \"trionet: PROBLEM\" on standard error, nothing on standard output"},
     {exit_check, "a --check found a problem (genius timing --check), or a learn command found no single answer"},
+    {exit_limit, "a limit cut the work short and --fail-on-limit was given (without it: 0, the limit said on "
+                 "standard error)"},
 };
 
 // An example a page prints: a command and its whole output, checked against the tool by the test

@@ -1,8 +1,9 @@
 // `--profile FILE` for every command, and `trionet profile show|header` (docs/profile.md).
 #include "profile_cli.hpp"
 
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 
 #include "trionet/host/files.hpp"
 
@@ -48,6 +49,18 @@ const option_list header_options = {
     {"-o", "OUT", "@file", "write the header to OUT (else to standard output)"},
 };
 
+// Writes `text` to the file `path`: the exit status, 1 with the cause when it cannot be written.
+int write_text_file(const std::string& path, const std::string& text, const char* what) {
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  const auto failed = [&] {
+    return fail_io(std::string("cannot write ") + what + " " + host::printable(path) + ": " + std::strerror(errno));
+  };
+  if (file == nullptr) return failed();
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  if (std::fclose(file) != 0 || !written) return failed();
+  return exit_ok;
+}
+
 // The profile a `profile` command works on: FILE if given, else the one in effect.
 int profile_argument(const arguments& args, learn::profile& out) {
   if (args.positionals.size() > 1)
@@ -85,14 +98,9 @@ int header_main(const words& all) {
     return fail("--namespace must be a C++ namespace name (identifiers joined by ::), got '" +
                 host::printable(name) + "'");
   if (!args.has("-o")) {
-    std::fputs(header.text.c_str(), stdout);
-    return std::fflush(stdout) == 0 ? exit_ok : fail_io("cannot write standard output");
+    return write_stdout(header.text) ? exit_ok : fail_output();
   }
-  std::ofstream file(args.options.at("-o"), std::ios::binary);
-  file << header.text;
-  file.close();
-  if (!file) return fail_io("cannot write " + host::printable(args.options.at("-o")));
-  return exit_ok;
+  return write_text_file(args.options.at("-o"), header.text, "header");
 }
 
 const command profile_commands[] = {
@@ -116,7 +124,7 @@ bool read_profile_file(const std::string& path, learn::profile& out, std::string
   std::string text;
   const host::file_result read = host::read_bounded_file(path, learn::max_json_bytes, text);
   if (!read) {
-    io = read.status != host::file_status::too_large;  // too large is a profile that is not valid
+    io = true;
     error = read.message(path, "profile");
     return false;
   }
@@ -139,14 +147,9 @@ bool read_profile_file(const std::string& path, learn::profile& out, std::string
 int write_profile_file(const learn::profile& p, const std::string& path) {
   const std::string text = learn::write_profile(p);
   if (path == "-") {
-    std::fputs(text.c_str(), stdout);
-    return std::fflush(stdout) == 0 ? exit_ok : fail_io("cannot write standard output");
+    return write_stdout(text) ? exit_ok : fail_output();
   }
-  std::ofstream file(path, std::ios::binary);
-  file << text;
-  file.close();
-  if (!file) return fail_io("cannot write profile " + host::printable(path));
-  return exit_ok;
+  return write_text_file(path, text, "profile");
 }
 
 int take_profile_option(words& args) {
@@ -154,13 +157,15 @@ int take_profile_option(words& args) {
   bool found = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--") break;
-    if (args[i] != "--profile") continue;
+    const bool joined = args[i].compare(0, 10, "--profile=") == 0;  // --profile=FILE
+    if (args[i] != "--profile" && !joined) continue;
     if (found) return fail("option --profile given twice");
-    if (i + 1 >= args.size()) return fail("option --profile needs a value");
-    path = args[i + 1];
+    if (!joined && i + 1 >= args.size()) return fail("option --profile needs a value");
+    path = joined ? args[i].substr(10) : args[i + 1];
     found = true;
+    const std::size_t taken = joined ? 1 : 2;
     args.erase(args.begin() + static_cast<std::ptrdiff_t>(i),
-               args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+               args.begin() + static_cast<std::ptrdiff_t>(i + taken));
     --i;
   }
   if (!found) return exit_ok;
@@ -175,7 +180,7 @@ int take_profile_option(words& args) {
 int check_ring_capacities(const std::string& command, ring_capacity_use use) {
   const learn::ring_profile& p = active_profile().ring;
   const auto refuse = [&](const char* key, std::size_t value) {
-    return fail("profile " + profile_path() + ": ring." + key + " is " + std::to_string(value) + ": `trionet " +
+    return fail("profile " + host::printable(profile_path()) + ": ring." + key + " is " + std::to_string(value) + ": `trionet " +
                 command + "` supports " + (use == ring_capacity_use::text_limit && key[0] == 'm' ? "at most " : "only ") +
                 std::to_string(ring::default_max_characters) +
                 " (a compile-time capacity; build a firmware with this profile from `trionet profile header`)");

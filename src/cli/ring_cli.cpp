@@ -64,8 +64,7 @@ int encode_main(const words& all) {
   if (!parse_arguments(rest, encode_options, args, error)) return fail(error);
   std::vector<std::uint8_t> frame;
   if (!ring_message_frame(all[0], args, frame, error)) return fail(error);
-  std::printf("%s\n", hex_line(frame.data(), frame.size()).c_str());
-  return exit_ok;
+  return write_stdout(hex_line(frame.data(), frame.size()) + "\n") ? exit_ok : fail_output();
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -198,7 +197,7 @@ int decode_main(const words& all) {
     });
     if (status != exit_ok) return status;
     bytes.finish();
-    return out.flush() ? exit_ok : fail_io("cannot write standard output");
+    return out.flush() ? exit_ok : fail_output();
   }
   ring_stream bytes(out.text(), where_kind::line);
   hex_reader hex(out.text(), bytes);
@@ -212,7 +211,7 @@ int decode_main(const words& all) {
     if (status != exit_ok) return status;
   }
   hex.finish();
-  return out.flush() ? exit_ok : fail_io("cannot write standard output");
+  return out.flush() ? exit_ok : fail_output();
 }
 
 const command ring_commands[] = {

@@ -1,6 +1,7 @@
 // `trionet ring join PORT --as mc|keypad`: a full node of a live ring. The node is the library's own
 // (motion_coordinator, keypad); this file pumps it over the port, watches both directions of the link for
-// events and the capture, and drives it from standard input or the keyboard.
+// events and the capture, and drives it from standard input or the keyboard. One session loop serves both
+// kinds of node: a role (mc_role, keypad_role) says what the node does with its input and what it reports.
 #include <poll.h>
 #include <unistd.h>
 
@@ -77,13 +78,13 @@ class watched_node final : public byte_port {
   std::uint64_t time_ = 0;
 };
 
-// A node on the port: opens it, pumps it, watches it. `Node` is host_mc or host_keypad.
+// A node on the port: opens it, pumps it in the command's event loop, watches it. `Node` is host_mc or
+// host_keypad.
 template <class Node>
 class station {
  public:
   // `log` gets the link's events: what arrives for this node (hops 1) and stray bytes; with --trace also
-  // what passes through and what the node sends. Each carries "link": "in" or "out" after its time. The log
-  // is flushed before every wait.
+  // what passes through and what the node sends. Each carries "link": "in" or "out" after its time.
   station(Node& node, const join_settings& settings, live::capture_file* capture, live::event_log& log)
       : node_(&node),
         settings_(settings),
@@ -102,7 +103,8 @@ class station {
   station(const station&) = delete;
   station& operator=(const station&) = delete;
 
-  bool open(std::string& error) {
+  // Opens the port and watches it in `loop`.
+  bool open(live::event_loop& loop, std::string& error) {
     if (!port_.open(settings_.port, settings_.link, error)) return false;
     if (port_.kind() == host::link_kind::standard_stream) {
       port_.close();
@@ -111,60 +113,60 @@ class station {
     }
     link_ = host::fd_link(port_.fd(), watched_);
     last_byte_ = live::now_ns();
+    loop_ = &loop;
+    slot_ = loop.watch(port_.fd(), POLLIN);
     return true;
   }
 
-  // One wait of at most `wait_ms` for the port (and standard input, if `input` >= 0). False when the port
-  // closed or failed (`ended` says why).
-  bool step(int wait_ms, int input, short& input_events, std::string& ended) {
-    input_events = 0;
-    pollfd fds[2] = {{port_.fd(), link_.poll_events(), 0}, {input, POLLIN, 0}};
-    if (node_->forward_backlog() + host_read_chunk > host_forward_capacity) {
-      fds[0].events = static_cast<short>(fds[0].events & ~POLLIN);
-    }
+  // Before a wait: what to wait for on the port, and how long the wait may be (at most `wait_ms`; less
+  // while a message is open, so that the idle line is seen in time).
+  int prepare(int wait_ms) {
+    short events = link_.poll_events();
+    if (node_->forward_backlog() + host_read_chunk > host_forward_capacity) events = static_cast<short>(events & ~POLLIN);
+    loop_->set(slot_, port_.fd(), events);
+    if (!watched_.in_message()) return wait_ms;
     const std::uint64_t now = live::now_ns();
-    int timeout = wait_ms;
-    if (watched_.in_message()) {
-      const std::uint64_t idle_at = last_byte_ + static_cast<std::uint64_t>(settings_.idle_ms) * 1000000u;
-      const long long left = idle_at > now ? static_cast<long long>((idle_at - now + 999999u) / 1000000u) : 0;
-      if (left < timeout) timeout = static_cast<int>(left);
-    }
-    log_->flush();
-    const int ready = ::poll(fds, input >= 0 ? 2 : 1, timeout);
-    if (ready < 0 && errno != EINTR) {
-      ended = std::string("poll: ") + std::strerror(errno);
-      return false;
-    }
+    const std::uint64_t idle_at = last_byte_ + static_cast<std::uint64_t>(settings_.idle_ms) * 1000000U;
+    const long long left = idle_at > now ? static_cast<long long>((idle_at - now + 999999U) / 1000000U) : 0;
+    return left < wait_ms ? static_cast<int>(left) : wait_ms;
+  }
+
+  // After a wait: moves the bytes the port has, and ends a message the idle line cut. A closed or failed
+  // port ends the loop (the link is lost).
+  void serve() {
     const std::uint64_t after = live::now_ns();
     watched_.set_time(after);
-    if (ready > 0 && fds[0].revents != 0) {
-      const host::pump_result r = link_.service(fds[0].revents);
+    const short revents = loop_->events(slot_);
+    if (revents != 0) {
+      const host::pump_result r = link_.service(revents);
       if (r.received != 0) last_byte_ = after;
       if (r.closed || r.error == EIO) {
-        ended = settings_.port + " closed";
-        return false;
+        loop_->lost(host::printable(settings_.port) + " closed");
+        return;
       }
       if (r.error != 0) {
-        ended = settings_.port + ": " + std::strerror(r.error);
-        return false;
+        loop_->lost(host::printable(settings_.port) + ": " + std::strerror(r.error));
+        return;
       }
     }
-    if (ready > 0 && input >= 0) input_events = fds[1].revents;
-    if (after - last_byte_ >= static_cast<std::uint64_t>(settings_.idle_ms) * 1000000u &&
-        watched_.in_message()) {
+    if (after - last_byte_ >= static_cast<std::uint64_t>(settings_.idle_ms) * 1000000U && watched_.in_message()) {
       (void)link_.idle();
       last_byte_ = after;
     }
-    return true;
+  }
+
+  // One wait of at most `wait_ms` with only the port moving (the loop's other descriptors are for the
+  // caller to mute). False when the loop has ended.
+  bool pump(int wait_ms) {
+    if (!loop_->wait(prepare(wait_ms))) return false;
+    serve();
+    return loop_->running();
   }
 
   // Lets what the node has queued go out (at most `ms` milliseconds).
   void flush_out(int ms) {
-    std::string ended;
-    short ignored = 0;
-    const std::uint64_t until = live::now_ns() + static_cast<std::uint64_t>(ms) * 1000000u;
-    while ((node_->transmit_pending() || link_.unsent() != 0) && live::now_ns() < until) {
-      if (!step(10, -1, ignored, ended)) return;
+    const std::uint64_t until = live::now_ns() + static_cast<std::uint64_t>(ms) * 1000000U;
+    while ((node_->transmit_pending() || link_.unsent() != 0) && live::now_ns() < until && pump(10)) {
     }
   }
 
@@ -191,8 +193,61 @@ class station {
   live::event_log* log_;
   watched_node watched_;
   host::fd_link link_;
+  live::event_loop* loop_ = nullptr;
+  std::size_t slot_ = 0;
   std::uint64_t last_byte_ = 0;
 };
+
+void add_link_counters(event& e, const ring::link_counters& c) {
+  e.number("messages_forwarded", c.messages_forwarded);
+  e.number("forwards_lost", c.forwards_lost);
+  e.number("forwards_cut", c.forwards_cut);
+  e.number("forwards_ended_idle", c.forwards_ended_idle);
+  e.number("messages_dropped", c.messages_dropped);
+  e.number("messages_sent", c.messages_sent);
+}
+
+// The session of either kind of node: opens the port, then waits for the port, standard input and the
+// signals in one loop; `Role` (mc_role, keypad_role) does what its kind of node does with the input and
+// says what it reports. Ends when the role is done (quit, or its input ended: what the node queued is sent
+// first), when asked to stop (Ctrl-C ...), when the link is lost or the output fails. Returns the exit
+// status (docs/cli.md).
+template <class Node, class Role>
+int run_session(const join_settings& settings, Node& node, live::capture_file& capture, live::event_log& log,
+                Role& role) {
+  live::event_loop loop(&log);
+  station<Node> st(node, settings, capture.is_open() ? &capture : nullptr, log);
+  std::string error;
+  if (!st.open(loop, error)) {
+    role.leave();
+    return fail_io("ring join: " + error);
+  }
+  const std::size_t input = loop.watch(STDIN_FILENO, POLLIN);
+  role.begin(st, loop, input);
+  while (loop.running()) {
+    if (live::event_loop::report_requested()) role.report(st);
+    loop.set(input, role.reading() ? STDIN_FILENO : -1, POLLIN);
+    if (!loop.wait(st.prepare(role.wait_ms()))) break;
+    st.serve();
+    role.after_wait(st);
+    if (loop.running() && loop.readable(input)) role.read_input();
+    role.act();
+    if (role.done() && loop.running()) {
+      loop.set(input, -1, 0);
+      st.flush_out(2000);
+      loop.stop();
+    }
+  }
+  role.leave();
+  role.counters(st);
+  log.flush();
+  st.finish();
+  const int status = loop.finish("ring join");
+  if (status == exit_ok && !capture.good()) return fail_io("ring join: writing the capture " + settings.pcap + " failed");
+  return status;
+}
+
+// ---- the Motion Coordinator ----
 
 // The Motion Coordinator's VR(): every VR the ring may name, and each write from the ring reported.
 class reported_vrs final : public vr_store {
@@ -216,17 +271,8 @@ class reported_vrs final : public vr_store {
   std::vector<write_record> writes_;
 };
 
-void add_link_counters(event& e, const ring::link_counters& c) {
-  e.number("messages_forwarded", c.messages_forwarded);
-  e.number("forwards_lost", c.forwards_lost);
-  e.number("forwards_cut", c.forwards_cut);
-  e.number("forwards_ended_idle", c.forwards_ended_idle);
-  e.number("messages_dropped", c.messages_dropped);
-  e.number("messages_sent", c.messages_sent);
-}
-
-template <class Mc>
-void mc_counters(std::string& out, const Mc& mc, station<Mc>& st) {
+template <class Mc, class Station>
+void mc_counters(std::string& out, const Mc& mc, Station& st) {
   event e(out, "counters");
   e.time(live::now_ns()).number("netstat", mc.netstat());
   const ring::motion_coordinator_counters& c = mc.counters();
@@ -266,31 +312,195 @@ bool print_parts(const std::string& line, std::string& address, std::string& tex
   return true;
 }
 
+// A Motion Coordinator driven by command lines on standard input (ring_live_usage lists them): done at
+// `quit` or when standard input ends.
+template <class Mc>
+class mc_role {
+ public:
+  mc_role(Mc& mc, reported_vrs& vrs, live::event_log& log) : mc_(&mc), vrs_(&vrs), log_(&log) {}
+
+  void begin(station<Mc>& st, live::event_loop& loop, std::size_t input) {
+    st_ = &st;
+    loop_ = &loop;
+    input_slot_ = input;
+  }
+  [[nodiscard]] bool reading() const noexcept { return !quit_ && !input_.ended(); }
+  [[nodiscard]] static int wait_ms() noexcept { return 1000; }
+  void report(station<Mc>& st) { mc_counters(log_->text(), *mc_, st); }
+  void after_wait(station<Mc>&) {
+    for (const reported_vrs::write_record& w : vrs_->take()) {
+      event(log_->text(), "vr_write")
+          .time(live::now_ns())
+          .number("vr", w.vr)
+          .real("value", w.value)
+          .text("status", to_string(w.status));
+    }
+    if (mc_->netstat() != netstat_shown_) {
+      netstat_shown_ = mc_->netstat();
+      event(log_->text(), "netstat").time(live::now_ns()).number("netstat", netstat_shown_);
+    }
+  }
+  void read_input() {
+    input_.read_some();
+    std::string line;
+    while (!quit_ && input_.next(line)) run(line);
+  }
+  void act() {}
+  [[nodiscard]] bool done() const noexcept { return quit_ || input_.ended(); }
+  void leave() {}
+  void counters(station<Mc>& st) { mc_counters(log_->text(), *mc_, st); }
+
+ private:
+  void reply_error(const std::string& command, const std::string& reason) {
+    event(log_->text(), "error").time(live::now_ns()).text("command", command).text("reason", reason);
+  }
+  void sent(const std::string& command, ring::send_status status) {
+    if (status == ring::send_status::ok) {
+      event(log_->text(), "queued").time(live::now_ns()).text("command", command);
+    } else {
+      reply_error(command, ring::to_string(status));
+    }
+  }
+  // Waits for room in the transmit queue: the link runs meanwhile, standard input waits. Gives up after
+  // 2 s without room.
+  bool wait_for_room() {
+    if (wait_started_ == 0) wait_started_ = live::now_ns();
+    loop_->set(input_slot_, -1, 0);
+    return st_->pump(10) && live::now_ns() - wait_started_ < 2000000000U;
+  }
+  template <class Send>
+  ring::send_status with_room(Send&& send) {
+    ring::send_status s = ring::send_status::queue_full;
+    while ((s = send()) == ring::send_status::queue_full && wait_for_room()) {
+    }
+    return s;
+  }
+
+  void run(const std::string& line) {
+    const std::vector<std::string> w = live::words_of(line);
+    if (w.empty() || w[0][0] == '#') return;
+    const std::string& command = w[0];
+    int n = 0;
+    long long number = 0;
+    double value = 0;
+    std::string error;
+    wait_started_ = 0;
+    if (command == "print") {
+      std::string address;
+      std::string raw;
+      std::string text;
+      if (!print_parts(line, address, raw) || !basic_address_word(address, n))
+        return reply_error(command, "usage: print N TEXT (N a BASIC address 10..24)");
+      if (!live::unescape(raw, text, error)) return reply_error(command, error);
+      const ring::print_result r = mc_->print_all(
+          n, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), [this] { return wait_for_room(); });
+      return sent(command, r.status);
+    }
+    if (command == "send") {
+      if (w.size() != 4 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, ring::max_vr, number) ||
+          !parse_real(w[3], value))
+        return reply_error(command, "usage: send N VR VALUE (N 10..24, VR 0..16383)");
+      return sent(command, with_room([&] { return mc_->send_variable(n, static_cast<std::uint16_t>(number), value); }));
+    }
+    if (command == "offset" || command == "mode") {
+      if (w.size() != 3 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, 127, number))
+        return reply_error(command,
+                           command == "offset" ? "usage: offset N M (N, M 10..24)" : "usage: mode N 0|127");
+      return sent(command, with_room([&] {
+                    return command == "offset" ? mc_->send_keypad_offset(n, static_cast<int>(number))
+                                               : mc_->send_keypad_mode(n, static_cast<int>(number));
+                  }));
+    }
+    if (command == "key" || command == "get") {
+      if (w.size() != 2 || !parse_integer(w[1], 3, 4, number))
+        return reply_error(command, "usage: " + command + " 3|4");
+      const int channel = static_cast<int>(number);
+      if (command == "key") {
+        event(log_->text(), "key")
+            .time(live::now_ns())
+            .signed_number("channel", channel)
+            .boolean("waiting", mc_->key(channel))
+            .number("characters", mc_->characters_waiting());
+        return;
+      }
+      const ring::get_result got = mc_->get(channel);
+      event e(log_->text(), "get");
+      e.time(live::now_ns()).signed_number("channel", channel);
+      if (got) {
+        e.signed_number("value", got.value);
+      } else {
+        e.text("status", ring::to_string(got.status));
+      }
+      return;
+    }
+    if (command == "vr") {
+      if ((w.size() != 2 && w.size() != 3) || !parse_integer(w[1], 0, ring::max_vr, number))
+        return reply_error(command, "usage: vr V [VALUE] (V 0..16383)");
+      if (w.size() == 3) {
+        if (!parse_real(w[2], value)) return reply_error(command, "VALUE must be a real number");
+        (*vrs_)[static_cast<std::size_t>(number)] = value;
+      }
+      event(log_->text(), "vr")
+          .time(live::now_ns())
+          .signed_number("vr", number)
+          .real("value", (*vrs_)[static_cast<std::size_t>(number)]);
+      return;
+    }
+    if (command == "netstat") {
+      if (w.size() == 2 && w[1] == "clear") {
+        mc_->clear_netstat();
+      } else if (w.size() != 1) {
+        return reply_error(command, "usage: netstat [clear]");
+      }
+      netstat_shown_ = mc_->netstat();
+      event(log_->text(), "netstat").time(live::now_ns()).number("netstat", mc_->netstat());
+      return;
+    }
+    if (command == "counters") return mc_counters(log_->text(), *mc_, *st_);
+    if (command == "quit") {
+      quit_ = true;
+      return;
+    }
+    reply_error(command, "unknown command (print, send, offset, mode, key, get, vr, netstat, counters, quit)");
+  }
+
+  Mc* mc_;
+  reported_vrs* vrs_;
+  live::event_log* log_;
+  station<Mc>* st_ = nullptr;
+  live::event_loop* loop_ = nullptr;
+  std::size_t input_slot_ = 0;
+  live::line_reader input_{STDIN_FILENO};
+  std::uint8_t netstat_shown_ = 0;
+  bool quit_ = false;
+  std::uint64_t wait_started_ = 0;
+};
+
 // `--learn-keypad N`: puts the keypad at BASIC address N in network mode (keypad offset M back to this MC)
 // and keypad mode 127, asks for each key in turn, and takes its key ON and key OFF characters from the
 // receive buffer. Writes the profile in effect with the codes found (docs/profile.md). Returns the exit
 // status: 3 when the characters fit no profile (two keys alike, a key OFF rule the profile cannot say).
 template <class Mc>
-int learn_keypad_codes(const join_settings& settings, Mc& mc, station<Mc>& st, live::event_log& log,
-                       std::string& ended) {
-  bool port_open = true;
-  short ignored = 0;
-  // Waits for the link until `done` or the end (a closed port, Ctrl-C).
-  const auto run_until = [&](const auto& done) {
-    while (!done()) {
-      if (!port_open || live::signal_watch::stop_requested()) return false;
-      port_open = st.step(100, -1, ignored, ended);
-    }
-    return true;
+int learn_keypad_codes(const join_settings& settings, Mc& mc, live::capture_file& capture, live::event_log& log) {
+  live::event_loop loop(&log);
+  station<Mc> st(mc, settings, capture.is_open() ? &capture : nullptr, log);
+  std::string error;
+  if (!st.open(loop, error)) return fail_io("ring join: " + error);
+  const auto finish = [&](int status) {
+    st.flush_out(500);
+    log.flush();
+    st.finish();
+    const int ended = loop.finish("ring join");
+    return ended != exit_ok ? ended : status;
   };
   const auto queued = [&](ring::send_status status, const char* what) {
     if (status == ring::send_status::ok) return true;
-    ended = std::string("cannot send the keypad ") + what + ": " + ring::to_string(status);
+    error = std::string("cannot send the keypad ") + what + ": " + ring::to_string(status);
     return false;
   };
   if (!queued(mc.send_keypad_offset(settings.learn_keypad, settings.keypad_offset), "offset") ||
       !queued(mc.send_keypad_mode(settings.learn_keypad, 127), "mode")) {
-    return fail_io("ring join: " + ended);
+    return finish(fail_io("ring join: " + error));
   }
   event(log.text(), "learning")
       .time(live::now_ns())
@@ -306,9 +516,11 @@ int learn_keypad_codes(const join_settings& settings, Mc& mc, station<Mc>& st, l
     std::uint8_t got[2] = {};
     for (std::uint8_t& c : got) {
       ring::get_result r{ring::get_status::nothing_yet, 0};
-      if (!run_until([&] { return (r = mc.get(4)).status == ring::get_status::ok; })) {
-        if (!port_open) return fail_io("ring join: " + ended);
-        return fail_io("ring join: stopped before every key was learned");
+      while ((r = mc.get(4)).status != ring::get_status::ok) {
+        if (!st.pump(100)) {
+          if (loop.link_lost() || output_failed()) return finish(exit_io);
+          return finish(fail_io("ring join: stopped before every key was learned"));
+        }
       }
       c = r.value;
     }
@@ -320,7 +532,6 @@ int learn_keypad_codes(const join_settings& settings, Mc& mc, station<Mc>& st, l
         .number("on", got[0])
         .number("off", got[1]);
   }
-  log.flush();
   bool plus_64 = true;
   bool same = true;
   for (std::size_t k = 0; k < ring::key_count; ++k) {
@@ -328,17 +539,17 @@ int learn_keypad_codes(const join_settings& settings, Mc& mc, station<Mc>& st, l
     same = same && off[k] == codes.raw[k];
     for (std::size_t other = 0; other < k; ++other) {
       if (codes.raw[other] != codes.raw[k]) continue;
-      std::fprintf(stderr, "trionet: ring join: keys %s and %s both sent character %u: no profile written\n",
-                   learn::keypad_key_names[other], learn::keypad_key_names[k], codes.raw[k]);
-      return exit_check;
+      note("ring join: keys " + std::string(learn::keypad_key_names[other]) + " and " +
+                             learn::keypad_key_names[k] + " both sent character " + std::to_string(codes.raw[k]) +
+                             ": no profile written");
+      return finish(exit_check);
     }
   }
   if (!plus_64 && !same) {
-    std::fprintf(
-        stderr,
-        "trionet: ring join: the key OFF characters follow neither rule a profile can hold (key ON + 64, "
-        "or the same): no profile written\n");
-    return exit_check;
+    note(
+        "ring join: the key OFF characters follow neither rule a profile can hold (key ON + 64, or the same): no "
+        "profile written");
+    return finish(exit_check);
   }
   learn::profile p = active_profile();
   const ring::defkey_table from_old_codes = ring::make_default_defkey(p.keypad.codes);
@@ -347,193 +558,25 @@ int learn_keypad_codes(const join_settings& settings, Mc& mc, station<Mc>& st, l
   p.keypad.codes = codes;
   p.keypad.key_off = plus_64 ? learn::key_off_rule::plus_64 : learn::key_off_rule::same;
   if (defkey_from_codes) p.keypad.defkey = ring::make_default_defkey(codes);
-  return write_profile_file(p, settings.learn_output);
+  return finish(write_profile_file(p, settings.learn_output));
 }
 
 template <class Layout>
 int join_mc_with(const join_settings& settings) {
   live::capture_file capture;
   std::string error;
-  if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
+  if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail_io("ring join: " + error);
   auto vrs = std::make_unique<reported_vrs>();
   // GET#3 through the profile's DEFKEY; its CRC for direct variable transfers.
   auto mc = std::make_unique<host_mc<Layout>>(*vrs, active_profile().keypad.defkey,
                                               ring::crc16_runtime(active_profile().ring.crc));
   live::event_log log(settings.json);
-  auto st =
-      std::make_unique<station<host_mc<Layout>>>(*mc, settings, capture.is_open() ? &capture : nullptr, log);
-  if (!st->open(error)) return fail("ring join: " + error);
-
-  live::signal_watch signals;
-  std::string ended;
-  if (settings.learn_keypad != 0) {
-    const int status = learn_keypad_codes(settings, *mc, *st, log, ended);
-    st->flush_out(500);
-    log.flush();
-    st->finish();
-    return status;
-  }
-  live::line_reader input(STDIN_FILENO);
-  bool port_open = true;
-  bool quit = false;
-  std::uint8_t netstat_shown = 0;
-
-  const auto reply_error = [&](const std::string& command, const std::string& reason) {
-    event(log.text(), "error").time(live::now_ns()).text("command", command).text("reason", reason);
-  };
-  // Waits for room in the transmit queue: the link runs meanwhile. Gives up after 2 s without room.
-  std::uint64_t wait_started = 0;
-  const auto wait_for_room = [&]() {
-    if (wait_started == 0) wait_started = live::now_ns();
-    short ignored = 0;
-    if (!port_open || live::signal_watch::stop_requested()) return false;
-    port_open = st->step(10, -1, ignored, ended);
-    return port_open && live::now_ns() - wait_started < 2000000000u;
-  };
-  const auto sent = [&](const std::string& command, ring::send_status status) {
-    if (status == ring::send_status::ok) {
-      event(log.text(), "queued").time(live::now_ns()).text("command", command);
-    } else {
-      reply_error(command, ring::to_string(status));
-    }
-  };
-  const auto run = [&](const std::string& line) {
-    const std::vector<std::string> w = live::words_of(line);
-    if (w.empty() || w[0][0] == '#') return;
-    const std::string& command = w[0];
-    int n = 0;
-    long long number = 0;
-    double value = 0;
-    wait_started = 0;
-    if (command == "print") {
-      std::string address;
-      std::string raw;
-      std::string text;
-      if (!print_parts(line, address, raw) || !basic_address_word(address, n))
-        return reply_error(command, "usage: print N TEXT (N a BASIC address 10..24)");
-      if (!live::unescape(raw, text, error)) return reply_error(command, error);
-      const ring::print_result r = mc->print_all(
-          n, byte_view(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), wait_for_room);
-      return sent(command, r.status);
-    }
-    if (command == "send") {
-      if (w.size() != 4 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, ring::max_vr, number) ||
-          !parse_real(w[3], value))
-        return reply_error(command, "usage: send N VR VALUE (N 10..24, VR 0..16383)");
-      ring::send_status s = ring::send_status::queue_full;
-      while ((s = mc->send_variable(n, static_cast<std::uint16_t>(number), value)) ==
-                 ring::send_status::queue_full &&
-             wait_for_room()) {
-      }
-      return sent(command, s);
-    }
-    if (command == "offset" || command == "mode") {
-      if (w.size() != 3 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, 127, number))
-        return reply_error(command,
-                           command == "offset" ? "usage: offset N M (N, M 10..24)" : "usage: mode N 0|127");
-      ring::send_status s = ring::send_status::queue_full;
-      const auto once = [&]() {
-        return command == "offset" ? mc->send_keypad_offset(n, static_cast<int>(number))
-                                   : mc->send_keypad_mode(n, static_cast<int>(number));
-      };
-      while ((s = once()) == ring::send_status::queue_full && wait_for_room()) {
-      }
-      return sent(command, s);
-    }
-    if (command == "key" || command == "get") {
-      if (w.size() != 2 || !parse_integer(w[1], 3, 4, number))
-        return reply_error(command, "usage: " + command + " 3|4");
-      const int channel = static_cast<int>(number);
-      if (command == "key") {
-        event(log.text(), "key")
-            .time(live::now_ns())
-            .signed_number("channel", channel)
-            .boolean("waiting", mc->key(channel))
-            .number("characters", mc->characters_waiting());
-        return;
-      }
-      const ring::get_result got = mc->get(channel);
-      event e(log.text(), "get");
-      e.time(live::now_ns()).signed_number("channel", channel);
-      if (got) {
-        e.signed_number("value", got.value);
-      } else {
-        e.text("status", ring::to_string(got.status));
-      }
-      return;
-    }
-    if (command == "vr") {
-      if ((w.size() != 2 && w.size() != 3) || !parse_integer(w[1], 0, ring::max_vr, number))
-        return reply_error(command, "usage: vr V [VALUE] (V 0..16383)");
-      if (w.size() == 3) {
-        if (!parse_real(w[2], value)) return reply_error(command, "VALUE must be a real number");
-        (*vrs)[static_cast<std::size_t>(number)] = value;
-      }
-      event(log.text(), "vr")
-          .time(live::now_ns())
-          .signed_number("vr", number)
-          .real("value", (*vrs)[static_cast<std::size_t>(number)]);
-      return;
-    }
-    if (command == "netstat") {
-      if (w.size() == 2 && w[1] == "clear") {
-        mc->clear_netstat();
-      } else if (w.size() != 1) {
-        return reply_error(command, "usage: netstat [clear]");
-      }
-      netstat_shown = mc->netstat();
-      event(log.text(), "netstat").time(live::now_ns()).number("netstat", mc->netstat());
-      return;
-    }
-    if (command == "counters") return mc_counters(log.text(), *mc, *st);
-    if (command == "quit") {
-      quit = true;
-      return;
-    }
-    reply_error(command,
-                "unknown command (print, send, offset, mode, key, get, vr, netstat, counters, quit)");
-  };
-
-  while (port_open && !quit && !live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) mc_counters(log.text(), *mc, *st);
-    short input_events = 0;
-    port_open = st->step(1000, input.ended() ? -1 : input.fd(), input_events, ended);
-    for (const reported_vrs::write_record& w : vrs->take()) {
-      event(log.text(), "vr_write")
-          .time(live::now_ns())
-          .number("vr", w.vr)
-          .real("value", w.value)
-          .text("status", to_string(w.status));
-    }
-    if (mc->netstat() != netstat_shown) {
-      netstat_shown = mc->netstat();
-      event(log.text(), "netstat").time(live::now_ns()).number("netstat", netstat_shown);
-    }
-    if (port_open && (input_events & (POLLIN | POLLHUP | POLLERR)) != 0) {
-      input.read_some();
-      std::string line;
-      while (!quit && input.next(line)) run(line);
-    }
-  }
-  if (quit && port_open) st->flush_out(2000);
-  mc_counters(log.text(), *mc, *st);
-  log.flush();
-  st->finish();
-  if (!port_open) std::fprintf(stderr, "trionet: ring join: %s\n", ended.c_str());
-  if (!capture.good()) return fail("ring join: writing the capture " + settings.pcap + " failed");
-  return exit_ok;
-}
-
-}  // namespace
-
-int join_mc(const join_settings& settings) {
-  return ring::with_variable_layout(active_profile().ring.layout,
-                                    [&](auto layout) { return join_mc_with<decltype(layout)>(settings); });
+  if (settings.learn_keypad != 0) return learn_keypad_codes(settings, *mc, capture, log);
+  mc_role<host_mc<Layout>> role(*mc, *vrs, log);
+  return run_session(settings, *mc, capture, log, role);
 }
 
 // ---- the keypad ----
-
-namespace {
 
 template <class Keypad>
 std::string keypad_status(const Keypad& k) {
@@ -542,155 +585,166 @@ std::string keypad_status(const Keypad& k) {
          (k.offset() == 1 ? " hop)" : " hops)") + ", keypad mode " + std::to_string(k.mode());
 }
 
-template <class Layout>
-int join_keypad_with(const join_settings& settings) {
-  live::capture_file capture;
-  std::string error;
-  if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail("ring join: " + error);
-  const learn::keypad_profile& codes = active_profile().keypad;
-  auto keypad = std::make_unique<host_keypad<Layout>>(
-      ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off), codes.display},
-      ring::crc16_runtime(active_profile().ring.crc));
-  raw_terminal terminal;
-  const bool interactive = terminal.enter(STDIN_FILENO);
-  live::event_log log(settings.json);
-  if (interactive) log.keep_last(4);  // the last events, under the drawing
-  auto st = std::make_unique<station<host_keypad<Layout>>>(*keypad, settings,
-                                                           capture.is_open() ? &capture : nullptr, log);
-  if (!st->open(error)) {
-    terminal.restore();
-    return fail("ring join: " + error);
+// A membrane keypad: on a terminal its display drawn in place and the keyboard as its keys (done at q);
+// otherwise key words from standard input (done at `quit`, or when standard input has ended and every key
+// word, waits included, has been taken).
+template <class Keypad>
+class keypad_role {
+ public:
+  keypad_role(Keypad& keypad, live::event_log& log) : keypad_(&keypad), log_(&log) {
+    interactive_ = terminal_.enter(STDIN_FILENO);
+    if (interactive_) log.keep_last(4);  // the last events, under the drawing
   }
 
-  live::signal_watch signals;
-  live::line_reader input(STDIN_FILENO);
-  key_decoder keys;
-  terminal_screen screen;
-  key_script script;
-  std::string ended;
-  bool port_open = true;
-  bool quit = false;
-  std::string shown_lines[2];
-  std::string shown_status;
-  bool first = true;
-
-  const auto press = [&](const std::string& word) {
-    ring::key k = ring::key::digit_0;
-    if (!keypad_key(word, k)) {
-      event(log.text(), "error")
-          .time(live::now_ns())
-          .text("word", word)
-          .text("reason", "not a key (0..9 . up down clr y n start stop)");
+  void begin(station<Keypad>& st, live::event_loop&, std::size_t) {
+    port_name_ = st.port_name();
+    show();
+  }
+  [[nodiscard]] bool reading() const noexcept { return !quit_ && !input_.ended(); }
+  [[nodiscard]] int wait_ms() const {
+    const int due = script_.due_in_ms(live::now_ns());
+    return due >= 0 ? due : interactive_ ? 200 : 1000;
+  }
+  // The keypad's counters and its link's, on SIGUSR1 and at the end.
+  void report(station<Keypad>& st) { counters(st); }
+  void after_wait(station<Keypad>&) {}
+  void read_input() {
+    if (interactive_) {
+      for (const std::string& word : keys_.read(STDIN_FILENO)) {
+        if (word == "quit") quit_ = true;
+        if (word != "quit" && word != "next") press(word);
+      }
       return;
     }
-    const ring::key_status on = keypad->press(k);
-    const ring::key_status off = keypad->release(k);
-    event(log.text(), "key")
-        .time(live::now_ns())
-        .text("key", to_string(k))
-        .text("press", ring::to_string(on))
-        .text("release", ring::to_string(off));
-  };
-  const auto show = [&]() {
-    const std::string lines[2] = {keypad->display().line(0), keypad->display().line(1)};
-    const std::string status = keypad_status(*keypad);
-    const bool changed =
-        first || lines[0] != shown_lines[0] || lines[1] != shown_lines[1] || status != shown_status;
-    if (!changed && !interactive) return;
-    if ((status != shown_status || first) && (!first || keypad->network_mode())) {
-      event(log.text(), "mode")
-          .time(live::now_ns())
-          .boolean("network", keypad->network_mode())
-          .signed_number("offset", keypad->offset())
-          .signed_number("keypad_mode", keypad->mode());
-    }
-    if (lines[0] != shown_lines[0] || lines[1] != shown_lines[1]) {
-      event(log.text(), "display").time(live::now_ns()).text("line1", lines[0]).text("line2", lines[1]);
-    }
-    shown_lines[0] = lines[0];
-    shown_lines[1] = lines[1];
-    shown_status = status;
-    first = false;
-    if (interactive) {
-      keypad_panel panel;
-      panel.title = "trionet keypad on " + st->port_name();
-      panel.lines[0] = lines[0];
-      panel.lines[1] = lines[1];
-      panel.status = status + "; keys sent " + std::to_string(keypad->counters().keys_sent) + ", lost " +
-                     std::to_string(keypad->counters().keys_lost);
-      log.flush();
-      screen.draw({panel}, keyboard_help(screen.size().columns, false),
-                  std::vector<std::string>(log.kept().begin(), log.kept().end()));
-    }
-  };
-
-  // The keypad's counters and its link's, on SIGUSR1 and at the end.
-  const auto counters = [&]() {
-    event e(log.text(), "counters");
-    e.time(live::now_ns())
-        .boolean("network", keypad->network_mode())
-        .signed_number("offset", keypad->offset());
-    const ring::keypad_counters& c = keypad->counters();
-    e.number("keys_sent", c.keys_sent)
-        .number("keys_lost", c.keys_lost)
-        .number("display_messages", c.display_messages);
-    e.number("dropped_in_local_mode", c.dropped_in_local_mode).number("frame_errors", c.frame_errors);
-    e.number("crc_errors", c.crc_errors);
-    e.number("netstat", keypad->netstat());
-    add_link_counters(e, keypad->forwarding_counters());
-    st->in().add_counters(e, "in_");
-    st->out().add_counters(e, "out_");
-  };
-  show();
-  while (port_open && !quit && !live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) counters();
-    const int due = script.due_in_ms(live::now_ns());
-    const int wait = due >= 0 ? due : interactive ? 200 : 1000;
-    short input_events = 0;
-    port_open = st->step(wait, input.ended() ? -1 : input.fd(), input_events, ended);
-    if (port_open && (input_events & (POLLIN | POLLHUP | POLLERR)) != 0) {
-      if (interactive) {
-        for (const std::string& word : keys.read(STDIN_FILENO)) {
-          if (word == "quit") quit = true;
-          if (word != "quit" && word != "next") press(word);
-        }
-      } else {
-        input.read_some();
-        std::string line;
-        while (input.next(line)) script.add_line(line);
-      }
-    }
+    input_.read_some();
+    std::string line;
+    while (input_.next(line)) script_.add_line(line);
+  }
+  void act() {
     std::string word;
     std::string bad_wait;
-    while (!quit && script.next(live::now_ns(), word, bad_wait)) {
+    while (!quit_ && script_.next(live::now_ns(), word, bad_wait)) {
       if (word == "quit") {
-        quit = true;
+        quit_ = true;
       } else {
         press(word);
       }
     }
     if (!bad_wait.empty()) {
-      event(log.text(), "error")
+      event(log_->text(), "error")
           .time(live::now_ns())
           .text("word", bad_wait)
           .text("reason", "wait=MS takes 0..3600000");
     }
     show();
   }
-  if (quit && port_open) st->flush_out(2000);
-  log.flush();
-  screen.leave();
-  terminal.restore();
-  log.keep_last(0);  // the counters go to standard output, screen or not
-  counters();
-  log.flush();
-  st->finish();
-  if (!port_open) std::fprintf(stderr, "trionet: ring join: %s\n", ended.c_str());
-  if (!capture.good()) return fail("ring join: writing the capture " + settings.pcap + " failed");
-  return exit_ok;
+  [[nodiscard]] bool done() const {
+    return quit_ || (!interactive_ && input_.ended() && script_.done(live::now_ns()));
+  }
+  void leave() {
+    log_->flush();
+    screen_.leave();
+    terminal_.restore();
+    log_->keep_last(0);  // the counters go to standard output, screen or not
+  }
+  void counters(station<Keypad>& st) {
+    event e(log_->text(), "counters");
+    e.time(live::now_ns()).boolean("network", keypad_->network_mode()).signed_number("offset", keypad_->offset());
+    const ring::keypad_counters& c = keypad_->counters();
+    e.number("keys_sent", c.keys_sent).number("keys_lost", c.keys_lost).number("display_messages", c.display_messages);
+    e.number("dropped_in_local_mode", c.dropped_in_local_mode).number("frame_errors", c.frame_errors);
+    e.number("crc_errors", c.crc_errors);
+    e.number("netstat", keypad_->netstat());
+    add_link_counters(e, keypad_->forwarding_counters());
+    st.in().add_counters(e, "in_");
+    st.out().add_counters(e, "out_");
+  }
+
+ private:
+  void press(const std::string& word) {
+    ring::key k = ring::key::digit_0;
+    if (!keypad_key(word, k)) {
+      event(log_->text(), "error")
+          .time(live::now_ns())
+          .text("word", word)
+          .text("reason", "not a key (0..9 . up down clr y n start stop)");
+      return;
+    }
+    const ring::key_status on = keypad_->press(k);
+    const ring::key_status off = keypad_->release(k);
+    event(log_->text(), "key")
+        .time(live::now_ns())
+        .text("key", to_string(k))
+        .text("press", ring::to_string(on))
+        .text("release", ring::to_string(off));
+  }
+  // Events for a new mode or display; on a terminal the drawing, redrawn.
+  void show() {
+    const std::string lines[2] = {keypad_->display().line(0), keypad_->display().line(1)};
+    const std::string status = keypad_status(*keypad_);
+    const bool changed = first_ || lines[0] != shown_lines_[0] || lines[1] != shown_lines_[1] || status != shown_status_;
+    if (!changed && !interactive_) return;
+    if ((status != shown_status_ || first_) && (!first_ || keypad_->network_mode())) {
+      event(log_->text(), "mode")
+          .time(live::now_ns())
+          .boolean("network", keypad_->network_mode())
+          .signed_number("offset", keypad_->offset())
+          .signed_number("keypad_mode", keypad_->mode());
+    }
+    if (lines[0] != shown_lines_[0] || lines[1] != shown_lines_[1]) {
+      event(log_->text(), "display").time(live::now_ns()).text("line1", lines[0]).text("line2", lines[1]);
+    }
+    shown_lines_[0] = lines[0];
+    shown_lines_[1] = lines[1];
+    shown_status_ = status;
+    first_ = false;
+    if (!interactive_) return;
+    keypad_panel panel;
+    panel.title = "trionet keypad on " + port_name_;
+    panel.lines[0] = lines[0];
+    panel.lines[1] = lines[1];
+    panel.status = status + "; keys sent " + std::to_string(keypad_->counters().keys_sent) + ", lost " +
+                   std::to_string(keypad_->counters().keys_lost);
+    log_->flush();
+    screen_.draw({panel}, keyboard_help(screen_.size().columns, false),
+                 std::vector<std::string>(log_->kept().begin(), log_->kept().end()));
+  }
+
+  Keypad* keypad_;
+  live::event_log* log_;
+  raw_terminal terminal_;
+  bool interactive_ = false;
+  live::line_reader input_{STDIN_FILENO};
+  key_decoder keys_;
+  terminal_screen screen_;
+  key_script script_;
+  std::string port_name_;
+  std::string shown_lines_[2];
+  std::string shown_status_;
+  bool first_ = true;
+  bool quit_ = false;
+};
+
+template <class Layout>
+int join_keypad_with(const join_settings& settings) {
+  live::capture_file capture;
+  std::string error;
+  if (!settings.pcap.empty() && !capture.open(settings.pcap, error)) return fail_io("ring join: " + error);
+  const learn::keypad_profile& codes = active_profile().keypad;
+  auto keypad = std::make_unique<host_keypad<Layout>>(
+      ring::keypad_config{&codes.codes, learn::key_off_function(codes.key_off), codes.display},
+      ring::crc16_runtime(active_profile().ring.crc));
+  live::event_log log(settings.json);
+  keypad_role<host_keypad<Layout>> role(*keypad, log);
+  return run_session(settings, *keypad, capture, log, role);
 }
 
 }  // namespace
+
+int join_mc(const join_settings& settings) {
+  return ring::with_variable_layout(active_profile().ring.layout,
+                                    [&](auto layout) { return join_mc_with<decltype(layout)>(settings); });
+}
 
 int join_keypad(const join_settings& settings) {
   return ring::with_variable_layout(active_profile().ring.layout, [&](auto layout) {

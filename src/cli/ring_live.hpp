@@ -46,8 +46,9 @@ class ring_tap {
   /// The hops of the message the last result was about (0 for stray bytes): a node's own traffic is hops 1.
   [[nodiscard]] std::uint8_t last_hops() const noexcept { return last_hops_; }
 
-  /// NETSTAT-style counters as one event appended to `out`: bytes, messages by type, CRC and frame errors (by
-  /// reason), idle lines, and the NETSTAT bits a receiver of everything would show (4 CRC, 8 frame).
+  /// NETSTAT-style counters as one event appended to `out`: bytes, messages by type, CRC and frame errors
+  /// (in all, then by reason where not 0: `idle_line` counts the messages the idle line cut), and the NETSTAT
+  /// bits a receiver of everything would show (4 CRC, 8 frame).
   void counters(std::string& out, std::uint64_t time_ns) const;
   /// The counters' fields added to `e` with `prefix` ("in_" ...).
   void add_counters(event& e, const std::string& prefix) const;
@@ -68,7 +69,6 @@ class ring_tap {
   std::uint64_t by_type_[5] = {};
   std::uint64_t crc_errors_ = 0;
   std::uint64_t no_room_ = 0;
-  std::uint64_t idle_lines_ = 0;
   std::map<std::string, std::uint64_t> frame_errors_;
 };
 

@@ -34,7 +34,8 @@ const char* const ring_live_usage =
     "      put one message on the ring (the arguments of `trionet ring encode`), wait until it has left,\n"
     "      print its bytes\n"
     "  trionet ring join PORT --as mc [port options] [--json] [--trace] [--pcap FILE]\n"
-    "      be a Motion Coordinator on the ring: forward, deliver, and take commands on standard input:\n"
+    "      be a Motion Coordinator on the ring: forward, deliver, and take commands on standard input (it\n"
+    "      ends at quit or when standard input ends, once what it queued has been sent):\n"
     "        print N TEXT | send N VR VALUE | offset N M | mode N 0|127 | key 3|4 | get 3|4 |\n"
     "        vr V [VALUE] | netstat [clear] | counters | quit        (TEXT escapes: \\r \\n \\t \\\\ \\xNN)\n"
     "  trionet ring join PORT --as mc --learn-keypad N [--keypad-offset M] -o PROFILE [port options] [--json]\n"
@@ -44,7 +45,8 @@ const char* const ring_live_usage =
     "      characters and the key OFF rule found to PROFILE (exit 3 if no profile can hold them)\n"
     "  trionet ring join PORT --as keypad [port options] [--json] [--trace] [--pcap FILE]\n"
     "      be a membrane keypad: on a terminal, its display drawn in place and the keyboard as its keys;\n"
-    "      otherwise key words from standard input (0..9 . up down clr y n start stop, wait=MS, quit)\n"
+    "      otherwise key words from standard input (0..9 . up down clr y n start stop, wait=MS, quit; it ends\n"
+    "      at quit, or when standard input has ended and its key words are done)\n"
     "PORT: a serial port or pty, a FIFO, a Unix socket, or - (standard input; standard output for send).\n"
     "port options:\n"
     "  --baud B        serial ports: bits per second, any rate 50..4000000 (default 125000)\n"
@@ -66,7 +68,7 @@ bool port_arguments_of(const arguments& args, port_arguments& out, std::string& 
   long long number = 0;
   if (args.has("--baud")) {
     if (!parse_integer(args.options.at("--baud"), host::min_serial_baud, host::max_serial_baud, number)) {
-      error = "--baud must be a rate 50..4000000, got '" + args.options.at("--baud") + "'";
+      error = "--baud must be a rate 50..4000000, got '" + host::printable(args.options.at("--baud")) + "'";
       return false;
     }
     out.link.baud = static_cast<unsigned>(number);
@@ -80,13 +82,13 @@ bool port_arguments_of(const arguments& args, port_arguments& out, std::string& 
     } else if (flow == "xonxoff") {
       out.link.flow = host::flow_control::software;
     } else {
-      error = "--flow must be none, rtscts or xonxoff, got '" + flow + "'";
+      error = "--flow must be none, rtscts or xonxoff, got '" + host::printable(flow) + "'";
       return false;
     }
   }
   if (args.has("--idle-ms")) {
     if (!parse_integer(args.options.at("--idle-ms"), 1, 60000, number)) {
-      error = "--idle-ms must be 1..60000, got '" + args.options.at("--idle-ms") + "'";
+      error = "--idle-ms must be 1..60000, got '" + host::printable(args.options.at("--idle-ms")) + "'";
       return false;
     }
     out.idle_ms = static_cast<int>(number);
@@ -128,47 +130,42 @@ int monitor_main(const words& given) {
   port_arguments options;
   if (!port_arguments_of(args, options, error)) return fail("ring monitor: " + error);
   host::link_device port;
-  if (!port.open(args.positionals[0], options.link, error)) return fail("ring monitor: " + error);
+  if (!port.open(args.positionals[0], options.link, error)) return fail_io("ring monitor: " + error);
   live::capture_file capture;
-  if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail("ring monitor: " + error);
+  if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail_io("ring monitor: " + error);
   ring_tap tap(capture.is_open() ? &capture : nullptr, "received on " + port.name());
-  live::signal_watch signals;
   live::event_log log(options.json);
+  live::event_loop loop(&log);
+  const std::size_t link = loop.watch(port.fd(), POLLIN);
   const auto print = [&log](const ring::decode_result& r, std::uint64_t time_ns) {
     append_ring_event(log.text(), r, [time_ns](event& e) { e.time(time_ns); });
   };
-
-  std::string ended = port.name() + " closed";
-  while (!live::signal_watch::stop_requested()) {
-    if (live::signal_watch::take_report_request()) tap.counters(log.text(), live::now_ns());
-    log.flush();
-    pollfd p{port.fd(), POLLIN, 0};
-    const int ready = ::poll(&p, 1, options.idle_ms);
-    if (ready < 0) {
-      if (errno == EINTR) continue;
-      ended = std::string("poll: ") + std::strerror(errno);
-      break;
-    }
-    if (ready == 0) {
+  while (loop.running()) {
+    if (live::event_loop::report_requested()) tap.counters(log.text(), live::now_ns());
+    if (!loop.wait(options.idle_ms)) break;
+    if (!loop.readable(link)) {
       tap.idle(live::now_ns(), print);
       continue;
     }
     std::uint8_t in[4096];
     const ssize_t got = ::read(port.fd(), in, sizeof in);
     if (got < 0 && (errno == EAGAIN || errno == EINTR)) continue;
-    if (got <= 0) {
-      if (got < 0 && errno != EIO) ended = port.name() + ": " + std::strerror(errno);
-      break;
+    if (got == 0 && port.kind() == host::link_kind::standard_stream) {
+      loop.stop();  // standard input ended: all is read
+    } else if (got == 0 || (got < 0 && errno == EIO)) {
+      loop.lost(host::printable(port.name()) + " closed");
+    } else if (got < 0) {
+      loop.lost(host::printable(port.name()) + ": " + std::strerror(errno));
+    } else {
+      tap.push(byte_view(in, static_cast<std::size_t>(got)), live::now_ns(), print);
     }
-    tap.push(byte_view(in, static_cast<std::size_t>(got)), live::now_ns(), print);
   }
   tap.idle(live::now_ns(), print);  // a message cut short by the end is reported as such
   tap.counters(log.text(), live::now_ns());
-  log.flush();
   port.close();
-  if (!live::signal_watch::stop_requested()) std::fprintf(stderr, "trionet: ring monitor: %s\n", ended.c_str());
-  if (!capture.good()) return fail("ring monitor: writing the capture " + options.pcap + " failed");
-  return exit_ok;
+  const int status = loop.finish("ring monitor");
+  if (status == exit_ok && !capture.good()) return fail_io("ring monitor: writing the capture " + options.pcap + " failed");
+  return status;
 }
 
 // ---- ring send ----
@@ -188,25 +185,28 @@ int send_main(const words& given) {
   if (!ring_message_frame(args.positionals[1], message_args, frame, error)) return fail("ring send: " + error);
 
   options.link.standard_stream = 1;
+  options.link.shared = true;  // a sender writes where a monitor may listen
   host::link_device port;
-  if (!port.open(args.positionals[0], options.link, error)) return fail("ring send: " + error);
+  if (!port.open(args.positionals[0], options.link, error)) return fail_io("ring send: " + error);
   live::capture_file capture;
-  if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail("ring send: " + error);
+  if (!options.pcap.empty() && !capture.open(options.pcap, error)) return fail_io("ring send: " + error);
   const std::uint64_t sent_at = live::now_ns();
   std::size_t done = 0;
-  live::signal_watch signals;
-  while (done < frame.size() && !live::signal_watch::stop_requested()) {
-    pollfd p{port.fd(), POLLOUT, 0};
-    if (::poll(&p, 1, 1000) < 0 && errno != EINTR) break;
+  live::event_loop loop(nullptr);
+  loop.watch(port.fd(), POLLOUT);
+  while (done < frame.size() && loop.wait(1000)) {
     const ssize_t wrote = ::write(port.fd(), frame.data() + done, frame.size() - done);
     if (wrote > 0) {
       done += static_cast<std::size_t>(wrote);
     } else if (wrote < 0 && errno != EAGAIN && errno != EINTR) {
-      return fail("ring send: cannot write to " + port.name() + ": " + std::strerror(errno));
+      loop.lost("cannot write to " + host::printable(port.name()) + ": " + std::strerror(errno));
     }
   }
-  if (done < frame.size()) return fail("ring send: interrupted after " + std::to_string(done) + " bytes");
-  if (!port.drain()) return fail("ring send: cannot drain " + port.name() + ": " + std::strerror(errno));
+  if (loop.link_lost() || done < frame.size()) {
+    const int status = loop.finish("ring send");
+    return status != exit_ok ? status : fail_io("ring send: interrupted after " + std::to_string(done) + " bytes");
+  }
+  if (!port.drain()) return fail_io("ring send: cannot drain " + host::printable(port.name()) + ": " + std::strerror(errno));
   if (capture.is_open()) {
     ring_tap tap(&capture, "sent on " + port.name());
     const ring_tap::sink ignore = [](const ring::decode_result&, std::uint64_t) {};
@@ -214,8 +214,8 @@ int send_main(const words& given) {
     tap.idle(sent_at, ignore);
   }
   port.close();
-  if (args.positionals[0] != "-") std::printf("%s\n", hex_line(frame.data(), frame.size()).c_str());
-  if (!capture.good()) return fail("ring send: writing the capture " + options.pcap + " failed");
+  if (args.positionals[0] != "-" && !write_stdout(hex_line(frame.data(), frame.size()) + "\n")) return fail_output();
+  if (!capture.good()) return fail_io("ring send: writing the capture " + options.pcap + " failed");
   return exit_ok;
 }
 
@@ -263,6 +263,9 @@ int ring_join_main(const words& given) {
   if (!parse_arguments(given, ring_join_options(), args, error)) return fail("ring join: " + error);
   if (args.positionals.size() != 1) return fail("ring join takes one PORT");
   if (!args.has("--as")) return fail("ring join needs --as mc or --as keypad");
+  if (args.positionals[0] == "-") {
+    return fail("ring join: a node needs a port it can read and write (a serial port, a pty or a socket), not -");
+  }
   port_arguments options;
   if (!port_arguments_of(args, options, error)) return fail("ring join: " + error);
   const std::string& as = args.options.at("--as");

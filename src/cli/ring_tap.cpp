@@ -31,7 +31,6 @@ void ring_tap::idle(std::uint64_t time_ns, const sink& out) {
     records_.flush([&](byte_view record, std::uint64_t t) { capture_->write(interface_, t, record); });
   }
   if (!decoder_.open()) return;
-  ++idle_lines_;
   last_hops_ = open_hops_;
   const ring::decode_result r = decoder_.line_idle();
   open_hops_ = 0;
@@ -73,7 +72,6 @@ void ring_tap::add_counters(event& e, const std::string& prefix) const {
   for (const auto& entry : frame_errors_) {
     e.number(prefix + entry.first, entry.second);
   }
-  e.number(prefix + "idle_lines", idle_lines_);
 }
 
 void ring_tap::counters(std::string& out, std::uint64_t time_ns) const {

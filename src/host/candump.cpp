@@ -88,6 +88,7 @@ void clear_frame(candump_record& out) {
   out.sdt = 0;
   out.af = 0;
   out.frame = can::frame{};
+  out.data.clear();
 }
 
 // The frame view of the fields parse_candump_frame filled in.
@@ -219,6 +220,7 @@ candump_status parse_screen(words& w, std::string_view first, candump_record& ou
     std::uint8_t byte = 0;
     if (!parse_screen_byte(w.next(), byte)) return candump_status::data;
     if (i < 8) out.frame.data[i] = byte;
+    out.data.push_back(byte);
   }
   if (out.length > shown && w.next() != "...") return candump_status::data;
   rest = w.rest();
@@ -315,7 +317,9 @@ candump_status parse_candump_frame(std::string_view text, candump_record& out) {
     if (high > 15) return candump_status::data;
     const unsigned low = nibble(at(idx++));
     if (low > 15) return candump_status::data;
-    if (length < 8) out.frame.data[length] = static_cast<std::uint8_t>(high << 4U | low);
+    const auto byte = static_cast<std::uint8_t>(high << 4U | low);
+    if (length < 8) out.frame.data[length] = byte;
+    out.data.push_back(byte);
   }
   out.length = static_cast<std::uint16_t>(length);
   if (max_length == 8 && length == 8 && at(idx++) == '_') {
@@ -354,9 +358,9 @@ candump_status parse_candump_line(std::string_view line, candump_record& out) {
       return candump_status::timestamp;
     }
     stamped = true;
+    // can-utils reads a log line with sscanf("(%llu.%llu) %s %s"): the blank after ')' may be absent.
     text = text.substr(close + 1);
-    if (text.empty()) return candump_status::interface_name;
-    if (!is_blank(text.front())) return candump_status::interface_name;
+    if (trim(text).empty()) return candump_status::interface_name;
   }
   words w(text);
   const std::string_view first = w.next();

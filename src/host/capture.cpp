@@ -4,7 +4,6 @@
 namespace trionet::host {
 namespace {
 
-constexpr std::uint32_t can_error_flag = 0x20000000u;  // CAN_ERR_FLAG
 constexpr std::uint8_t canfd_fdf = 0x04;               // flags: a CAN FD frame (CANFD_FDF)
 constexpr std::uint8_t canxl_xlf = 0x80;               // flags: a CAN XL frame (CANXL_XLF)
 constexpr std::size_t canfd_record_length = 72;        // struct canfd_frame
@@ -62,6 +61,36 @@ socketcan_record_result read_socketcan_record(byte_view record) {
     for (std::size_t i = 0; i < length; ++i) frame.data[i] = record[8 + i];
   }
   return result;
+}
+
+std::vector<std::uint8_t> socketcan_record_of(const candump_record& record) {
+  std::vector<std::uint8_t> out;
+  const auto header = [&](std::uint32_t id, std::size_t size) {
+    out.assign(size, 0);
+    for (std::size_t i = 0; i < 4; ++i) out[i] = static_cast<std::uint8_t>(id >> (24 - 8 * i));
+  };
+  switch (record.type) {
+    case candump_frame_type::classic: {
+      if (!record.classic_frame()) return out;  // a standard identifier above 7FF: no SocketCAN frame
+      const auto classic = socketcan_record(record.frame);
+      out.assign(classic.begin(), classic.end());
+      return out;
+    }
+    case candump_frame_type::error:
+      header(record.can_id, 16);
+      out[4] = 8;  // CAN_ERR_DLC
+      for (std::size_t i = 0; i < 8; ++i) out[8 + i] = record.frame.data[i];
+      return out;
+    case candump_frame_type::fd:
+      header(record.can_id, 72);
+      out[4] = static_cast<std::uint8_t>(record.length);
+      out[5] = static_cast<std::uint8_t>(canfd_fdf | (record.flags & 0x03U));  // BRS, ESI
+      for (std::size_t i = 0; i < record.data.size() && i < 64; ++i) out[8 + i] = record.data[i];
+      return out;
+    case candump_frame_type::xl:
+      return out;
+  }
+  return out;
 }
 
 }  // namespace trionet::host

@@ -375,12 +375,14 @@ void append_json_value(std::string& out, const capture_field& field) {
       out += field.boolean ? "true" : "false";
       return;
     case capture_field::type::real:
-      // Enough digits to give the double back, and always a fraction or exponent so that a JSON reader
-      // keeps it a floating-point number (-0.0 stays negative zero).
-      std::snprintf(number, sizeof number, "%.17g", field.real);
-      out += number;
-      if (std::string_view(number).find_first_of(".en") == std::string_view::npos) out += ".0";
+    {
+      // The shortest plain decimal that gives the double back, never an exponent, and always a fraction so
+      // that a JSON reader keeps it a floating-point number (-0.0 stays negative zero).
+      const std::string text = format_real(field.real);
+      out += text;
+      if (text.find_first_of(".n") == std::string::npos) out += ".0";
       return;
+    }
     case capture_field::type::text:
       append_json_string(out, field.text);
       return;

@@ -8,13 +8,14 @@
 #include <cerrno>
 #include <cstring>
 
+#include "trionet/host/progress.hpp"
 #include "trionet/host/text.hpp"
 
 namespace trionet::host {
 namespace {
 
 // Reads `fd` to its end into `out`, refusing more than `max_bytes`.
-file_result read_all(int fd, std::size_t max_bytes, std::string& out) {
+file_result read_all(int fd, std::size_t max_bytes, std::string& out, progress* shown) {
   file_result result;
   result.max_bytes = max_bytes;
   out.clear();
@@ -37,6 +38,7 @@ file_result read_all(int fd, std::size_t max_bytes, std::string& out) {
       return result;
     }
     out.append(chunk, static_cast<std::size_t>(got));
+    if (shown != nullptr) shown->update(static_cast<double>(out.size()));
   }
 }
 
@@ -61,13 +63,15 @@ std::string file_result::message(const std::string& path, const std::string& nou
   return name + ": " + to_string(status);
 }
 
-file_result read_bounded_file(const std::string& path, std::size_t max_bytes, std::string& out) {
-  out.clear();
+namespace {
+
+// Opens `path` to be read as a file: a directory or a device is refused before a byte is read (O_NONBLOCK:
+// a device that waits for a carrier does not hang in open()). A FIFO is opened again without O_NONBLOCK, to
+// wait for its writer as any reader of a FIFO does. `fd` is the descriptor when the result is ok, else -1.
+file_result open_file(const std::string& path, std::size_t max_bytes, int& fd) {
   file_result result;
   result.max_bytes = max_bytes;
-  // O_NONBLOCK: a device that waits for a carrier is refused without hanging in open(). A FIFO is opened
-  // again without it, to wait for its writer as any reader of a FIFO does.
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
   if (fd < 0) {
     result.status = file_status::cannot_open;
     result.system_error = errno;
@@ -87,19 +91,45 @@ file_result read_bounded_file(const std::string& path, std::size_t max_bytes, st
     if (fd < 0) {
       result.status = file_status::cannot_open;
       result.system_error = errno;
-      return result;
     }
-    result = read_all(fd, max_bytes, out);
+    return result;
   } else {
     const int flags = ::fcntl(fd, F_GETFL);
     if (flags >= 0) (void)::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
-    result = read_all(fd, max_bytes, out);
+    return result;
   }
+  ::close(fd);
+  fd = -1;
+  return result;
+}
+
+}  // namespace
+
+file_result read_bounded_file(const std::string& path, std::size_t max_bytes, std::string& out,
+                              progress* shown) {
+  out.clear();
+  int fd = -1;
+  file_result result = open_file(path, max_bytes, fd);
+  if (!result) return result;
+  result = read_all(fd, max_bytes, out, shown);
   ::close(fd);
   return result;
 }
 
-file_result read_bounded_fd(int fd, std::size_t max_bytes, std::string& out) {
+file_result open_input_stream(const std::string& path, std::ifstream& stream) {
+  int fd = -1;
+  file_result result = open_file(path, 0, fd);
+  if (!result) return result;
+  ::close(fd);
+  stream.open(path, std::ios::binary);
+  if (!stream) {
+    result.status = file_status::cannot_open;
+    result.system_error = errno != 0 ? errno : EIO;
+  }
+  return result;
+}
+
+file_result read_bounded_fd(int fd, std::size_t max_bytes, std::string& out, progress* shown) {
   out.clear();
   struct stat info {};
   if (::fstat(fd, &info) == 0 && S_ISDIR(info.st_mode)) {
@@ -108,7 +138,7 @@ file_result read_bounded_fd(int fd, std::size_t max_bytes, std::string& out) {
     result.status = file_status::directory;
     return result;
   }
-  return read_all(fd, max_bytes, out);
+  return read_all(fd, max_bytes, out, shown);
 }
 
 }  // namespace trionet::host

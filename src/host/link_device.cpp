@@ -2,6 +2,8 @@
 #include "trionet/host/link_device.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -10,6 +12,9 @@
 
 #include <cerrno>
 #include <cstring>
+
+#include "serial_port.hpp"
+#include "trionet/host/text.hpp"
 
 namespace trionet::host {
 
@@ -25,13 +30,13 @@ bool link_device::open(const std::string& name, const link_options& options, std
   }
   struct stat info {};
   if (::stat(name.c_str(), &info) != 0) {
-    error = "cannot open " + name + ": " + std::strerror(errno);
+    error = "cannot open " + printable(name) + ": " + std::strerror(errno);
     return false;
   }
   if (S_ISFIFO(info.st_mode)) {
     fd_ = ::open(name.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
     if (fd_ < 0) {
-      error = "cannot open " + name + ": " + std::strerror(errno);
+      error = "cannot open " + printable(name) + ": " + std::strerror(errno);
       return false;
     }
     kind_ = link_kind::fifo;
@@ -41,14 +46,14 @@ bool link_device::open(const std::string& name, const link_options& options, std
     sockaddr_un address{};
     address.sun_family = AF_UNIX;
     if (name.size() >= sizeof address.sun_path) {
-      error = "cannot connect to " + name + ": the socket path is too long";
+      error = "cannot connect to " + printable(name) + ": the socket path is too long";
       return false;
     }
     std::memcpy(address.sun_path, name.c_str(), name.size() + 1);
     fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
     // sockaddr_un is the address type connect() expects for AF_UNIX; the cast is the socket API's contract.
     if (fd_ < 0 || ::connect(fd_, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
-      error = "cannot connect to " + name + ": " + std::strerror(errno);
+      error = "cannot connect to " + printable(name) + ": " + std::strerror(errno);
       close();
       return false;
     }
@@ -57,13 +62,31 @@ bool link_device::open(const std::string& name, const link_options& options, std
     return true;
   }
   if (!S_ISCHR(info.st_mode)) {
-    error = name + " is not a serial port, pty, FIFO or socket";
+    error = printable(name) + " is not a serial port, pty, FIFO or socket";
     return false;
   }
-  fd_ = open_serial(name, options.baud, error, options.flow, &saved_);
-  if (fd_ < 0) return false;
-  kind_ = link_kind::serial;
-  return true;
+  // A serial port is this program's alone while it is open: another process's lock (flock, as a second
+  // trionet takes it) or exclusive mode (TIOCEXCL, as terminal programs set it) is refused before any
+  // setting changes, then the port is locked until close() puts it back. A shared open (a sender writing
+  // where a monitor listens) neither takes nor checks the lock.
+  fd_ = ::open(name.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) {
+    error = "cannot open " + printable(name) + ": " + std::strerror(errno);
+    if (errno == EBUSY) error += " (another program has it in exclusive use)";
+    return false;
+  }
+  int exclusive = 0;
+  if (!options.shared && ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    error = printable(name) + " is in use: another process holds its lock (another monitor or node on it?)";
+  } else if (!options.shared && ::ioctl(fd_, TIOCGEXCL, &exclusive) == 0 && exclusive != 0) {
+    error = printable(name) + " is in use: another program has it in exclusive mode";
+  } else if (configure_serial(fd_, name, options.baud, error, options.flow, &saved_)) {
+    kind_ = link_kind::serial;
+    return true;
+  }
+  ::close(fd_);
+  fd_ = -1;
+  return false;
 }
 
 void link_device::close() noexcept {
@@ -72,7 +95,7 @@ void link_device::close() noexcept {
     if (old_flags_ >= 0) (void)::fcntl(fd_, F_SETFL, old_flags_);
   } else {
     if (kind_ == link_kind::serial) (void)restore_serial(fd_, saved_);
-    ::close(fd_);
+    ::close(fd_);  // and with it the lock
   }
   fd_ = -1;
   kind_ = link_kind::none;

@@ -80,6 +80,11 @@ void progress::update(double done) {
   drawn_ = true;
 }
 
+void progress::clear() {
+  if (active_ && drawn_) write_all(fd_, "\r\x1b[K");
+  drawn_ = false;
+}
+
 void progress::finish() {
   if (active_ && drawn_) write_all(fd_, "\r\x1b[K");
   active_ = false;

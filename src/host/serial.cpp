@@ -10,7 +10,9 @@
 #include <cerrno>
 #include <cstring>
 
+#include "serial_port.hpp"
 #include "trionet/host/posix_link.hpp"
+#include "trionet/host/text.hpp"
 
 extern "C" int ioctl(int fd, unsigned long request, ...) noexcept;
 
@@ -21,20 +23,33 @@ static_assert(sizeof(termios2) <= sizeof(serial_settings::raw), "serial_settings
 int open_serial(const std::string& path, unsigned baud, std::string& error, flow_control flow,
                 serial_settings* saved) {
   if (baud < min_serial_baud || baud > max_serial_baud) {
-    error = "unsupported baud rate " + std::to_string(baud) + " for " + path + " (use " +
+    error = "unsupported baud rate " + std::to_string(baud) + " for " + printable(path) + " (use " +
             std::to_string(min_serial_baud) + " ... " + std::to_string(max_serial_baud) + ")";
     return -1;
   }
   const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    error = "cannot open " + path + ": " + std::strerror(errno);
+    error = "cannot open " + printable(path) + ": " + std::strerror(errno);
     return -1;
+  }
+  if (!configure_serial(fd, path, baud, error, flow, saved)) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+bool configure_serial(int fd, const std::string& path, unsigned baud, std::string& error, flow_control flow,
+                      serial_settings* saved) {
+  if (baud < min_serial_baud || baud > max_serial_baud) {
+    error = "unsupported baud rate " + std::to_string(baud) + " for " + printable(path) + " (use " +
+            std::to_string(min_serial_baud) + " ... " + std::to_string(max_serial_baud) + ")";
+    return false;
   }
   termios2 tio{};
   if (::ioctl(fd, TCGETS2, &tio) != 0) {
-    error = path + " is not a serial port: " + std::strerror(errno);
-    ::close(fd);
-    return -1;
+    error = printable(path) + " is not a serial port: " + std::strerror(errno);
+    return false;
   }
   if (saved != nullptr) {
     std::memcpy(saved->raw, &tio, sizeof tio);
@@ -54,11 +69,11 @@ int open_serial(const std::string& path, unsigned baud, std::string& error, flow
   tio.c_cc[VMIN] = 0;
   tio.c_cc[VTIME] = 0;
   if (::ioctl(fd, TCSETS2, &tio) != 0) {
-    error = "cannot configure " + path + " at " + std::to_string(baud) + " baud: " + std::strerror(errno);
-    ::close(fd);
-    return -1;
+    error = "cannot configure " + printable(path) + " at " + std::to_string(baud) + " baud: " + std::strerror(errno);
+    if (saved != nullptr) saved->saved = false;
+    return false;
   }
-  return fd;
+  return true;
 }
 
 bool restore_serial(int fd, const serial_settings& saved) noexcept {

@@ -146,6 +146,7 @@ crc6_learn_result learn_genius_crc(const std::vector<crc6_sample>& samples,
   }
   std::vector<genius::crc6_parameters> survivors;
   for (unsigned polynomial = 0; polynomial <= mask; ++polynomial) {
+    if (options.progress) options.progress(polynomial, mask + 1);
     if (!options.even_polynomials && (polynomial & 1u) == 0) continue;
     for (bool reflect_in : {false, true}) {
       for (bool reflect_out : {false, true}) {

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,9 @@ struct crc6_learn_options {
   std::size_t max_length = 257;
   bool even_polynomials = false;  ///< also polynomials without the x^0 term
   const std::vector<catalogue_entry>* catalogue = &crc_catalogue();
+  /// Called during the search with how much of it is done, `done` of `total` (for a progress line,
+  /// host::progress); may be empty.
+  std::function<void(double done, double total)> progress;
 };
 
 /// Finds every CRC-6 that fits `samples`.

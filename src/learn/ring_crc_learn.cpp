@@ -246,6 +246,7 @@ crc_learn_result learn_ring_crc(const std::vector<variable_frame>& frames, const
           static_cast<std::uint16_t>(transmitted_crc(frames[f]) ^ transmitted_crc(frames[0])));
     }
     for (unsigned base = 0; base <= 0xFFFF; base += 64) {
+      if (options.progress) options.progress((reflect_in ? 0x10000 : 0) + base, 0x20000);
       std::array<std::uint64_t, 2> fits = {considered, considered};  // reflect_out false, true
       for (std::size_t d = 0; d < differences.size() && (fits[0] | fits[1]) != 0; ++d) {
         const auto matches = sliced_matches(sliced_linear_part(base, differences[d]), crc_differences[d]);

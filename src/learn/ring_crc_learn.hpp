@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,9 @@ struct crc_learn_options {
   bool even_polynomials = false;
   /// Preferred representatives, named in the report (nullptr: none).
   const std::vector<catalogue_entry>* catalogue = &crc_catalogue();
+  /// Called during the search with how much of it is done, `done` of `total` (for a progress line,
+  /// host::progress); may be empty.
+  std::function<void(double done, double total)> progress;
 };
 
 /// Finds every CRC that fits `frames` (see the top of this file). Cost: the search above, then O(frames) per

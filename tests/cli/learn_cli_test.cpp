@@ -449,7 +449,7 @@ TEST(LearnCli, BadInputAndArgumentsNameTheProblem) {
   const std::string big = temp_path("big.raw");
   { std::ofstream(big, std::ios::binary).put('\0'); }
   std::filesystem::resize_file(big, (std::uintmax_t{64} << 20U) + 1U);
-  expect_usage_error("ring learn crc --raw " + big, "the input is larger than 64 MiB");
+  trionet::test::expect_io_error("ring learn crc --raw " + big, "is larger than 67108864 bytes (64 MiB)");
   std::filesystem::resize_file(big, std::uintmax_t{64} << 20U);
   EXPECT_EQ(run_cli("ring learn crc --raw " + big).exit_code, 3) << "64 MiB is read: no frames in it";
   std::remove(big.c_str());

@@ -94,7 +94,7 @@ TEST(LiveRing, MonitorDecodesWhatArrivesAndCapturesIt) {
   const std::string all = trionet::test::without_times(monitor.output());
   EXPECT_EQ(tool_process::occurrences(all, "\"event\":\"counters\""), 2u) << all;
   EXPECT_NE(all.find("\"bytes\":37,\"messages\":5,\"char\":2,\"var\":1,\"offset\":1,\"mode\":1,\"crc_errors\":0,"
-                     "\"frame_errors\":1,\"idle_line\":1,\"idle_lines\":1,\"netstat\":8}"),
+                     "\"frame_errors\":1,\"idle_line\":1,\"netstat\":8}"),
             std::string::npos)
       << all;
 
@@ -168,9 +168,12 @@ TEST(LiveRing, SendWritesExactlyTheEncodedBytes) {
 }
 
 TEST(LiveRing, PortErrorsNameThePortAndTheCause) {
-  trionet::test::expect_usage_error("ring monitor /nonexistent/ttyX", "cannot open /nonexistent/ttyX: No such file");
-  trionet::test::expect_usage_error("ring monitor /dev/null", "/dev/null is not a serial port");
-  trionet::test::expect_usage_error("ring monitor /tmp", "/tmp is not a serial port, pty, FIFO or socket");
+  // A port that cannot be opened is an input that cannot be read (exit 1), with the cause.
+  trionet::test::expect_io_error("ring monitor /nonexistent/ttyX", "cannot open /nonexistent/ttyX: No such file");
+  trionet::test::expect_io_error("ring monitor /dev/null", "/dev/null is not a serial port");
+  trionet::test::expect_io_error("ring monitor /tmp", "/tmp is not a serial port, pty, FIFO or socket");
+  trionet::test::expect_io_error("ring send /nonexistent/ttyX print --to 11 A", "cannot open /nonexistent/ttyX");
+  trionet::test::expect_io_error("ring join /nonexistent/ttyX --as mc", "cannot open /nonexistent/ttyX");
   trionet::test::expect_usage_error("ring monitor /dev/null --baud 10", "--baud must be a rate 50..4000000");
   trionet::test::expect_usage_error("ring monitor /dev/null --flow maybe", "--flow must be none, rtscts or xonxoff");
   trionet::test::expect_usage_error("ring send /dev/null print --to 11", "print takes exactly one TEXT");

@@ -159,7 +159,7 @@ man_section man_section_of(const std::string& page, const std::string& part, con
   return s;
 }
 
-const std::set<std::string> common = {"--profile", "--help", "-h"};
+const std::set<std::string> common = {"--profile", "--fail-on-limit", "--help", "-h"};
 
 std::set<std::string> without_common(std::set<std::string> options) {
   for (const std::string& c : common) options.erase(c);

@@ -397,7 +397,7 @@ TEST(RingWire, TheNextNodesViewOfEachLinkIsDecodedAndTheIdleLineEndsAnOpenMessag
             std::string::npos)
       << out;
   EXPECT_NE(out.find("{\"event\":\"frame_error\",\"link\":0,\"reason\":\"idle_line\"}"), std::string::npos) << out;
-  EXPECT_EQ(counter(out, 0, "received_idle_lines"), 1) << out;
+  EXPECT_EQ(counter(out, 0, "received_idle_line"), 1) << out;
 }
 
 TEST(RingWire, TheCaptureHasOneInterfacePerLinkWithWhatTheNextNodeReceived) {

@@ -11,10 +11,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <trionet/can.hpp>
 
 #include "trionet/host/candump.hpp"
+#include "trionet/host/capture.hpp"
 #include "support/vcan.hpp"
 #include "trionet/host/socketcan.hpp"
 
@@ -74,6 +76,29 @@ TEST(CanCandump, OtherFrameShapes) {
   EXPECT_EQ(format_candump_frame(parse_candump_line("028#R").record.frame), "028#R");
 }
 
+// can-utils reads a log line with sscanf("(%llu.%llu) %s %s"): the blank after ')' may be missing.
+TEST(CanCandump, ALogLineWithoutABlankAfterItsTimestamp) {
+  const candump_result r = parse_candump_line("(1700000000.123456)can0 028#0100000000020D7A");
+  ASSERT_EQ(r.status, candump_status::ok);
+  EXPECT_EQ(r.record.form, candump_form::log);
+  EXPECT_EQ(r.record.interface_name, "can0");
+  EXPECT_EQ(r.record.seconds, 1700000000U);
+  EXPECT_EQ(r.record.nanoseconds, 123456000U);
+  EXPECT_EQ(format_candump_frame(r.record.frame), "028#0100000000020D7A");
+  EXPECT_EQ(parse_candump_line("(1700000000.123456)\tcan0 028#01").status, candump_status::ok);
+  EXPECT_EQ(parse_candump_line("(1700000000.123456)can0").status, candump_status::interface_name);
+}
+
+TEST(CanCandump, EveryDataByteIsKept) {
+  const candump_result fd = parse_candump_line("123##1" + std::string(128, 'A'));
+  ASSERT_EQ(fd.status, candump_status::ok);
+  EXPECT_EQ(fd.record.data, std::vector<std::uint8_t>(64, 0xAA));
+  const candump_result screen = parse_candump_line("can0  123  [12]  01 02 03 04 05 06 07 08 09 0A 0B 0C");
+  ASSERT_EQ(screen.status, candump_status::ok);
+  EXPECT_EQ(screen.record.data.size(), 12U);
+  EXPECT_EQ(screen.record.data.back(), 0x0C);
+}
+
 TEST(CanCandump, SyntaxErrorsAreClassified) {
   EXPECT_EQ(parse_candump_line("   ").status, candump_status::empty);
   EXPECT_EQ(parse_candump_line("(1700000000) can0 028#01").status, candump_status::timestamp);
@@ -83,7 +108,6 @@ TEST(CanCandump, SyntaxErrorsAreClassified) {
   EXPECT_EQ(parse_candump_line("can0 028#01").status, candump_status::timestamp);
   EXPECT_EQ(parse_candump_line("(1700000000.123456)").status, candump_status::interface_name);
   EXPECT_EQ(parse_candump_line("(1700000000.123456) can0").status, candump_status::interface_name);
-  EXPECT_EQ(parse_candump_line("(1700000000.123456)can0 028#01").status, candump_status::interface_name);
   EXPECT_EQ(parse_candump_line("28#01").status, candump_status::identifier);
   EXPECT_EQ(parse_candump_line("02G#01").status, candump_status::identifier);
   EXPECT_EQ(parse_candump_line("1234#01").status, candump_status::identifier);
@@ -222,3 +246,37 @@ TEST(CanSocketCan, VrExchangeOverVcan) {
 }
 
 }  // namespace
+
+// What `can monitor --pcap` writes for frames that are not classic: the records Linux delivers to a raw
+// socket (struct canfd_frame, an error frame with its flag), read back as such.
+TEST(CanCapture, FdAndErrorFramesAsSocketCanRecords) {
+  const candump_result fd = parse_candump_line("123##1" + std::string(48, 'A'));
+  ASSERT_EQ(fd.status, candump_status::ok);
+  const std::vector<std::uint8_t> fd_record = trionet::host::socketcan_record_of(fd.record);
+  ASSERT_EQ(fd_record.size(), 72U);
+  EXPECT_EQ(fd_record[3], 0x23);
+  EXPECT_EQ(fd_record[4], 24);    // len
+  EXPECT_EQ(fd_record[5], 0x05);  // CANFD_FDF | CANFD_BRS
+  EXPECT_EQ(fd_record[8], 0xAA);
+  EXPECT_EQ(fd_record[31], 0xAA);
+  EXPECT_EQ(fd_record[32], 0x00);
+  EXPECT_EQ(trionet::host::read_socketcan_record(trionet::byte_view(fd_record.data(), fd_record.size())).status,
+            trionet::host::socketcan_record_status::not_classic);
+
+  const candump_result error = parse_candump_line("20000004#0000080000000000");
+  ASSERT_EQ(error.status, candump_status::ok);
+  const std::vector<std::uint8_t> error_record = trionet::host::socketcan_record_of(error.record);
+  ASSERT_EQ(error_record.size(), 16U);
+  EXPECT_EQ(error_record[0], 0x20);
+  EXPECT_EQ(error_record[3], 0x04);
+  EXPECT_EQ(error_record[10], 0x08);
+  EXPECT_EQ(trionet::host::read_socketcan_record(trionet::byte_view(error_record.data(), error_record.size())).status,
+            trionet::host::socketcan_record_status::error_frame);
+
+  const candump_result classic = parse_candump_line("028#0100000000020D7A");
+  const std::vector<std::uint8_t> classic_record = trionet::host::socketcan_record_of(classic.record);
+  const auto expected = trionet::host::socketcan_record(classic.record.frame);
+  EXPECT_EQ(classic_record, std::vector<std::uint8_t>(expected.begin(), expected.end()));
+  // A CAN XL frame has no record here.
+  EXPECT_TRUE(trionet::host::socketcan_record_of(parse_candump_line("12345#80:00:00000000#11").record).empty());
+}

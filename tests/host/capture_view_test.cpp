@@ -223,7 +223,7 @@ TEST(CanRecordFields, TheNotesExample) {
   EXPECT_EQ(value(f, "trionet_can.sign"), "0");
   EXPECT_EQ(value(f, "trionet_can.integer"), "2");
   EXPECT_EQ(value(f, "trionet_can.fraction"), "3450");
-  EXPECT_EQ(value(f, "trionet_can.value"), "2.3450000000000002");
+  EXPECT_EQ(value(f, "trionet_can.value"), "2.345");
   EXPECT_FALSE(has(f, "trionet_can.error"));
 }
 
@@ -280,7 +280,12 @@ TEST(RecordFields, JsonEscapesAndGroupsRepeatedNames) {
   fields[1].real = 0.1;
   fields[2] = fields[0];
   fields[2].text = "";
-  EXPECT_EQ(fields_json(fields), "{\"a\":[\"q\\\"\\\\\\u0001\",\"\"],\"b\":0.10000000000000001}");
+  // The shortest decimal that reads back as the same double, never an exponent.
+  EXPECT_EQ(fields_json(fields), "{\"a\":[\"q\\\"\\\\\\u0001\",\"\"],\"b\":0.1}");
+  fields[1].real = 1e-7;
+  EXPECT_EQ(fields_json(fields), "{\"a\":[\"q\\\"\\\\\\u0001\",\"\"],\"b\":0.0000001}");
+  fields[1].real = -0.0;
+  EXPECT_EQ(fields_json(fields), "{\"a\":[\"q\\\"\\\\\\u0001\",\"\"],\"b\":-0.0}");
 }
 
 }  // namespace

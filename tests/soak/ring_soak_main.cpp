@@ -13,10 +13,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "support/ring_soak.hpp"
+#include "trionet/host/progress.hpp"
 
 namespace soak = trionet::soak;
 
@@ -57,6 +59,10 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|\n");
   bool ok = true;
   soak::report total;
+  // On a terminal, the configurations done, the rate and the time left on standard error.
+  trionet::host::progress shown("trionet_ring_soak", "configurations",
+                                static_cast<double>(std::size(shapes) * std::size(faults)));
+  double done = 0;
   for (const ring_shape& shape : shapes) {
     for (const fault& f : faults) {
       soak::config cfg;
@@ -70,6 +76,7 @@ int main(int argc, char** argv) {
       cfg.seed = seed++;
       cfg.accept_all_vrs = accept_all_vrs;
       const soak::report r = soak::run(cfg);
+      shown.clear();
       char what[32];
       if (f.kind == soak::fault_kind::cut) {
         std::snprintf(what, sizeof what, "cut %u", f.cut);
@@ -96,6 +103,7 @@ int main(int argc, char** argv) {
                   static_cast<unsigned long long>(soak::maximum(r.probes_done)),
                   static_cast<unsigned long long>(soak::recovery_bound(shape.nodes)));
       std::fflush(stdout);
+      shown.update(++done);
       if (r.wedged + r.livelocked + r.wrong_vr_writes + r.owned_refused + r.lost_unexplained +
                   r.untracked_headers !=
               0 ||
@@ -139,6 +147,7 @@ int main(int argc, char** argv) {
       total.probes_done.insert(total.probes_done.end(), r.probes_done.begin(), r.probes_done.end());
     }
   }
+  shown.finish();
   std::printf("\nall (VR write policy: %s): %llu episodes, %llu faults, %llu messages sent: %llu intact, "
               "%llu corrupted (no CRC), %llu misdelivered, %llu misaddressed and refused by the write policy, "
               "lost %llu counted + %llu vanished + %llu merged + %llu unexplained; %llu wrong VR writes "

@@ -27,10 +27,12 @@ struct pty_pair {
   int slave_keep = -1;  // held open so that the master does not see a hang-up between the tool's runs
 
   pty_pair() {
-    master = ::posix_openpt(O_RDWR | O_NOCTTY);
+    // Close-on-exec: a tool started by the test must not hold the test's ends of the pair, or closing them
+    // would not close the link.
+    master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return;
     slave_path = ::ptsname(master);
-    slave_keep = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY);
+    slave_keep = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
     termios raw{};
     ::tcgetattr(slave_keep, &raw);
     ::cfmakeraw(&raw);

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <trionet/can/frame.hpp>
 
@@ -94,6 +95,8 @@ struct candump_record {
   /// classic: the frame (identifier word with the extended and remote flags, DLC, data); error: the error
   /// class bits as identifier, the length as DLC and the data; FD and XL: the first 8 data bytes.
   can::frame frame{};
+  /// Every data byte as written on the line (classic 0..8, FD 0..64, XL 0..2048; none for a remote frame).
+  std::vector<std::uint8_t> data;
 
   /// True for a classic frame whose identifier fits its format (standard 0..7FF, or extended): `frame` is
   /// then the frame as SocketCAN would carry it.

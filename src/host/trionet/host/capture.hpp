@@ -23,6 +23,7 @@
 #include "trionet/can/frame.hpp"
 #include "trionet/genius/character.hpp"
 #include "trionet/genius/transmission.hpp"
+#include "trionet/host/candump.hpp"
 #include "trionet/host/pcapng.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/span.hpp"
@@ -286,5 +287,11 @@ struct [[nodiscard]] socketcan_record_result {
 
 /// Reads a LINKTYPE_CAN_SOCKETCAN record (as Linux, dumpcap and `socketcan_record` write it).
 socketcan_record_result read_socketcan_record(byte_view record);
+
+/// The frame of `record` as a LINKTYPE_CAN_SOCKETCAN capture record, as Linux delivers it to a raw socket:
+/// a classic frame as `socketcan_record` writes it (16 bytes); an error frame with the error flag and its
+/// class bits and 8 data bytes (16 bytes); a CAN FD frame as a struct canfd_frame (72 bytes: the FDF flag
+/// with its BRS and ESI flags, 64 data bytes). Empty for a CAN XL frame (not written).
+std::vector<std::uint8_t> socketcan_record_of(const candump_record& record);
 
 }  // namespace trionet::host

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <fstream>
 #include <string>
 
 namespace trionet::host {
@@ -55,12 +56,21 @@ struct [[nodiscard]] file_result {
   [[nodiscard]] std::string message(const std::string& path, const std::string& noun = "") const;
 };
 
-/// The whole content of `path` in `out` (replaced), at most `max_bytes` bytes; see the file comment.
-file_result read_bounded_file(const std::string& path, std::size_t max_bytes, std::string& out);
+class progress;
+
+/// The whole content of `path` in `out` (replaced), at most `max_bytes` bytes; see the file comment. With
+/// `shown`, the bytes read so far go to that progress line as they come (a large input on a slow pipe).
+file_result read_bounded_file(const std::string& path, std::size_t max_bytes, std::string& out,
+                              progress* shown = nullptr);
+
+/// Opens `path` to be read as a stream, piece by piece (a capture read record by record): a directory or a
+/// device is refused as by read_bounded_file, a file that cannot be opened names the cause; the reader
+/// bounds what it holds.
+file_result open_input_stream(const std::string& path, std::ifstream& stream);
 
 /// The same for an open descriptor (standard input is 0): read to its end, at most `max_bytes` bytes; the
 /// descriptor is not closed. A directory is refused; a device is read within the bound (standard input may
 /// be a terminal).
-file_result read_bounded_fd(int fd, std::size_t max_bytes, std::string& out);
+file_result read_bounded_fd(int fd, std::size_t max_bytes, std::string& out, progress* shown = nullptr);
 
 }  // namespace trionet::host

@@ -8,8 +8,11 @@
 //   port.close();                                           // the serial settings as they were
 //
 //   name                  opened as
-//   a tty (serial, pty)   open_serial: raw, no echo, no line discipline, the rate asked, no flow control
-//                         unless asked; the settings before are put back by close()
+//   a tty (serial, pty)   raw, no echo, no line discipline, the rate asked, no flow control unless asked
+//                         (as open_serial); refused, naming the port, while another process holds its
+//                         lock (flock) or has it in exclusive mode (TIOCEXCL); then locked until close()
+//                         puts back the settings from before and releases it. `shared` (a sender that
+//                         writes where a monitor listens) neither takes nor checks the lock
 //   a FIFO                read and write, non-blocking (bytes written to it are read back by whoever reads)
 //   a Unix stream socket  connected (e.g. `socat UNIX-LISTEN:ring.sock,fork ...`)
 //   "-"                   standard input (reading) or standard output (writing), as the command says
@@ -48,6 +51,7 @@ struct link_options {
   unsigned baud = 125000;                  ///< serial ports: bits per second (the ring's rate by default)
   flow_control flow = flow_control::none;  ///< serial ports: flow control
   int standard_stream = 0;                 ///< "-": 0 (standard input) or 1 (standard output)
+  bool shared = false;                     ///< serial ports: opened beside the command that holds it (no lock)
 };
 
 /// An open link device: its descriptor (non-blocking), what it is, and for a serial port its old settings.

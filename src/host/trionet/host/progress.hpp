@@ -6,6 +6,8 @@
 //   while (...) { ...; shown.update(ring_seconds); }
 //   shown.finish();   // clears the line (also on destruction)
 //
+// A program that writes other lines to the same terminal meanwhile calls `clear()` before each.
+//
 // The line, at most 4 times a second from half a second after the start, cut to the terminal's width:
 //
 //   ring simulate: 12.5 of 60 s of ring time (21%), 3.91 s of ring time/s, 3.20 s elapsed, about 12.1 s left
@@ -32,6 +34,9 @@ class progress {
 
   /// `done` units so far: the line is redrawn when it is due.
   void update(double done);
+  /// Clears the line for a moment, so that the caller can write to the same terminal (a table row, an
+  /// event); the next `update` draws it again.
+  void clear();
   /// The work is over: the line is cleared, and nothing more is drawn.
   void finish();
   /// True while the line may be drawn (the descriptor is a terminal and `finish` was not called).

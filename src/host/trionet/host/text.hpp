@@ -81,12 +81,12 @@ inline bool parse_real(std::string_view text, double min, double max, double& ou
   return true;
 }
 
-/// The shortest decimal text that reads back as the same double ("99", "2.345", "-0.5"); "null" for NaN and
-/// the infinities, so that the text is always a JSON value.
+/// The shortest plain decimal text that reads back as the same double ("99", "2.345", "-0.5", "0.0001"; never
+/// an exponent such as "1e-04"); "null" for NaN and the infinities, so that the text is always a JSON value.
 inline std::string format_real(double value) {
   if (!(value == value) || value > 1.7976931348623157e308 || value < -1.7976931348623157e308) return "null";
-  char text[32];
-  const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
+  char text[400];  // the longest plain decimal of a double is about 330 characters
+  const auto [end, ec] = std::to_chars(text, text + sizeof text, value, std::chars_format::fixed);
   return ec == std::errc() ? std::string(text, end) : std::string("null");
 }
 

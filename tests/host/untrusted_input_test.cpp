@@ -15,24 +15,21 @@
 #include <string>
 #include <thread>
 
+#include "support/temp_files.hpp"
 #include "trionet/host/files.hpp"
 #include "trionet/host/progress.hpp"
 #include "trionet/host/text.hpp"
 
 namespace {
 
+using trionet::test::temp_file;
+using trionet::test::temp_path;
 using trionet::host::file_result;
 using trionet::host::file_status;
 using trionet::host::printable;
 using trionet::host::progress;
 using trionet::host::read_bounded_fd;
 using trionet::host::read_bounded_file;
-
-std::string temp_file(const std::string& name, const std::string& content) {
-  const std::string path = ::testing::TempDir() + "trionet-host-" + std::to_string(::getpid()) + "-" + name;
-  std::ofstream(path, std::ios::binary) << content;
-  return path;
-}
 
 // ---- printable ----
 
@@ -169,7 +166,7 @@ TEST(ReadBoundedFile, AnEndlessPipeIsCutAtTheBound) {
 }
 
 TEST(ReadBoundedFile, ANamedFifoIsReadToItsEnd) {
-  const std::string path = ::testing::TempDir() + "trionet-host-fifo-" + std::to_string(::getpid());
+  const std::string path = temp_path("fifo");
   ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
   std::thread writer([&] {
     const int fd = ::open(path.c_str(), O_WRONLY);
