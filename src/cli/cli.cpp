@@ -57,11 +57,6 @@ int fail(const std::string& message) {
   return exit_usage;
 }
 
-int fail_io(const std::string& message) {
-  message_line(message);
-  return exit_io;
-}
-
 namespace {
 
 // The first failure of standard output: its errno (0: none yet), and whether it was reported.
@@ -69,6 +64,16 @@ int output_errno = 0;
 bool output_reported = false;
 
 }  // namespace
+
+int fail_io(const std::string& message) {
+  // A command's own report of a standard output that failed is the one report, with its cause.
+  if (message == "cannot write standard output") {
+    if (output_errno == 0) output_errno = errno != 0 ? errno : EIO;
+    return fail_output();
+  }
+  message_line(message);
+  return exit_io;
+}
 
 std::string& appendf(std::string& out, const char* format, ...) {
   char text[512];

@@ -265,7 +265,7 @@ TEST(RingSimulateCli, AnOutputThatCannotBeWrittenExits1WithOneMessage) {
   for (const char* args : {"ring simulate example1", "ring simulate example2 --json", "ring simulate example3 --trace"}) {
     const auto r = run_with_stdout(args, "/dev/full");
     EXPECT_EQ(r.exit_code, 1) << args;
-    EXPECT_EQ(r.err, "trionet: cannot write standard output\n") << args;
+    EXPECT_EQ(r.err, "trionet: cannot write standard output: No space left on device\n") << args;
   }
 }
 
