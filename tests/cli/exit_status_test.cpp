@@ -215,6 +215,8 @@ std::map<std::string, invocation> successful_runs() {
       {"genius timing", {"genius timing --rate 153.6s --after 4 --device 4@0 --device 5@2000", ""}},
       {"genius scan-time", {"genius scan-time --rate 153.6s --device 8", ""}},
       {"genius learn", {"genius learn crc", genius_learning_tokens()}},
+      {"genius simulate", {"genius simulate --rate 153.6s --device 4@0 --device 5@2000 --scans 2", ""}},
+      {"genius plan", {"genius plan --rate 153.6s --device a@0 --device b@2000", ""}},
       {"profile show", {"profile show", ""}},
       {"profile header", {"profile header", ""}},
   };
