@@ -386,6 +386,10 @@ int ring_simulate_main(const words& all) {
   for (std::size_t i = 1; i <= net->size(); ++i) {
     if (net->report(i).state == "failed") return 1;
   }
+  if (end != host::run_end::settled) {
+    return limit_reached("ring simulate: stopped after --byte-times " + std::to_string(max_byte_times) +
+                         ": the run had not settled");
+  }
   return exit_ok;
 }
 

@@ -212,6 +212,22 @@ TEST(RingSimulateCli, OptionsSetTheClock) {
       << limited.out;
 }
 
+TEST(RingSimulateCli, ARunTheByteTimeLimitCutsShortSaysSoAndExitsFourWhenAskedTo) {
+  const temporary_file wait("wait.bas", "WA(100)\n");
+  const std::string said = "trionet: ring simulate: stopped after --byte-times 50: the run had not settled\n";
+  const auto limited = run_cli("ring simulate --node mc:" + wait.path() + " --node mc --byte-times 50 --json");
+  EXPECT_EQ(limited.exit_code, 0);
+  EXPECT_EQ(limited.err, said);
+  const auto failing = run_cli("ring simulate --node mc:" + wait.path() + " --node mc --byte-times 50 --json --fail-on-limit");
+  EXPECT_EQ(failing.exit_code, 4);
+  EXPECT_EQ(failing.err, said);
+  EXPECT_EQ(last_line(failing.out), last_line(limited.out));
+  // A run that settles before the limit reaches no limit.
+  const auto settled = run_cli("ring simulate --node mc:" + wait.path() + " --node mc --fail-on-limit --json");
+  EXPECT_EQ(settled.exit_code, 0) << settled.err;
+  EXPECT_EQ(settled.err, "");
+}
+
 TEST(RingSimulateCli, CompileErrorsNameTheFileLineAndColumn) {
   const temporary_file bad("syntax.bas", "x=1\nIF x=1 GOTO done\ndone:\n");
   const auto r = run_cli("ring simulate --node mc:" + bad.path() + " --node keypad");
@@ -307,7 +323,8 @@ TEST(RingSimulateCli, ALongRunIsSilentOnStderrWhenItIsNotATerminal) {
   const temporary_file program("busy.bas", "loop: n=n+1: GOTO loop\n");
   const auto r = run_cli("ring simulate --node mc:" + program.path() + " --node mc --byte-times 800000 --json");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_EQ(r.err, "");  // the progress line is for terminals only
+  // The progress line is for terminals only: standard error has nothing but the limit reached.
+  EXPECT_EQ(r.err, "trionet: ring simulate: stopped after --byte-times 800000: the run had not settled\n");
   EXPECT_TRUE(has(r.out, "\"end\":\"limit\"")) << r.out;
 }
 
