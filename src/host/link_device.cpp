@@ -77,7 +77,9 @@ bool link_device::open(const std::string& name, const link_options& options, std
   }
   int exclusive = 0;
   if (!options.shared && ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    error = printable(name) + " is in use: another process holds its lock (another monitor or node on it?)";
+    error = errno == EWOULDBLOCK
+                ? printable(name) + " is in use: another process holds its lock (another monitor or node on it?)"
+                : "cannot lock " + printable(name) + ": " + std::strerror(errno);
   } else if (!options.shared && ::ioctl(fd_, TIOCGEXCL, &exclusive) == 0 && exclusive != 0) {
     error = printable(name) + " is in use: another program has it in exclusive mode";
   } else if (configure_serial(fd_, name, options.baud, error, options.flow, &saved_)) {
