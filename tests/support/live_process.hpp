@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/file.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -27,12 +28,19 @@ struct pty_pair {
   int slave_keep = -1;  // held open so that the master does not see a hang-up between the tool's runs
 
   pty_pair() {
-    // Close-on-exec: a tool started by the test must not hold the test's ends of the pair, or closing them
-    // would not close the link.
-    master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
-    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return;
-    slave_path = ::ptsname(master);
-    slave_keep = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+    // A pty number is used again as soon as its pair is closed, even while a tool started by another test
+    // still has the old device open and locked (as it has until it has exited): then the new device reads as
+    // locked. Such a pair is kept aside, unused, while this one lives, and another is taken.
+    for (int tries = 0; tries < 8 && open_pair(); ++tries) {
+      if (::flock(slave_keep, LOCK_EX | LOCK_NB) == 0) {
+        ::flock(slave_keep, LOCK_UN);
+        break;
+      }
+      set_aside.push_back(master);
+      set_aside.push_back(slave_keep);
+      master = slave_keep = -1;
+    }
+    if (master < 0 || slave_keep < 0) return;
     termios raw{};
     ::tcgetattr(slave_keep, &raw);
     ::cfmakeraw(&raw);
@@ -42,11 +50,27 @@ struct pty_pair {
   ~pty_pair() {
     if (slave_keep >= 0) ::close(slave_keep);
     if (master >= 0) ::close(master);
+    for (const int fd : set_aside) ::close(fd);
   }
   pty_pair(const pty_pair&) = delete;
   pty_pair& operator=(const pty_pair&) = delete;
 
   [[nodiscard]] bool ok() const { return master >= 0 && slave_keep >= 0; }
+
+ private:
+  std::vector<int> set_aside;
+
+  // Close-on-exec: a tool started by the test must not hold the test's ends of the pair, or closing them
+  // would not close the link.
+  bool open_pair() {
+    master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return false;
+    slave_path = ::ptsname(master);
+    slave_keep = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+    return slave_keep >= 0;
+  }
+
+ public:
 
   void write_all(const std::vector<std::uint8_t>& bytes) const {
     std::size_t done = 0;
