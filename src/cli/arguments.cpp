@@ -64,4 +64,15 @@ bool parse_arguments(const words& args, const std::set<std::string>& value_optio
   return true;
 }
 
+std::vector<std::string> values_of(const std::string& joined) {
+  std::vector<std::string> values;
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t end = joined.find('\n', at);
+    values.push_back(joined.substr(at, end == std::string::npos ? std::string::npos : end - at));
+    if (end == std::string::npos) return values;
+    at = end + 1;
+  }
+}
+
 }  // namespace trionet::cli

@@ -23,6 +23,9 @@ struct arguments {
   bool flag(const std::string& name) const { return flags.count(name) != 0; }
 };
 
+/// The values of a repeatable option, in the order given (parse_arguments joins them with '\n').
+std::vector<std::string> values_of(const std::string& joined);
+
 /// Splits `words` into options that take a value (`--name value` or `--name=value`; a short one such as
 /// `-o FILE` only in the first form), flags (`--name`, no value) and positionals. Unknown options, a missing
 /// value, a value given to a flag or a repeated option are errors; `repeatable` options collect every value,

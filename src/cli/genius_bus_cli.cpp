@@ -36,18 +36,6 @@ using host::genius_station;
 using host::genius_transmission_record;
 using host::genius_turn_record;
 
-std::vector<std::string> lines_of(const std::string& joined) {
-  std::vector<std::string> parts;
-  std::size_t from = 0;
-  while (true) {
-    const std::size_t at = joined.find('\n', from);
-    parts.push_back(joined.substr(from, at == std::string::npos ? std::string::npos : at - from));
-    if (at == std::string::npos) break;
-    from = at + 1;
-  }
-  return parts;
-}
-
 std::string fixed(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
@@ -184,7 +172,7 @@ int simulate_main(const words& all) {
   if (!parse_rate(args, config.rate, status)) return status;
   if (!args.has("--device")) return fail("simulate needs at least one --device SBA@FEET[:IN_BYTES[/OUT_BYTES]]");
   std::vector<genius_station> stations;
-  for (const std::string& text : lines_of(args.options["--device"])) {
+  for (const std::string& text : values_of(args.options["--device"])) {
     genius_station s;
     if (!parse_station(text, s)) {
       return fail("--device '" + host::printable(text) +
@@ -221,7 +209,7 @@ int simulate_main(const words& all) {
     config.seed = static_cast<std::uint64_t>(seed);
   }
   if (args.has("--fault")) {
-    for (const std::string& text : lines_of(args.options["--fault"])) {
+    for (const std::string& text : values_of(args.options["--fault"])) {
       genius_fault f;
       if (!parse_fault(text, f, error)) return fail(error);
       config.faults.push_back(f);
@@ -409,7 +397,7 @@ int plan_main(const words& all) {
   if (!parse_rate(args, options.rate, status)) return status;
   if (!args.has("--device")) return fail("plan needs at least one --device NAME@FEET[=SBA]");
   std::vector<genius_plan_device> devices;
-  for (const std::string& text : lines_of(args.options["--device"])) {
+  for (const std::string& text : values_of(args.options["--device"])) {
     genius_plan_device d;
     const std::size_t at = text.rfind('@');
     const std::size_t equals = text.find('=', at == std::string::npos ? 0 : at);

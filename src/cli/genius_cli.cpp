@@ -122,18 +122,6 @@ bool parse_sba(const std::string& text, std::uint8_t& out) {
   return true;
 }
 
-std::vector<std::string> split_lines(const std::string& joined) {
-  std::vector<std::string> parts;
-  std::size_t from = 0;
-  while (true) {
-    const std::size_t at = joined.find('\n', from);
-    parts.push_back(joined.substr(from, at == std::string::npos ? std::string::npos : at - from));
-    if (at == std::string::npos) break;
-    from = at + 1;
-  }
-  return parts;
-}
-
 // The parser `genius decode` uses (the library's capacities, the profile's CRC-6): what `encode` checks its
 // output against.
 using decode_parser = genius::transmission_parser<256, 16, genius::crc6_runtime>;
@@ -576,7 +564,7 @@ int timing_main(const std::vector<std::string>& words) {
   if (!parse_sba(args.options["--after"], after)) return fail("--after must be an SBA 0..31");
   if (!args.has("--device")) return fail("timing needs at least one --device SBA@FEET");
   std::vector<genius::device_position> devices;
-  for (const std::string& text : split_lines(args.options["--device"])) {
+  for (const std::string& text : values_of(args.options["--device"])) {
     const std::size_t at = text.find('@');
     genius::device_position d;
     double feet = 0;
@@ -745,7 +733,7 @@ int scan_time_main(const std::vector<std::string>& words) {
   }
   if (!args.has("--device")) return fail("scan-time needs at least one --device BYTES");
   std::vector<std::uint32_t> bytes;
-  for (const std::string& list : split_lines(args.options["--device"])) {
+  for (const std::string& list : values_of(args.options["--device"])) {
     std::size_t from = 0;
     while (true) {
       const std::size_t comma = list.find(',', from);

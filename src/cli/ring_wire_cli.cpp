@@ -265,18 +265,6 @@ struct fault_settings {
   double flip = 0;
 };
 
-// The values of a repeatable option (parse_arguments joins them with '\n').
-std::vector<std::string> values_of(const std::string& joined) {
-  std::vector<std::string> values;
-  std::size_t at = 0;
-  for (;;) {
-    const std::size_t end = joined.find('\n', at);
-    values.push_back(joined.substr(at, end == std::string::npos ? std::string::npos : end - at));
-    if (end == std::string::npos) return values;
-    at = end + 1;
-  }
-}
-
 // "P" or "L:P" for `links` links: which links (all when `link` is -1) and the probability.
 bool parse_probability(const std::string& text, std::size_t links, int& link, double& p, std::string& error) {
   link = -1;
