@@ -4,7 +4,8 @@
 // last 14 bytes also make a frame (identifier word, DLC, data) that is formatted and parsed back.
 // Invariants:
 //   - no crash, no undefined behaviour, whatever the text (ASan/UBSan in scripts/fuzz);
-//   - a parsed line's lengths are within its frame type's (classic 8, FD 64, XL 2048) and a classic frame
+//   - a parsed line's lengths are within its frame type's (classic 8, FD 64, XL 2048; an error frame, whose
+//     identifier word may carry a CAN FD length, 64) and a classic frame
 //     with a legal identifier is a legal frame: an 11-bit identifier (or 29-bit with the extended flag), no
 //     other identifier bits, DLC 0..15;
 //   - such a frame formats to a compact frame that parses back to the same frame, and a line with a numeric
@@ -47,9 +48,9 @@ void check_line(std::string_view line) {
   const candump_record& record = parsed.record;
   switch (record.type) {
     case candump_frame_type::classic:
-    case candump_frame_type::error:
       FUZZ_CHECK(record.length <= 8);
       break;
+    case candump_frame_type::error:  // the error flag after `##` or with a CAN FD length: up to 64 bytes
     case candump_frame_type::fd:
       FUZZ_CHECK(record.length <= 64);
       break;
