@@ -2,7 +2,9 @@
 //
 // A generic Cortex-M board:
 //   UART0 is an Arm PL011 at 0x4000C000 on IRQ 5 (as on the TI LM3S6965, which qemu emulates);
-//   CAN0 is an ST bxCAN at 0x40006400, receive FIFO 0 on IRQ 20 (as on the STM32F103).
+//   CAN0 is an ST bxCAN at 0x40006400, receive FIFO 0 on IRQ 20 (as on the STM32F103);
+//   the Genius device's 9-bit USART is an STM32L0/G0-style USART at 0x40004400, on the UART0 vector (that
+//   image has no PL011), and its block's inputs and outputs are a GPIO port at 0x50000000.
 // Only what the programs use is here. Everything is inline and ISR-safe.
 #pragma once
 
@@ -77,6 +79,53 @@ inline void start() noexcept {
   nvic::enable(irq);
 }
 }  // namespace uart0
+
+/// A 9-bit USART for the Genius bus, in the register layout of the STM32L0/G0 USARTs (CR1, CR3, BRR, ISR, ICR,
+/// RDR, TDR), on the UART0 vector: 9 data bits (M0), the receive interrupt, and the wake-up flag set on a
+/// start bit (WUS = 10, WUFIE). On a part that raises that flag only in Stop mode, a falling-edge interrupt
+/// on RX, enabled between characters, does the same.
+namespace usart9 {
+constexpr std::uintptr_t base = 0x40004400u;
+constexpr unsigned irq = uart0::irq;
+constexpr std::uint32_t isr_framing_error = 1u << 1;  // ISR.FE
+constexpr std::uint32_t isr_rx_not_empty = 1u << 5;   // ISR.RXNE
+constexpr std::uint32_t isr_start_bit = 1u << 20;     // ISR.WUF (WUS = start bit)
+
+inline volatile std::uint32_t& isr() noexcept { return reg(base + 0x1Cu); }
+inline volatile std::uint32_t& icr() noexcept { return reg(base + 0x20u); }
+inline volatile std::uint32_t& rdr() noexcept { return reg(base + 0x24u); }
+inline volatile std::uint32_t& tdr() noexcept { return reg(base + 0x28u); }
+
+inline void start(std::uint32_t clock_hz, std::uint32_t baud) noexcept {
+  reg(base + 0x0Cu) = clock_hz / baud;                         // BRR
+  reg(base + 0x08u) = (2u << 20) | (1u << 22);                 // CR3: WUS = start bit, WUFIE
+  reg(base + 0x00u) = (1u << 12) | (1u << 5) | (1u << 3) | (1u << 2) | (1u << 1) | 1u;  // CR1: M0 (9 bits),
+                                                               // RXNEIE, TE, RE, UESM, UE
+  nvic::enable(irq);
+}
+}  // namespace usart9
+
+/// SysTick as a one-shot timer: it counts `cycles` and interrupts once if the handler stops it.
+namespace systick {
+inline void start_once(std::uint32_t cycles) noexcept {
+  reg(0xE000E010u) = 0;           // CTRL: stopped
+  reg(0xE000E014u) = cycles - 1;  // LOAD
+  reg(0xE000E018u) = 0;           // VAL
+  reg(0xE000E010u) = 7;           // CTRL: processor clock, interrupt, enable
+}
+/// Stops it, and withdraws its interrupt if it is already pending (ICSR.PENDSTCLR): a timer cancelled from
+/// another handler of the same priority must not still interrupt.
+inline void stop() noexcept {
+  reg(0xE000E010u) = 0;
+  reg(0xE000ED04u) = 1u << 25;
+}
+}  // namespace systick
+
+/// General-purpose inputs and outputs: a block's 32 inputs and 32 outputs.
+namespace gpio {
+inline std::uint32_t inputs() noexcept { return reg(0x50000010u); }           // IDR
+inline void set_outputs(std::uint32_t value) noexcept { reg(0x50000414u) = value; }  // ODR
+}  // namespace gpio
 
 /// bxCAN: receive FIFO 0 and transmit mailbox 0.
 namespace can0 {

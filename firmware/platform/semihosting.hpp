@@ -31,6 +31,25 @@ inline std::uint32_t call(std::uint32_t op, const void* argument) noexcept {
 
 inline void write(const char* text) noexcept { static_cast<void>(call(sys_write0, text)); }
 
+/// Prints `value` in decimal.
+inline void write_unsigned(std::uint32_t value) noexcept {
+  char text[12];
+  char* p = text + sizeof text;
+  *--p = '\0';
+  do {
+    *--p = static_cast<char>('0' + value % 10);
+    value /= 10;
+  } while (value != 0);
+  write(p);
+}
+
+/// Prints one line: `name` then `value` in decimal.
+inline void report(const char* name, std::uint32_t value) noexcept {
+  write(name);
+  write_unsigned(value);
+  write("\n");
+}
+
 /// Ends the emulation; qemu exits with `code`. SYS_EXIT_EXTENDED carries the code on 32-bit Arm; should a
 /// host not know it, plain SYS_EXIT still tells success (ApplicationExit) from failure (any other reason).
 [[noreturn]] inline void exit(std::uint32_t code) noexcept {

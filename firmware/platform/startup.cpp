@@ -38,6 +38,7 @@ TRIONET_WEAK_HANDLER(SysTick_Handler);
 TRIONET_WEAK_HANDLER(UART0_IRQHandler);
 TRIONET_WEAK_HANDLER(UART1_IRQHandler);
 TRIONET_WEAK_HANDLER(CAN0_RX0_IRQHandler);
+TRIONET_WEAK_HANDLER(TIMER0A_IRQHandler);
 #undef TRIONET_WEAK_HANDLER
 
 // A pure virtual call is a bug; stop here rather than pull in libsupc++'s version, which drags in
@@ -69,6 +70,7 @@ constexpr vector_table make_vector_table() noexcept {
   table.irqs[board::uart0::irq] = UART0_IRQHandler;
   table.irqs[board::uart0::irq + 1] = UART1_IRQHandler;  // the LM3S6965's UART1 (the lab's debug console)
   table.irqs[board::can0::rx0_irq] = CAN0_RX0_IRQHandler;
+  table.irqs[19] = TIMER0A_IRQHandler;  // the LM3S6965's general-purpose timer 0A (the Genius test's timer)
   return table;
 }
 

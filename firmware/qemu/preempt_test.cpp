@@ -43,23 +43,6 @@ constexpr std::uint32_t own_messages = 300;        // PRINT #11 messages the pro
 trionet::vr_table<8, std::int64_t> vr;
 ring::motion_coordinator<> node(vr);
 
-void write_unsigned(std::uint32_t value) {
-  char text[12];
-  char* p = text + sizeof text;
-  *--p = '\0';
-  do {
-    *--p = static_cast<char>('0' + value % 10);
-    value /= 10;
-  } while (value != 0);
-  semihosting::write(p);
-}
-
-void report(const char* name, std::uint32_t value) {
-  semihosting::write(name);
-  write_unsigned(value);
-  semihosting::write("\n");
-}
-
 // ---- shared by both sides, one writer each ----
 volatile std::uint32_t link_failures = 0;      // link side
 const char* volatile link_failure = nullptr;   // link side: the first broken invariant it saw
@@ -272,12 +255,12 @@ int main() {
   }
   board::systick::start(0);  // (reload 0: the timer stops)
   const ring::link_counters links = node.forwarding_counters();
-  report("link interrupts ", ticks);
-  report("messages received ", made);
-  report("characters read with GET#4 ", characters);
-  report("own messages sent ", own_received);
-  report("PRINT# refused for a full queue ", refused);
-  report("messages passed through ", passing_received);
+  semihosting::report("link interrupts ", ticks);
+  semihosting::report("messages received ", made);
+  semihosting::report("characters read with GET#4 ", characters);
+  semihosting::report("own messages sent ", own_received);
+  semihosting::report("PRINT# refused for a full queue ", refused);
+  semihosting::report("messages passed through ", passing_received);
   if (message != for_node) fail("not every character message was read");
   if (links.messages_forwarded != passing_made || links.forwards_failed() != 0) fail("forwarding counters");
   for (std::size_t v = 0; v < 8; ++v) {

@@ -32,23 +32,12 @@ namespace ring = trionet::ring;
 unsigned checks_run = 0;
 unsigned checks_failed = 0;
 
-void write_unsigned(unsigned value) {
-  char text[12];
-  char* p = text + sizeof text;
-  *--p = '\0';
-  do {
-    *--p = static_cast<char>('0' + value % 10);
-    value /= 10;
-  } while (value != 0);
-  semihosting::write(p);
-}
-
 void check(bool ok, const char* what, unsigned line) {
   ++checks_run;
   if (ok) return;
   ++checks_failed;
   semihosting::write("FAIL line ");
-  write_unsigned(line);
+  semihosting::write_unsigned(line);
   semihosting::write(": ");
   semihosting::write(what);
   semihosting::write("\n");
@@ -433,9 +422,9 @@ int main() {
   can_example();
   can_conversions();
 
-  write_unsigned(checks_run);
+  semihosting::write_unsigned(checks_run);
   semihosting::write(" checks, ");
-  write_unsigned(checks_failed);
+  semihosting::write_unsigned(checks_failed);
   semihosting::write(" failed\n");
   if (checks_failed != 0 || checks_run == 0) {
     semihosting::write("trionet-qemu-test: FAIL\n");
