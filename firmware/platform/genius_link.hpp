@@ -3,10 +3,10 @@
 //
 //   struct Hardware {
 //     static uart_events uart_events() noexcept;            // what the UART interrupt is for (flags cleared)
-//     static std::uint16_t uart_read() noexcept;            // the word received (9 bits, bit 0 the control bit)
-//     static void uart_write(std::uint16_t word) noexcept;  // a word to send
-//     static void timer_start(std::uint32_t ticks, bool from_end_of_character) noexcept;  // one shot
-//     static void timer_stop() noexcept;
+//     static std::uint16_t uart_read() noexcept;            // the word received (9 bits, bit 0 the control
+//     bit) static void uart_write(std::uint16_t word) noexcept;  // a word to send static void
+//     timer_start(std::uint32_t ticks, bool from_end_of_character) noexcept;  // one shot static void
+//     timer_stop() noexcept;
 //   };
 //
 // Both handlers must run at one priority (they are the device's link side, docs/design.md "Contexts"); the

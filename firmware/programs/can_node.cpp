@@ -5,18 +5,16 @@
 // Every SysTick (10 ms) the main loop sends VR(0), the axis position it keeps up to date, to the next node
 // round the ring (transmit channel 5) through a one-mailbox bxCAN port.
 //
-// Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISRs and
-// main loop move frames without the library (and do the same integer arithmetic on the position). The
-// difference between the two images is the CAN codec + node. VRs are Q32.32 and values go out through the
-// parts-based interface, so the image has no floating point.
+// Its baseline, firmware/measure/can_node_baseline.cpp, is the same ISRs and main loop moving frames without
+// the library (and the same integer arithmetic on the position): scripts/firmware-size reports the difference,
+// the CAN codec + node. VRs are Q32.32 and values go out through the parts-based interface, so the image has
+// no floating point.
 #include <cstdint>
 
 #include "board.hpp"
 
-#if !TRIONET_FIRMWARE_BASELINE
 #include "trionet/can/node.hpp"
 #include "trionet/vr.hpp"
-#endif
 
 namespace {
 
@@ -26,11 +24,6 @@ constexpr std::uint32_t ticks_per_second = 100;
 volatile bool tick = false;
 volatile std::uint32_t frames_received = 0;
 
-#if TRIONET_FIRMWARE_BASELINE
-volatile std::uint32_t last_identifier = 0;
-volatile std::int64_t position = 0;  // Q32.32
-
-#else
 namespace can = trionet::can;
 
 constexpr std::uint8_t node_count = 5;
@@ -54,7 +47,6 @@ bxcan_port can_port;
 // 2.2): fixed at compile time, the node holds none and has no choice to make.
 can::basic_vr_exchange_node<can::fixed_byte_order<can::byte_order::big_endian>> node(
     can::make_node_address(node_count, this_node).address, can_port, vr);
-#endif
 
 }  // namespace
 
@@ -65,17 +57,9 @@ extern "C" void SysTick_Handler() {
 extern "C" void CAN0_RX0_IRQHandler() {
   while (board::can0::rx_pending()) {
     frames_received = frames_received + 1;
-#if TRIONET_FIRMWARE_BASELINE
-    std::uint32_t identifier = 0;
-    std::uint8_t length = 0;
-    std::uint8_t data[8];
-    board::can0::read(identifier, length, data);
-    last_identifier = identifier;
-#else
     can::frame received;
     board::can0::read(received.id, received.dlc, received.data);
     static_cast<void>(node.receive(received));  // counted by the node
-#endif
   }
 }
 
@@ -88,18 +72,10 @@ int main() {
       continue;
     }
     tick = false;
-#if TRIONET_FIRMWARE_BASELINE
-    position = position + 4294967;  // the same application arithmetic as below (0.001 in Q32.32)
-    if (board::can0::tx_free()) {
-      const std::uint8_t zeros[8] = {};
-      board::can0::write(20, 8, zeros);
-    }
-#else
     vr[position_vr] += 4294967;                 // the axis moves 0.001 (Q32.32)
     can::vr_message message;
     message.vr = position_vr;
     message.value = trionet::q32_to_decimal(vr[position_vr]);
     static_cast<void>(node.send_on_channel(next_node_channel, message));
-#endif
   }
 }

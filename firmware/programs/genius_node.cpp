@@ -1,10 +1,11 @@
 // Firmware image (e): a Genius device, an I/O block at SBA 5 on a 153.6 kbaud standard bus.
 //
-// The link side is two interrupts at one priority (include/trionet/genius/device.hpp, platform/genius_link.hpp):
-// the 9-bit USART's (a word or a framing error received, a start bit detected on the line) and SysTick as the
-// device's one-shot timer, counted in bit times. The main loop is the program side: whenever the block's 32
-// inputs change it makes them its turn data (a broadcast sent at every turn until changed), and it puts the
-// outputs the bus controller sends it (a block of 4 bytes) on the output port.
+// The link side is two interrupts at one priority (include/trionet/genius/device.hpp,
+// platform/genius_link.hpp): the 9-bit USART's (a word or a framing error received, a start bit detected on
+// the line) and SysTick as the device's one-shot timer, counted in bit times. The main loop is the program
+// side: whenever the block's 32 inputs change it makes them its turn data (a broadcast sent at every turn
+// until changed), and it puts the outputs the bus controller sends it (a block of 4 bytes) on the output
+// port.
 //
 // The image's baseline (firmware/measure/genius_node_baseline.cpp) has the same start-up, vector table,
 // handlers and main loop moving words without the library: scripts/firmware-size reports the difference.
@@ -51,8 +52,12 @@ using link = firmware::genius_link<genius_device, hardware>;
 
 }  // namespace
 
-extern "C" void UART0_IRQHandler() { link::uart_interrupt(node); }
-extern "C" void SysTick_Handler() { link::timer_interrupt(node); }
+extern "C" void UART0_IRQHandler() {
+  link::uart_interrupt(node);
+}
+extern "C" void SysTick_Handler() {
+  link::timer_interrupt(node);
+}
 
 int main() {
   board::usart9::start(core_clock_hz, baud);
@@ -64,14 +69,16 @@ int main() {
     if (now != inputs) {
       inputs = now;
       const std::uint8_t bytes[4] = {static_cast<std::uint8_t>(now), static_cast<std::uint8_t>(now >> 8),
-                                     static_cast<std::uint8_t>(now >> 16), static_cast<std::uint8_t>(now >> 24)};
+                                     static_cast<std::uint8_t>(now >> 16),
+                                     static_cast<std::uint8_t>(now >> 24)};
       static_cast<void>(node.set_turn_data(trionet::byte_view(bytes, 4)));
     }
     std::uint8_t data[genius_device::delivery_capacity];  // the longest delivery fits: none stays
     const genius::delivery_result got = node.read(trionet::byte_buffer(data, sizeof data));
     if (got && got.kind == genius::delivery_kind::block && got.length == 4) {
       board::gpio::set_outputs(data[0] | static_cast<std::uint32_t>(data[1]) << 8 |
-                               static_cast<std::uint32_t>(data[2]) << 16 | static_cast<std::uint32_t>(data[3]) << 24);
+                               static_cast<std::uint32_t>(data[2]) << 16 |
+                               static_cast<std::uint32_t>(data[3]) << 24);
     }
     if (!node.deliveries_waiting()) board::wait_for_interrupt();
   }

@@ -6,16 +6,14 @@
 // hardware-scanned key matrix and reports each key that went down or up (`press` / `release`): the keypad's
 // program side, with no interrupt masking (transport.hpp).
 //
-// Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR, key
-// scan and main loop run without the library. The difference between the two images is the keypad node.
+// Its baseline, firmware/measure/keypad_node_baseline.cpp, is the same ISR, key scan and main loop without the
+// library: scripts/firmware-size reports the difference, the keypad node.
 #include <cstddef>
 #include <cstdint>
 
 #include "board.hpp"
 
-#if !TRIONET_FIRMWARE_BASELINE
 #include "trionet/ring/keypad.hpp"
-#endif
 
 namespace {
 
@@ -26,15 +24,10 @@ constexpr unsigned key_count = 18;
 volatile bool tick = false;
 std::uint32_t keys_down = 0;  // the key matrix at the previous scan
 
-#if TRIONET_FIRMWARE_BASELINE
-volatile std::uint8_t last_byte = 0;
-volatile std::uint32_t key_events = 0;
-#else
 namespace ring = trionet::ring;
 static_assert(key_count == ring::key_count, "the key matrix has one bit per keypad key");
 
 ring::keypad<> node;
-#endif
 
 }  // namespace
 
@@ -44,21 +37,9 @@ extern "C" void SysTick_Handler() {
 
 extern "C" void UART0_IRQHandler() {
   while (board::uart0::rx_ready()) {
-#if TRIONET_FIRMWARE_BASELINE
-    last_byte = board::uart0::read();
-#else
     node.receive(board::uart0::read());
-#endif
   }
   std::uint8_t byte = 0;
-#if TRIONET_FIRMWARE_BASELINE
-  while (board::uart0::tx_ready() && (last_byte & 0x80u) != 0) {
-    byte = last_byte;
-    last_byte = 0;
-    board::uart0::write(byte);
-  }
-  board::uart0::enable_tx_interrupt(false);
-#else
   while (board::uart0::tx_ready()) {
     if (!node.transmit(byte)) {
       board::uart0::enable_tx_interrupt(false);
@@ -66,7 +47,6 @@ extern "C" void UART0_IRQHandler() {
     }
     board::uart0::write(byte);
   }
-#endif
 }
 
 int main() {
@@ -85,13 +65,8 @@ int main() {
     bool queued = false;
     for (unsigned k = 0; k < key_count; ++k) {
       if ((changed & (1u << k)) == 0) continue;
-#if TRIONET_FIRMWARE_BASELINE
-      key_events = key_events + 1;
-      queued = true;
-#else
       const auto which = static_cast<ring::key>(k);
       if (((now & (1u << k)) != 0 ? node.press(which) : node.release(which)) == ring::key_status::ok) queued = true;
-#endif
     }
     if (queued) board::uart0::enable_tx_interrupt(true);  // no masking: the ISR switches it off when done
   }

@@ -4,17 +4,15 @@
 // pushes every byte into a trionet::ring::decoder and, for each valid message, encodes the same message back
 // to the next node into the transmit frame; the main loop sends that frame. Frame and CRC errors are counted.
 //
-// Built twice (see CMakeLists.txt): normally, and with TRIONET_FIRMWARE_BASELINE=1, where the same ISR and
-// main loop move bytes without the library. The difference between the two images is the codec's cost.
+// Its baseline, firmware/measure/ring_codec_baseline.cpp, is the same ISR and main loop moving bytes without
+// the library: scripts/firmware-size reports the difference, the codec's cost.
 #include <cstddef>
 #include <cstdint>
 
 #include "board.hpp"
 
-#if !TRIONET_FIRMWARE_BASELINE
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/encode.hpp"
-#endif
 
 namespace {
 
@@ -24,10 +22,6 @@ volatile std::uint32_t bytes_received = 0;
 volatile bool reply_ready = false;  // set by the ISR with the frame to send, cleared by the main loop
 std::size_t reply_length = 0;
 
-#if TRIONET_FIRMWARE_BASELINE
-volatile std::uint8_t last_byte = 0;
-constexpr std::uint8_t frame[16] = {0x8a, 0x48, 0x01, 0, 0, 0, 0, 0x30, 0x0c, 0, 0, 0, 0, 0x7f, 0x3e, 0x88};
-#else
 namespace ring = trionet::ring;
 using crc = ring::crc16_ccitt_false_bitwise;
 
@@ -49,7 +43,6 @@ void reply(ring::message msg) {
   reply_length = encoded.length;
   reply_ready = true;
 }
-#endif
 
 void send(const std::uint8_t* bytes, std::size_t length) {
   for (std::size_t i = 0; i < length; ++i) {
@@ -65,13 +58,6 @@ extern "C" void UART0_IRQHandler() {
   while (board::uart0::rx_ready()) {
     const std::uint8_t byte = board::uart0::read();
     bytes_received = bytes_received + 1;
-#if TRIONET_FIRMWARE_BASELINE
-    last_byte = byte;
-    if ((byte & 0x87u) == 0x80u && !reply_ready) {  // an end of message
-      reply_length = sizeof frame;
-      reply_ready = true;
-    }
-#else
     const ring::decode_result result = receiver.push(byte);
     if (result.status == ring::decode_status::ok) {
       reply(result.msg);
@@ -80,7 +66,6 @@ extern "C" void UART0_IRQHandler() {
     } else if (result.status != ring::decode_status::incomplete) {
       frame_errors = frame_errors + 1;  // a frame error, or anything else the decoder discarded
     }
-#endif
   }
 }
 

@@ -3,28 +3,28 @@
 //
 // The device (SBA 5, 153.6 kbaud standard: one skip time is one bit time) is driven exactly as
 // firmware/programs/genius_node.cpp drives it, through platform/genius_link.hpp: a UART interrupt (the UART0
-// vector: a word received, a start bit detected) and a timer interrupt (the TIMER0A vector: its one-shot timer
-// expired), both at one priority. QEMU has no 9-bit UART, and its UART and timers are not in step at the
-// resolution of one bit, so the hardware around the device is a model: SysTick, one interrupt per bit time,
-// is the bus. It shifts 11-bit characters onto the wire one bit per tick, reports each start bit and each
-// received word to the device's UART registers and raises the UART interrupt through the NVIC, counts the
-// device's one-shot timer down and raises the timer interrupt when it expires, starts a word the device wrote
-// at the next tick, and plays the other devices: a bus controller at SBA 31 (each scan: a transmission of
-// two blocks, outputs for SBA 5 and SBA 3) and a device at SBA 3 (each turn: its inputs as a broadcast, or
+// vector: a word received, a start bit detected) and a timer interrupt (the TIMER0A vector: its one-shot
+// timer expired), both at one priority. QEMU has no 9-bit UART, and its UART and timers are not in step at
+// the resolution of one bit, so the hardware around the device is a model: SysTick, one interrupt per bit
+// time, is the bus. It shifts 11-bit characters onto the wire one bit per tick, reports each start bit and
+// each received word to the device's UART registers and raises the UART interrupt through the NVIC, counts
+// the device's one-shot timer down and raises the timer interrupt when it expires, starts a word the device
+// wrote at the next tick, and plays the other devices: a bus controller at SBA 31 (each scan: a transmission
+// of two blocks, outputs for SBA 5 and SBA 3) and a device at SBA 3 (each turn: its inputs as a broadcast, or
 // every fourth turn a transmission directed to SBA 5; one in seven with a data bit flipped, a CRC-6 error).
 // The bus takes no step while an interrupt it raised has not been served, so the run does not depend on how
 // fast QEMU runs; its reload changes every tick (a pseudo-random 200..711 cycles), so that it preempts the
 // main loop at ever different instructions.
 //
-// Checked on the wire (the bus interrupt, with the library's transmission parser): every transmission of SBA 5
-// starts at the tick its turn is due, (5 - s) mod 32 skip times after the end of the Stop of SBA s, plus the
-// one tick a UART takes to start a word written to it; it is its turn data as the main loop set it (8 bytes:
-// a number and its complement, never torn, never going back) or the directed transmission the main loop
-// queued (to SBA 3, each once, in order); no collision. Checked by the main loop: every block the controller
-// sent to SBA 5 delivered once, in order, and none for SBA 3; every transmission of SBA 3 without an error
-// delivered (broadcast or directed, in order), none with one; at the end the device's counters agree (turns
-// taken, transmissions sent, CRC errors, no collision, framing error, loss or overflow) and the last turn
-// carried the main loop's last turn data.
+// Checked on the wire (the bus interrupt, with the library's transmission parser): every transmission of SBA
+// 5 starts at the tick its turn is due, (5 - s) mod 32 skip times after the end of the Stop of SBA s, plus
+// the one tick a UART takes to start a word written to it; it is its turn data as the main loop set it (8
+// bytes: a number and its complement, never torn, never going back) or the directed transmission the main
+// loop queued (to SBA 3, each once, in order); no collision. Checked by the main loop: every block the
+// controller sent to SBA 5 delivered once, in order, and none for SBA 3; every transmission of SBA 3 without
+// an error delivered (broadcast or directed, in order), none with one; at the end the device's counters agree
+// (turns taken, transmissions sent, CRC errors, no collision, framing error, loss or overflow) and the last
+// turn carried the main loop's last turn data.
 //
 // With TRIONET_GENIUS_TEST_BROKEN=1 the model's timer runs one tick longer than asked (a driver that starts
 // the turn timer late): that image must fail, which shows that the timing is checked.
@@ -57,10 +57,15 @@ constexpr unsigned timer_irq = 19;              // TIMER0A on the LM3S6965
 
 genius::device<> node(own_sba, genius::bit_timing(genius::rate::standard_153k6));
 
-void pend(unsigned irq) { board::reg(0xE000E200u + 4u * (irq / 32u)) = 1u << (irq % 32u); }    // NVIC ISPR
-void unpend(unsigned irq) { board::reg(0xE000E280u + 4u * (irq / 32u)) = 1u << (irq % 32u); }  // NVIC ICPR
+void pend(unsigned irq) {
+  board::reg(0xE000E200u + 4u * (irq / 32u)) = 1u << (irq % 32u);
+}  // NVIC ISPR
+void unpend(unsigned irq) {
+  board::reg(0xE000E280u + 4u * (irq / 32u)) = 1u << (irq % 32u);
+}  // NVIC ICPR
 
-// ---- the hardware model: the device's UART registers and one-shot timer (the bus and the handlers only) ----
+// ---- the hardware model: the device's UART registers and one-shot timer (the bus and the handlers only)
+// ----
 struct uart_model {
   std::uint16_t received = 0;  // the receive register
   bool full = false;           // a word waits in it
@@ -78,14 +83,14 @@ struct timer_model {
 // ---- shared by the bus interrupt (writer) and the main loop ----
 volatile std::uint32_t link_failures = 0;
 const char* volatile link_failure = nullptr;
-volatile std::uint32_t scans_sent = 0;        // the controller's transmissions sent whole
-volatile std::uint32_t other_sent = 0;        // SBA 3's transmissions sent whole
-volatile std::uint32_t other_corrupted = 0;   // ... of them with a data bit flipped
-volatile std::uint32_t own_seen = 0;          // SBA 5's transmissions seen whole on the wire
-volatile std::uint32_t directed_seen = 0;     // ... of them directed to SBA 3
-volatile std::uint32_t last_turn_data = 0;    // the number the last turn-data transmission of SBA 5 carried
-volatile std::uint32_t ticks = 0;             // bit times
-volatile std::uint32_t stalls = 0;            // ticks the bus waited for a handler
+volatile std::uint32_t scans_sent = 0;       // the controller's transmissions sent whole
+volatile std::uint32_t other_sent = 0;       // SBA 3's transmissions sent whole
+volatile std::uint32_t other_corrupted = 0;  // ... of them with a data bit flipped
+volatile std::uint32_t own_seen = 0;         // SBA 5's transmissions seen whole on the wire
+volatile std::uint32_t directed_seen = 0;    // ... of them directed to SBA 3
+volatile std::uint32_t last_turn_data = 0;   // the number the last turn-data transmission of SBA 5 carried
+volatile std::uint32_t ticks = 0;            // bit times
+volatile std::uint32_t stalls = 0;           // ticks the bus waited for a handler
 volatile bool bus_done = false;
 
 void link_fail(const char* what) {
@@ -110,7 +115,8 @@ struct model_hardware {
     uart.to_send = word;
     uart.sending = true;
   }
-  static void timer_start(std::uint32_t count, bool /*from_end_of_character: the model reports a word at it*/) noexcept {
+  static void timer_start(std::uint32_t count,
+                          bool /*from_end_of_character: the model reports a word at it*/) noexcept {
     timer.count = count + (TRIONET_GENIUS_TEST_BROKEN ? 1u : 0u);
     timer.running = count != 0;
     timer.fired = false;
@@ -144,10 +150,12 @@ player sba3{other_sba, {}, 0, 0, 0};
 
 void encode(player& p, const genius::transmission& t, bool corrupt) {
   genius::character characters[24];
-  const genius::encode_result r = genius::encode_transmission(trionet::span<genius::character>(characters, 24), t);
+  const genius::encode_result r =
+      genius::encode_transmission(trionet::span<genius::character>(characters, 24), t);
   if (!r) link_fail("a test transmission did not encode");
   for (std::size_t k = 0; k < r.length; ++k) p.words[k] = genius::to_uart_word(characters[k]);
-  if (corrupt) p.words[r.length - 2] = static_cast<std::uint16_t>(p.words[r.length - 2] ^ 0x2u);  // last data byte
+  if (corrupt)
+    p.words[r.length - 2] = static_cast<std::uint16_t>(p.words[r.length - 2] ^ 0x2u);  // last data byte
   p.length = r.length;
   p.at = 0;
 }
@@ -174,15 +182,15 @@ void make_other(std::uint32_t j) {
 
 // ---- the wire ----
 enum class who : std::uint8_t { nobody, device, controller, other };
-who talker = who::nobody;        // whose character is on the wire
+who talker = who::nobody;  // whose character is on the wire
 std::uint16_t word_on_wire = 0;
-unsigned bit = 0;                // of the character on the wire, 0 (start) .. 10 (stop)
-std::uint32_t stop_end = 0;      // the tick at which the last Stop ended
+unsigned bit = 0;            // of the character on the wire, 0 (start) .. 10 (stop)
+std::uint32_t stop_end = 0;  // the tick at which the last Stop ended
 std::uint8_t stop_sender = controller_sba;
 bool started_since_stop = false;  // a transmission began after that Stop
 player* due_player = nullptr;     // the other device whose turn comes next, at `due_tick`
 std::uint32_t due_tick = 0;
-std::uint32_t own_due_tick = 0;   // when SBA 5's turn comes
+std::uint32_t own_due_tick = 0;  // when SBA 5's turn comes
 genius::transmission_parser<64, 8> monitor;
 std::uint32_t expected_directed = 0;
 
@@ -221,8 +229,10 @@ void seen(const genius::transmission& t) {
       link_fail("SBA 5's turn data is not 8 bytes");
       return;
     }
-    const std::uint32_t n = d[0] | std::uint32_t{d[1]} << 8 | std::uint32_t{d[2]} << 16 | std::uint32_t{d[3]} << 24;
-    const std::uint32_t m = d[4] | std::uint32_t{d[5]} << 8 | std::uint32_t{d[6]} << 16 | std::uint32_t{d[7]} << 24;
+    const std::uint32_t n =
+        d[0] | std::uint32_t{d[1]} << 8 | std::uint32_t{d[2]} << 16 | std::uint32_t{d[3]} << 24;
+    const std::uint32_t m =
+        d[4] | std::uint32_t{d[5]} << 8 | std::uint32_t{d[6]} << 16 | std::uint32_t{d[7]} << 24;
     if (m != ~n) link_fail("SBA 5's turn data torn");
     if (n < last_turn_data) link_fail("SBA 5's turn data went back");
     last_turn_data = n;
@@ -275,7 +285,7 @@ extern "C" void SysTick_Handler() {
     return;
   }
   board::systick::start(20u + (next_random() & 0x3Fu));  // the next tick somewhere else in the main loop
-  if (uart.full || uart.start_bit || timer.fired) {  // a handler has not run yet: the bus waits for it
+  if (uart.full || uart.start_bit || timer.fired) {      // a handler has not run yet: the bus waits for it
     stalls = stalls + 1;
     return;
   }
@@ -294,7 +304,9 @@ extern "C" void SysTick_Handler() {
     return;
   }
   // The wire is idle: a word the device wrote, the next word of a transmission under way, or a turn due.
-  player* next = bus_controller.at < bus_controller.length ? &bus_controller : sba3.at < sba3.length ? &sba3 : nullptr;
+  player* next = bus_controller.at < bus_controller.length ? &bus_controller
+                 : sba3.at < sba3.length                   ? &sba3
+                                                           : nullptr;
   if (uart.sending) {
     if (next != nullptr) link_fail("SBA 5 sent inside another device's transmission");
     if (!started_since_stop && ticks != own_due_tick) link_fail("SBA 5 took its turn at the wrong time");
@@ -324,8 +336,12 @@ extern "C" void SysTick_Handler() {
   }
 }
 
-extern "C" void UART0_IRQHandler() { link::uart_interrupt(node); }
-extern "C" void TIMER0A_IRQHandler() { link::timer_interrupt(node); }
+extern "C" void UART0_IRQHandler() {
+  link::uart_interrupt(node);
+}
+extern "C" void TIMER0A_IRQHandler() {
+  link::timer_interrupt(node);
+}
 
 extern "C" void HardFault_Handler() {
   semihosting::write("trionet-genius-test: FAIL (hard fault)\n");
@@ -350,14 +366,15 @@ int main() {
   std::uint32_t from_other = 0;  // SBA 3's transmissions delivered
   std::uint32_t last_other = 0;  // ... the last one's number + 1
   std::uint32_t reads = 0;
-  bool frozen = false;           // the turn data no longer changes (the end of the run)
+  bool frozen = false;  // the turn data no longer changes (the end of the run)
   auto set_turn_data = [&]() {
     const std::uint32_t m = ~n;
-    const std::uint8_t data[8] = {static_cast<std::uint8_t>(n), static_cast<std::uint8_t>(n >> 8),
+    const std::uint8_t data[8] = {static_cast<std::uint8_t>(n),       static_cast<std::uint8_t>(n >> 8),
                                   static_cast<std::uint8_t>(n >> 16), static_cast<std::uint8_t>(n >> 24),
-                                  static_cast<std::uint8_t>(m), static_cast<std::uint8_t>(m >> 8),
+                                  static_cast<std::uint8_t>(m),       static_cast<std::uint8_t>(m >> 8),
                                   static_cast<std::uint8_t>(m >> 16), static_cast<std::uint8_t>(m >> 24)};
-    if (node.set_turn_data(trionet::byte_view(data, 8)) != genius::turn_data_status::ok) fail("set_turn_data");
+    if (node.set_turn_data(trionet::byte_view(data, 8)) != genius::turn_data_status::ok)
+      fail("set_turn_data");
   };
 
   board::nvic::enable(board::uart0::irq);  // the interrupts the bus raises (priority 0, as SysTick's)
@@ -377,8 +394,8 @@ int main() {
       if (scans_sent + 4 >= scans) frozen = true;  // a few more turns carry the last number
     }
     if (queued < directed_to_send && node.directed_waiting() == 0 && (n & 15u) == 0) {
-      const std::uint8_t data[3] = {static_cast<std::uint8_t>(queued), static_cast<std::uint8_t>(queued ^ 0x5Au),
-                                    0xD1};
+      const std::uint8_t data[3] = {static_cast<std::uint8_t>(queued),
+                                    static_cast<std::uint8_t>(queued ^ 0x5Au), 0xD1};
       if (node.queue_directed(other_sba, trionet::byte_view(data, 3)) == genius::queue_status::ok) {
         ++queued;
       } else {
@@ -390,9 +407,10 @@ int main() {
     if (!got) continue;
     ++reads;
     if (got.kind == genius::delivery_kind::block) {
-      const std::uint32_t k = data[0] | std::uint32_t{data[1]} << 8 | std::uint32_t{data[2]} << 16 |
-                              std::uint32_t{data[3]} << 24;
-      if (got.sender != controller_sba || got.length != 4 || k != blocks) fail("a block out of order or not ours");
+      const std::uint32_t k =
+          data[0] | std::uint32_t{data[1]} << 8 | std::uint32_t{data[2]} << 16 | std::uint32_t{data[3]} << 24;
+      if (got.sender != controller_sba || got.length != 4 || k != blocks)
+        fail("a block out of order or not ours");
       ++blocks;
     } else {
       const std::uint32_t j = data[0] | std::uint32_t{data[1]} << 8;
@@ -442,7 +460,8 @@ int main() {
     fail("a collision, framing error, loss, wire error or overflow counted");
   }
   if (c.deliveries != reads) fail("deliveries counted != read");
-  if (c.idle_restarts != 1 || c.turns_passed != 0) fail("idle restarts other than at power-up, or a turn passed");
+  if (c.idle_restarts != 1 || c.turns_passed != 0)
+    fail("idle restarts other than at power-up, or a turn passed");
   if (own_seen < scans - 1) fail("SBA 5 did not take a turn in every scan");
   if (link_failures != 0) {
     semihosting::write("FAIL (bus) ");
