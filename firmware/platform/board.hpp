@@ -4,7 +4,7 @@
 //   UART0 is an Arm PL011 at 0x4000C000 on IRQ 5 (as on the TI LM3S6965, which qemu emulates);
 //   CAN0 is an ST bxCAN at 0x40006400, receive FIFO 0 on IRQ 20 (as on the STM32F103);
 //   the Genius device's 9-bit USART is an STM32L0/G0-style USART at 0x40004400, on the UART0 vector (that
-//   image has no PL011), and its block's inputs and outputs are a GPIO port at 0x50000000.
+//   image has no PL011), and its block's inputs and outputs are GPIO ports A and B at 0x50000000 (IDR, ODR).
 // Only what the programs use is here. Everything is inline and ISR-safe.
 #pragma once
 
@@ -80,10 +80,10 @@ inline void start() noexcept {
 }
 }  // namespace uart0
 
-/// A 9-bit USART for the Genius bus, in the register layout of the STM32L0/G0 USARTs (CR1, CR3, BRR, ISR, ICR,
-/// RDR, TDR), on the UART0 vector: 9 data bits (M0), the receive interrupt, and the wake-up flag set on a
-/// start bit (WUS = 10, WUFIE). On a part that raises that flag only in Stop mode, a falling-edge interrupt
-/// on RX, enabled between characters, does the same.
+/// A 9-bit USART for the Genius bus, in the register layout of the STM32L0/G0 USARTs (CR1, CR3, BRR, ISR,
+/// ICR, RDR, TDR), on the UART0 vector: 9 data bits (M0), the receive interrupt, and the wake-up flag set on
+/// a start bit (WUS = 10, WUFIE). On a part that raises that flag only in Stop mode, a falling-edge
+/// interrupt on RX, enabled between characters, does the same.
 namespace usart9 {
 constexpr std::uintptr_t base = 0x40004400u;
 constexpr unsigned irq = uart0::irq;
@@ -121,7 +121,7 @@ inline void stop() noexcept {
 }
 }  // namespace systick
 
-/// General-purpose inputs and outputs: a block's 32 inputs and 32 outputs.
+/// General-purpose inputs and outputs (STM32L0-style ports A and B): a block's 32 inputs and 32 outputs.
 namespace gpio {
 inline std::uint32_t inputs() noexcept { return reg(0x50000010u); }           // IDR
 inline void set_outputs(std::uint32_t value) noexcept { reg(0x50000414u) = value; }  // ODR
