@@ -6,9 +6,9 @@
 // round the ring (transmit channel 5) through a one-mailbox bxCAN port.
 //
 // Its baseline, firmware/measure/can_node_baseline.cpp, is the same ISRs and main loop moving frames without
-// the library (and the same integer arithmetic on the position): scripts/firmware-size reports the difference,
-// the CAN codec + node. VRs are Q32.32 and values go out through the parts-based interface, so the image has
-// no floating point.
+// the library (and the same integer arithmetic on the position): scripts/firmware-size reports the
+// difference, the CAN codec + node. VRs are Q32.32 and values go out through the parts-based interface, so
+// the image has no floating point.
 #include <cstdint>
 
 #include "board.hpp"

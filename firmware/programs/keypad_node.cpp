@@ -6,8 +6,8 @@
 // hardware-scanned key matrix and reports each key that went down or up (`press` / `release`): the keypad's
 // program side, with no interrupt masking (transport.hpp).
 //
-// Its baseline, firmware/measure/keypad_node_baseline.cpp, is the same ISR, key scan and main loop without the
-// library: scripts/firmware-size reports the difference, the keypad node.
+// Its baseline, firmware/measure/keypad_node_baseline.cpp, is the same ISR, key scan and main loop without
+// the library: scripts/firmware-size reports the difference, the keypad node.
 #include <cstddef>
 #include <cstdint>
 

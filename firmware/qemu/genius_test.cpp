@@ -11,11 +11,11 @@
 // the device's one-shot timer down and raises the timer interrupt when it expires, starts a word the device
 // wrote at the next tick, and plays the other devices: a bus controller at SBA 31 (each scan: a transmission
 // of two blocks, outputs for SBA 5 and SBA 3) and a device at SBA 3 (each turn: its inputs as a broadcast, or
-// every fourth turn a transmission directed to SBA 5; one in seven with a data bit flipped, a CRC-6 error, and
-// one in eleven of the others with its last data character received with a framing error).
-// The bus takes no step while an interrupt it raised has not been served, so the run does not depend on how
-// fast QEMU runs; its reload changes every tick (a pseudo-random 20..83 cycles), so that it preempts the
-// main loop at ever different instructions.
+// every fourth turn a transmission directed to SBA 5; one in seven with a data bit flipped, a CRC-6 error,
+// and one in eleven of the others with its last data character received with a framing error). The bus takes
+// no step while an interrupt it raised has not been served, so the run does not depend on how fast QEMU runs;
+// its reload changes every tick (a pseudo-random 20..83 cycles), so that it preempts the main loop at ever
+// different instructions.
 //
 // Checked on the wire (the bus interrupt, with the library's transmission parser): every transmission of SBA
 // 5 starts at the tick its turn is due, (5 - s) mod 32 skip times after the end of the Stop of SBA s, plus
