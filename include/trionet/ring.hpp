@@ -5,6 +5,7 @@
 #include "trionet/q32.hpp"
 #include "trionet/ring/bytes.hpp"
 #include "trionet/ring/crc.hpp"
+#include "trionet/ring/decode_result.hpp"
 #include "trionet/ring/decoder.hpp"
 #include "trionet/ring/encode.hpp"
 #include "trionet/ring/keypad.hpp"
