@@ -1,10 +1,14 @@
-// The command line of the two-thread stress programs (tests/support/concurrency_stress.hpp):
+// The command line of the two-thread stress programs (tests/support/concurrency_stress.hpp and
+// concurrency_stress_genius.hpp):
 //
-//   <program> [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]
+//   <program> [--steps N] [--seed S] [--node all|NODE[,NODE...]] [--link uart|dma]
 //
-// N is the link side's steps per node (default 2000000): with `--link uart` (the default) one received byte
-// and one transmitted byte at most each, as a UART interrupt; with `--link dma` the ring nodes' link side
-// takes runs of 1..8 bytes in bulk (receive, then transmit in bulk or a byte at a time), as a DMA-fed UART.
+// NODE is mc, keypad, can or genius. N is the link side's steps per node (default 2000000): with `--link uart`
+// (the default) one received byte and one transmitted byte at most each, as a UART interrupt; with
+// `--link dma` the ring nodes' link side takes runs of 1..8 bytes in bulk (receive, then transmit in bulk or a
+// byte at a time), as a DMA-fed UART.
+// For the Genius device N counts the characters on its bus (received, or its own read back); `--link` does
+// not apply to it.
 // Prints what each run did; returns 1 if any check failed, 2 on a bad command line.
 #pragma once
 
@@ -14,8 +18,23 @@
 #include <string>
 
 #include "support/concurrency_stress.hpp"
+#include "support/concurrency_stress_genius.hpp"
 
 namespace trionet::stress {
+
+// `--node`: "all", or node names separated by commas ("mc,keypad,can").
+inline bool node_named(const std::string& which, const char* name) {
+  return which == "all" || ("," + which + ",").find(std::string(",") + name + ",") != std::string::npos;
+}
+inline bool nodes_valid(const std::string& which) {
+  if (which == "all") return true;
+  std::string names = "," + which + ",";
+  for (const char* name : {"mc", "keypad", "can", "genius"}) {
+    const std::string token = std::string(",") + name + ",";
+    for (std::size_t at; (at = names.find(token)) != std::string::npos;) names.erase(at, token.size() - 1);
+  }
+  return names == "," && !which.empty();
+}
 
 inline int command_line(const char* program, int argc, char** argv) {
   config cfg;
@@ -36,8 +55,8 @@ inline int command_line(const char* program, int argc, char** argv) {
       break;
     }
   }
-  if (argc % 2 == 0 || (which != "all" && which != "mc" && which != "keypad" && which != "can")) {
-    std::fprintf(stderr, "usage: %s [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]\n",
+  if (argc % 2 == 0 || !nodes_valid(which)) {
+    std::fprintf(stderr, "usage: %s [--steps N] [--seed S] [--node all|NODE[,NODE...]] [--link uart|dma]\n",
                  program);
     return 2;
   }
@@ -53,9 +72,10 @@ inline int command_line(const char* program, int argc, char** argv) {
     ok = ok && r.ok();
     std::fflush(stdout);
   };
-  if (which == "all" || which == "mc") show("motion coordinator", run_motion_coordinator(cfg));
-  if (which == "all" || which == "keypad") show("keypad", run_keypad(cfg));
-  if (which == "all" || which == "can") show("CAN node", run_can(cfg));
+  if (node_named(which, "mc")) show("motion coordinator", run_motion_coordinator(cfg));
+  if (node_named(which, "keypad")) show("keypad", run_keypad(cfg));
+  if (node_named(which, "can")) show("CAN node", run_can(cfg));
+  if (node_named(which, "genius")) show("Genius device", run_genius_device(cfg));
   std::printf("%s: %s\n", program, ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -5,7 +5,7 @@
 // ThreadSanitizer must report one. scripts/concurrency-test requires it for each node; never run it as a
 // test that should pass.
 //
-//   trionet_concurrency_stress_broken [--steps N] [--seed S] [--node mc|keypad|can|all] [--link uart|dma]
+//   trionet_concurrency_stress_broken [--steps N] [--seed S] [--node all|NODE[,NODE...]] [--link uart|dma]
 #include <cstdint>
 
 #include "trionet/detail/single_writer.hpp"
