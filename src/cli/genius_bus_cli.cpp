@@ -529,9 +529,10 @@ const char* const genius_plan_usage =
     "                           [--prop-us-per-2000ft P] [--detect-us D]\n"
     "Assigns SBAs so that after every device's Stop every margin between consecutive turns is at least the\n"
     "detection time (genius timing), with the shortest turn overhead per scan; with NAME@FEET=SBA for every\n"
-    "device, checks those first. Uses the seed's remedies in order of cost, and says which and why:\n"
-    "resequence and skip an SBA (free: a scan's skip times add up to 32 whatever the SBAs), then 153.6e,\n"
-    "then a lower rate. --check: exit status 3 when the SBAs given have a collision risk.\n";
+    "device, checks those first. Removes a collision risk by resequencing SBAs along the bus and skipping an\n"
+    "SBA (free: a scan's skip times add up to 32 whatever the SBAs), then by 153.6e, then by a lower rate, in\n"
+    "that order of cost, and says which it used and why. --check: exit status 3 when the SBAs given have a\n"
+    "collision risk.\n";
 
 const option_list& genius_simulate_option_list() {
   static const option_list options = {

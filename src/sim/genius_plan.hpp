@@ -1,7 +1,7 @@
 // An SBA planner for a Genius bus (docs/genius.md, "Planning SBAs"): given where each device sits, SBAs (and
 // if need be a rate) such that after every device's Stop every margin between consecutive turns is at least
 // the detection time (analyse_turns, docs/protocol.md 3.3), with the shortest turn overhead per scan; or a
-// check of SBAs given. It uses the seed's remedies, in this order of cost: resequencing SBAs along the bus
+// check of SBAs given. It removes a collision risk in this order of cost: resequencing SBAs along the bus
 // and skipping SBAs (neither lengthens a scan: the skip times of a whole scan add up to 32 whatever the
 // SBAs), then 153.6 extended, then a lower rate (each lengthens every scan).
 //

@@ -1,5 +1,5 @@
-// `trionet genius simulate` and `trionet genius plan`: the seed's example as a simulated bus, its collision,
-// the planner's answer for the seed's layout, and clear refusals of bad arguments.
+// `trionet genius simulate` and `trionet genius plan`: GE's worked example as a simulated bus, its collision,
+// the planner's answer for its layout, and clear refusals of bad arguments.
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -1,5 +1,5 @@
-// A bus of real genius::device nodes (src/sim/genius_bus.hpp): the seed's worked example and its collision,
-// each of the seed's remedies, and a cross-check against analyse_turns on 1,000 random layouts.
+// A bus of real genius::device nodes (src/sim/genius_bus.hpp): GE's worked example and its collision,
+// each of the four remedies, and a cross-check against analyse_turns on 1,000 random layouts.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,7 +31,7 @@ const genius_turn_record* turn_of(const genius_bus_result& r, std::uint8_t sba) 
   return nullptr;
 }
 
-// The seed: SBA 4 and 6 at one end of a 2000 ft bus, SBA 5 at the other, 153.6 kbaud standard.
+// GE's worked example (GFK-1535A): SBA 4 and 6 at one end of a 2000 ft bus, SBA 5 at the other, 153.6 kbaud standard.
 const std::vector<genius_station> seed_layout = {{4, 0, 1, 0}, {5, 2000, 1, 0}, {6, 0, 1, 0}};
 
 TEST(GeniusBus, SeedExampleWithSkip26UsSba5At29UsSba6At52UsWith20UsToSpare) {
@@ -52,7 +52,7 @@ TEST(GeniusBus, SeedExampleWithSkip26UsSba5At29UsSba6At52UsWith20UsToSpare) {
   EXPECT_TRUE(six->cancelled);
   EXPECT_EQ(six->by, 5);
   EXPECT_NEAR(six->arrived_us, 32.0, 1e-6);                  // SBA 5's start bit, 3 us later
-  EXPECT_NEAR(six->due_us - six->arrived_us, 20.0, 1e-6);    // the seed's 20 us margin
+  EXPECT_NEAR(six->due_us - six->arrived_us, 20.0, 1e-6);    // GE's 20 us margin
   EXPECT_EQ(r.wrong_deliveries, 0u);
   for (const genius_device_report& d : r.devices) EXPECT_EQ(d.counters.collisions, 0u) << int(d.sba);
 }

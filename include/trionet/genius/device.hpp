@@ -106,7 +106,7 @@ struct [[nodiscard]] link_request {
 
 /// A device's timing in timer ticks (docs/protocol.md 3.3, 3.4). With one tick per bit time (the default,
 /// `bit_timing`), `skip_ticks` is the rule's 1 (2 at 153.6e) and a character 11. A host model may count in
-/// finer ticks (the simulator counts picoseconds, so that any skip time, the seed's 26 us included, is
+/// finer ticks (the simulator counts picoseconds, so that any skip time, GE's example's 26 us included, is
 /// exact).
 struct device_timing {
   std::uint32_t skip_ticks = 1;        ///< one skip time

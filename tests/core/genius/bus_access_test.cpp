@@ -14,7 +14,7 @@ span<const device_position> view(const std::vector<device_position>& devices) {
   return {devices.data(), devices.size()};
 }
 
-// The seed: SBA 4 and 6 at one end of a 2000 ft bus, SBA 5 at the other, 153.6 kbaud standard.
+// GE's worked example (GFK-1535A): SBA 4 and 6 at one end of a 2000 ft bus, SBA 5 at the other, 153.6 kbaud standard.
 const std::vector<device_position> seed_layout = {{4, 0}, {5, 2000}, {6, 0}};
 
 TEST(GeniusSeedWorkedExample, Skip26usGivesSba5At29Sba6At52Margin20) {

@@ -14,7 +14,7 @@ using trionet::test::rng;
 
 using namespace trionet::genius;
 
-// The seed's bit order, spelled out: start 0, control bit, 8 data bits least significant first, stop 1.
+// GE's bit order, spelled out: start 0, control bit, 8 data bits least significant first, stop 1.
 std::vector<bool> wire_bits(character c) {
   std::vector<bool> bits{false, c.control};
   for (int i = 0; i < 8; ++i) bits.push_back(((c.byte >> i) & 1) != 0);
