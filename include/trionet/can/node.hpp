@@ -16,6 +16,7 @@
 #include "trionet/can/port.hpp"
 #include "trionet/can/vr_codec.hpp"
 #include "trionet/detail/single_writer.hpp"
+#include "trionet/detail/status_map.hpp"
 #include "trionet/vr.hpp"
 
 namespace trionet::can {
@@ -57,7 +58,8 @@ struct [[nodiscard]] address_result {
   return {scheme_status::ok, node_address(node_count, node)};
 }
 
-/// What became of a send request. Everything but `ok` means no frame was queued.
+/// What became of a send request. Everything but `ok` means no frame was queued. The encoder's failures
+/// (`encode_status`) and the port's (`transmit_status`, as `port_*`) keep their names and order here.
 enum class send_status : std::uint8_t {
   ok,                     ///< the port queued the frame
   no_such_node,           ///< destination outside 1..N
@@ -98,7 +100,8 @@ constexpr const char* to_string(send_status status) noexcept {
   return "unknown";
 }
 
-/// What became of a received frame. Only `ok` changed a VR.
+/// What became of a received frame. Only `ok` changed a VR. The VR store's outcomes (`vr_write_status`) and
+/// the decoder's (`decode_status`) keep their names and order here; each has its counter in `node_counters`.
 enum class receive_status : std::uint8_t {
   ok,                  ///< VR(vr) now holds the value
   refused,             ///< the write policy refused the vr
@@ -232,17 +235,17 @@ class basic_vr_exchange_node : private detail::order_holder<Order> {
   /// instant).
   [[nodiscard]] node_counters counters() const noexcept {
     node_counters c;
-    c.sent = sent_.load() - cleared_.sent;
-    c.send_busy = send_busy_.load() - cleared_.send_busy;
-    c.send_failed = send_failed_.load() - cleared_.send_failed;
-    c.written = written_.load() - cleared_.written;
-    c.refused = refused_.load() - cleared_.refused;
-    c.out_of_range = out_of_range_.load() - cleared_.out_of_range;
-    c.value_out_of_range = value_out_of_range_.load() - cleared_.value_out_of_range;
+    c.sent = sends_[0].load() - cleared_.sent;
+    c.send_busy = sends_[1].load() - cleared_.send_busy;
+    c.send_failed = sends_[2].load() - cleared_.send_failed;
+    c.written = writes_[0].load() - cleared_.written;
+    c.refused = writes_[1].load() - cleared_.refused;
+    c.out_of_range = writes_[2].load() - cleared_.out_of_range;
+    c.value_out_of_range = writes_[3].load() - cleared_.value_out_of_range;
     c.foreign = foreign_.load() - cleared_.foreign;
-    c.bad_dlc = bad_dlc_.load() - cleared_.bad_dlc;
-    c.bad_sign = bad_sign_.load() - cleared_.bad_sign;
-    c.bad_fraction = bad_fraction_.load() - cleared_.bad_fraction;
+    c.bad_dlc = malformed_[0].load() - cleared_.bad_dlc;
+    c.bad_sign = malformed_[1].load() - cleared_.bad_sign;
+    c.bad_fraction = malformed_[2].load() - cleared_.bad_fraction;
     return c;
   }
   /// Program side: starts every count again from 0.
@@ -263,22 +266,22 @@ class basic_vr_exchange_node : private detail::order_holder<Order> {
 
   /// Sends VR(vr) = value (rounded to 4 decimals) to node `destination`.
   [[nodiscard]] send_status send_to_node(std::uint8_t destination, std::uint16_t vr, double value) noexcept {
-    const identifier_result id = identifier_to(destination);
-    if (!id) return scheme_to_send(id.status);
+    const send_status checked = check_destination(destination);
+    if (checked != send_status::ok) return checked;
     frame out;
     const encode_status encoded = encode_vr(vr, value, out.data, order());
-    if (encoded != encode_status::ok) return encode_to_send(encoded);
-    return transmit(id.identifier, out);
+    if (encoded != encode_status::ok) return encode_failure::of(encoded);
+    return transmit(identifier_to(destination), out);
   }
 
   /// Sends `message` (parts, no double arithmetic) to node `destination`.
   [[nodiscard]] send_status send_to_node(std::uint8_t destination, const vr_message& message) noexcept {
-    const identifier_result id = identifier_to(destination);
-    if (!id) return scheme_to_send(id.status);
+    const send_status checked = check_destination(destination);
+    if (checked != send_status::ok) return checked;
     frame out;
     const encode_status encoded = encode_vr_message(message, out.data, order());
-    if (encoded != encode_status::ok) return encode_to_send(encoded);
-    return transmit(id.identifier, out);
+    if (encoded != encode_status::ok) return encode_failure::of(encoded);
+    return transmit(identifier_to(destination), out);
   }
 
   /// Sends VR(vr) = value through transmit channel 5..N+3 (channel 5 is the next node round the ring).
@@ -314,108 +317,70 @@ class basic_vr_exchange_node : private detail::order_holder<Order> {
     result.receive_channel = static_cast<std::uint8_t>(offset + 1U);
     result.sender = static_cast<std::uint8_t>(result.receive_channel < k ? offset + 1U : offset + 2U);
     const decode_result decoded = decode_vr_frame(received, order());
-    switch (decoded.status) {
-      case decode_status::ok:
-        break;
-      case decode_status::bad_dlc:
-        bad_dlc_.increment();
-        result.status = receive_status::bad_dlc;
-        return result;
-      case decode_status::bad_sign:
-        bad_sign_.increment();
-        result.status = receive_status::bad_sign;
-        return result;
-      case decode_status::bad_fraction:
-        bad_fraction_.increment();
-        result.status = receive_status::bad_fraction;
-        return result;
+    if (decoded.status != decode_status::ok) {  // counted by reason: the counters are in the enum's order
+      malformed_[static_cast<unsigned>(decoded.status) - 1U].increment();
+      result.status = decode_failure::of(decoded.status);
+      return result;
     }
     result.message = decoded.message;
     const vr_value& v = decoded.message.value;
-    // An if-chain rather than a switch: on Cortex-M0+ a four-way switch here links a jump-table helper.
-    const vr_write_status written = store_->write(
-        decoded.message.vr, network_value::from_decimal(v.negative, v.integer_part, v.fraction));
-    if (written == vr_write_status::ok) {
-      written_.increment();
-      result.status = receive_status::ok;
-    } else if (written == vr_write_status::refused) {
-      refused_.increment();
-      result.status = receive_status::refused;
-    } else if (written == vr_write_status::out_of_range) {
-      out_of_range_.increment();
-      result.status = receive_status::out_of_range;
-    } else {
-      value_out_of_range_.increment();
-      result.status = receive_status::value_out_of_range;
+    vr_write_status written = store_->write(decoded.message.vr,
+                                            network_value::from_decimal(v.negative, v.integer_part, v.fraction));
+    // A store that answers outside the enum is read as the last outcome, as it always has been.
+    if (static_cast<unsigned>(written) > static_cast<unsigned>(vr_write_status::value_out_of_range)) {
+      written = vr_write_status::value_out_of_range;
     }
+    writes_[static_cast<unsigned>(written)].increment();  // the counters are in the enum's order
+    result.status = write_outcome::of(written);
     return result;
   }
 
  private:
-  // The identifier of a frame from this node to `destination`: 10d + rank - 1, where rank is this node's
-  // place among the nodes other than d (what `exchange_identifier` gives, without re-checking this node's
-  // own, already valid, address).
-  [[nodiscard]] identifier_result identifier_to(std::uint8_t destination) const noexcept {
+  // The statuses of the codec, the port and the VR store as outcomes of a send or a receive.
+  using encode_failure =
+      detail::status_map<encode_status::vr_out_of_range, encode_status::fraction_out_of_range,
+                         send_status::vr_out_of_range>;
+  using port_failure = detail::status_map<transmit_status::busy, transmit_status::failed, send_status::port_busy>;
+  using decode_failure =
+      detail::status_map<decode_status::bad_dlc, decode_status::bad_fraction, receive_status::bad_dlc>;
+  using write_outcome =
+      detail::status_map<vr_write_status::ok, vr_write_status::value_out_of_range, receive_status::ok>;
+
+  // Whether this node may send to `destination`: one of the other nodes 1..N.
+  [[nodiscard]] send_status check_destination(std::uint8_t destination) const noexcept {
+    if (destination < 1 || destination > address_.node_count()) return send_status::no_such_node;
+    return destination == address_.node() ? send_status::own_node : send_status::ok;
+  }
+
+  // The identifier of a frame from this node to `destination` (checked): 10d + rank - 1, where rank is this
+  // node's place among the nodes other than d (what `exchange_identifier` gives, without re-checking this
+  // node's own, already valid, address).
+  [[nodiscard]] std::uint16_t identifier_to(std::uint8_t destination) const noexcept {
     const std::uint8_t k = address_.node();
-    if (destination < 1 || destination > address_.node_count()) return {scheme_status::bad_node, 0};
-    if (destination == k) return {scheme_status::same_node, 0};
     const unsigned rank = k < destination ? k : k - 1U;
-    return {scheme_status::ok, static_cast<std::uint16_t>(10U * destination + rank - 1U)};
-  }
-
-  [[nodiscard]] static constexpr send_status scheme_to_send(scheme_status status) noexcept {
-    return status == scheme_status::same_node ? send_status::own_node : send_status::no_such_node;
-  }
-
-  [[nodiscard]] static constexpr send_status encode_to_send(encode_status status) noexcept {
-    switch (status) {
-      case encode_status::vr_out_of_range:
-        return send_status::vr_out_of_range;
-      case encode_status::not_a_number:
-        return send_status::not_a_number;
-      case encode_status::too_large:
-        return send_status::too_large;
-      case encode_status::fraction_out_of_range:
-      case encode_status::ok:
-        break;
-    }
-    return send_status::fraction_out_of_range;
+    return static_cast<std::uint16_t>(10U * destination + rank - 1U);
   }
 
   [[nodiscard]] send_status transmit(std::uint16_t identifier, frame& out) noexcept {
     out.id = identifier;
     out.dlc = vr_message_size;
-    switch (port_->send(out)) {
-      case transmit_status::ok:
-        sent_.increment();
-        return send_status::ok;
-      case transmit_status::busy:
-        send_busy_.increment();
-        return send_status::port_busy;
-      case transmit_status::failed:
-        break;
-    }
-    send_failed_.increment();
-    return send_status::port_failed;
+    transmit_status sent = port_->send(out);
+    // A port that answers outside the enum is read as a failure, as it always has been.
+    if (static_cast<unsigned>(sent) > static_cast<unsigned>(transmit_status::failed)) sent = transmit_status::failed;
+    sends_[static_cast<unsigned>(sent)].increment();  // the counters are in the enum's order
+    return sent == transmit_status::ok ? send_status::ok : port_failure::of(sent);
   }
 
   node_address address_;
   port* port_;
   vr_store* store_;
   // Written by the program side:
-  detail::single_writer<std::uint32_t> sent_;
-  detail::single_writer<std::uint32_t> send_busy_;
-  detail::single_writer<std::uint32_t> send_failed_;
+  detail::single_writer<std::uint32_t> sends_[3];  // by transmit_status: sent, send_busy, send_failed
   node_counters cleared_{};  // every count at the last clear_counters (program side only)
   // Written by the receive side:
-  detail::single_writer<std::uint32_t> written_;
-  detail::single_writer<std::uint32_t> refused_;
-  detail::single_writer<std::uint32_t> out_of_range_;
-  detail::single_writer<std::uint32_t> value_out_of_range_;
+  detail::single_writer<std::uint32_t> writes_[4];  // by vr_write_status: written .. value_out_of_range
   detail::single_writer<std::uint32_t> foreign_;
-  detail::single_writer<std::uint32_t> bad_dlc_;
-  detail::single_writer<std::uint32_t> bad_sign_;
-  detail::single_writer<std::uint32_t> bad_fraction_;
+  detail::single_writer<std::uint32_t> malformed_[3];  // by decode_status: bad_dlc, bad_sign, bad_fraction
 };
 
 /// A node whose byte order is chosen at run time (the constructor's last argument; default big-endian).

@@ -208,7 +208,7 @@ class forward_buffer {
 template <bool Switchable>
 struct forwarding_switch {
   bool on = false;                     ///< link side
-  single_writer<std::uint32_t> drops;  ///< link side: messages dropped while off
+  single_writer<std::uint16_t> drops;  ///< link side: messages dropped while off (a traffic count: 2^16)
 
   bool forwarding() const noexcept { return on; }
   std::uint32_t dropped() const noexcept { return drops.load(); }

@@ -62,15 +62,16 @@ struct keypad_config {
   display_model display{};
 };
 
-/// Counters of a keypad, as read at one moment; they only ever grow (and wrap at 2^32).
+/// Counters of a keypad, as read at one moment; they only ever grow. The wire errors (frame, CRC) wrap at 2^32;
+/// the others, traffic and keys, at 2^16 (docs/design.md, "Results and counters").
 struct keypad_counters {
   std::uint32_t frame_errors = 0;           ///< frame errors of docs/protocol.md 1.4 and 1.10 (NETSTAT bit 3)
   std::uint32_t crc_errors = 0;             ///< direct variable transfers that failed their CRC (NETSTAT bit 2)
-  std::uint32_t dropped_in_local_mode = 0;  ///< messages to this keypad dropped before its offset arrived
-  std::uint32_t display_messages = 0;       ///< character transfers shown on the display
-  std::uint32_t variables_ignored = 0;      ///< direct variable transfers (ignored by keypads)
-  std::uint32_t keys_sent = 0;              ///< key characters queued
-  std::uint32_t keys_lost = 0;              ///< key presses not sent: local mode or queue full
+  std::uint32_t dropped_in_local_mode = 0;  ///< messages to this keypad dropped before its offset arrived (2^16)
+  std::uint32_t display_messages = 0;       ///< character transfers shown on the display (2^16)
+  std::uint32_t variables_ignored = 0;      ///< direct variable transfers (ignored by keypads) (2^16)
+  std::uint32_t keys_sent = 0;              ///< key characters queued (2^16)
+  std::uint32_t keys_lost = 0;              ///< key presses not sent: local mode or queue full (2^16)
 };
 
 /// A membrane keypad on the ring (see the file comment): the ring-node core (node.hpp) with the keypad's
@@ -190,11 +191,11 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
   keypad_display display_;  // link side
   detail::single_writer<std::uint8_t> offset_;  // link side
   detail::single_writer<std::uint8_t> mode_{keypad_mode_key_on};  // link side
-  detail::single_writer<std::uint32_t> dropped_in_local_mode_;  // link side
-  detail::single_writer<std::uint32_t> display_messages_;       // link side
-  detail::single_writer<std::uint32_t> variables_ignored_;      // link side
-  detail::single_writer<std::uint32_t> keys_sent_;              // program side
-  detail::single_writer<std::uint32_t> keys_lost_;              // program side
+  detail::single_writer<std::uint16_t> dropped_in_local_mode_;  // link side
+  detail::single_writer<std::uint16_t> display_messages_;       // link side
+  detail::single_writer<std::uint16_t> variables_ignored_;      // link side
+  detail::single_writer<std::uint16_t> keys_sent_;              // program side
+  detail::single_writer<std::uint16_t> keys_lost_;              // program side
 };
 
 }  // namespace trionet::ring

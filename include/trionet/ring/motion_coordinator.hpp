@@ -264,10 +264,10 @@ class motion_coordinator final
     c.crc_errors = this->crc_errors();
     c.receive_overflows = receive_overflows_.load();
     c.character_messages = character_messages_.load();
-    c.variables_written = variables_written_.load();
-    c.variables_refused = variables_refused_.load();
-    c.variables_out_of_range = variables_out_of_range_.load();
-    c.variables_value_out_of_range = variables_value_out_of_range_.load();
+    c.variables_written = variables_[0].load();
+    c.variables_refused = variables_[1].load();
+    c.variables_out_of_range = variables_[2].load();
+    c.variables_value_out_of_range = variables_[3].load();
     c.keypad_messages_ignored = keypad_messages_ignored_.load();
     c.sends_refused = sends_refused_.load();
     return c;
@@ -318,20 +318,9 @@ class motion_coordinator final
         std::uint16_t vr = 0;
         std::int64_t value = 0;
         Layout::read(this->delivered_payload(), vr, value);
-        switch (vr_->write(vr, network_value::from_q32(value))) {
-          case vr_write_status::ok:
-            variables_written_.increment();
-            return;
-          case vr_write_status::refused:
-            variables_refused_.increment();
-            return;
-          case vr_write_status::out_of_range:
-            variables_out_of_range_.increment();
-            return;
-          case vr_write_status::value_out_of_range:
-            variables_value_out_of_range_.increment();
-            return;
-        }
+        const auto written = static_cast<unsigned>(vr_->write(vr, network_value::from_q32(value)));
+        // Counted by outcome, the counters in the enum's order (a store that answers outside it: not counted).
+        if (written < sizeof variables_ / sizeof variables_[0]) variables_[written].increment();
         return;
       }
       case message_type::keypad_offset:
@@ -343,10 +332,8 @@ class motion_coordinator final
 
   // Written by the link side:
   detail::single_writer<std::uint16_t> character_messages_;
-  detail::single_writer<std::uint16_t> variables_written_;
-  detail::single_writer<std::uint16_t> variables_refused_;
-  detail::single_writer<std::uint16_t> variables_out_of_range_;
-  detail::single_writer<std::uint16_t> variables_value_out_of_range_;
+  // by vr_write_status: written, refused, out_of_range, value_out_of_range
+  detail::single_writer<std::uint16_t> variables_[4];
   detail::single_writer<std::uint16_t> keypad_messages_ignored_;
   // Written by the program side:
   detail::single_writer<std::uint16_t> sends_refused_;

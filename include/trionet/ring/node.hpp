@@ -66,7 +66,7 @@
 namespace trionet::ring {
 
 /// Counters of a node's link, as read at one moment; they only ever grow. The forwarding losses (wire errors)
-/// wrap at 2^32, the traffic counts (messages forwarded, sent) at 2^16.
+/// wrap at 2^32, the traffic counts (messages forwarded, dropped, sent) at 2^16.
 struct link_counters {
   std::uint32_t forwards_lost = 0;        ///< forwarded messages lost to a full forward buffer
   std::uint32_t forwards_cut = 0;         ///< ... longer than the longest legal message of their type
