@@ -249,6 +249,17 @@ def main():
         total, by_file, lines = hot_lines(path, args.root, 5)
         hot.append((workload, total, by_file, lines))
 
+    # The path of one received ring byte (bench/ring_byte_path.cpp), by kind: the library files its code is in.
+    byte_path = []
+    for kind in ("forwarded_header", "forwarded_data", "forwarded_end", "delivered_header", "delivered_data",
+                 "delivered_end"):
+        path = os.path.join(args.callgrind_dir, f"byte_path.{kind}.out")
+        if not os.path.exists(path):
+            continue
+        total, by_file, _ = hot_lines(path, args.root, 0)
+        library = [(name, ir) for name, ir in by_file.most_common() if not name.startswith("caller's code")]
+        byte_path.append((kind, total, library))
+
     # ---- console ----
     print()
     print(f"Speed targets, commit {args.commit}, {args.mode} mode, medians of {args.repetitions} repetitions:")
@@ -268,6 +279,13 @@ def main():
         print(f"  {workload} ({total} Ir in the measured functions; by file: {files_of(total, by_file)}):")
         for path, number, ir, text in lines:
             print(f"    {100.0 * ir / total:5.1f}%  {path}:{number}  {text}")
+
+    if byte_path:
+        print()
+        print("One received ring byte, Motion Coordinator `receive(byte)` (callgrind; library files its code is in):")
+        for kind, total, library in byte_path:
+            files = ", ".join(f"{name} {ir}" for name, ir in library)
+            print(f"  {kind:<17} {total:4d} Ir, {len(library)} files: {files}")
 
     # ---- README ----
     out = []
@@ -293,6 +311,17 @@ def main():
     for workload, total, by_file, lines in hot:
         shown = "; ".join(f"`{path}:{number}` {100.0 * ir / total:.0f}%" for path, number, ir, _ in lines)
         out.append(f"- `{workload}`: by file {files_of(total, by_file)}; hottest lines {shown}")
+    if byte_path:
+        out.append("")
+        out.append("One received ring byte's path: the library files whose code one Motion Coordinator `receive(byte)` "
+                   "runs, with their instructions (callgrind, inlined code counted in its own file; "
+                   "`bench/ring_byte_path.cpp`, a two-character message forwarded (hops 3) or delivered (hops 1)):")
+        out.append("")
+        out.append("| Byte | Instructions | Files | Where |")
+        out.append("| --- | --- | --- | --- |")
+        for kind, total, library in byte_path:
+            files = ", ".join(f"`{name.replace('include/trionet/', '')}` {ir}" for name, ir in library)
+            out.append(f"| {kind.replace('_', ' ')} | {total} | {len(library)} | {files} |")
     out.append("")
     out.append(END)
 
