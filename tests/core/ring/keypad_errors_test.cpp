@@ -85,4 +85,16 @@ TEST(RingKeypadErrors, AKeypadBuiltWithARunTimeCrcChecksWithIt) {
   EXPECT_EQ(drain(keypad), expected);
 }
 
+TEST(RingKeypadErrors, KeyCountsWrapAtTwoToTheSixteenAndErrorCountsDoNot) {
+  // docs/design.md, "Results and counters": a ring node keeps bad wire data in 32 bits, other counts in 16.
+  ring::keypad<> keypad;  // local mode: every key press is lost and counted
+  for (std::uint32_t i = 0; i < 65536U + 3U; ++i) (void)keypad.press(ring::key::digit_1);
+  EXPECT_EQ(keypad.counters().keys_lost, 3U);
+  for (std::uint32_t i = 0; i < 65536U + 3U; ++i) {
+    feed(keypad, std::vector<std::uint8_t>{0x41});  // data outside a message
+    feed(keypad, std::vector<std::uint8_t>{ring::make_end_of_message(1)});  // a stray end of message each time
+  }
+  EXPECT_EQ(keypad.counters().frame_errors, 2U * (65536U + 3U));
+}
+
 }  // namespace
