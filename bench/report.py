@@ -239,6 +239,18 @@ def main():
                  f"{fmt(sim['items_per_second'] / 1e6, 1)} M node-byte steps/s",
                  f"{fmt(ipu('simulator_4_nodes'))} /node-byte step", "-", "-"))
 
+    # The Genius bus simulator: bus bit times simulated per second of CPU, against 10 M.
+    for devices in (8, 30):
+        g = median(f"BM_genius_simulator/{devices}")
+        rate = g["items_per_second"] / 1e6
+        verdict = f"PASS ({fmt(rate / 10, 2)}x)" if rate >= 10 else f"MISS: {fmt(rate / 10, 2)}x the target"
+        rows.append((f"Simulator: Genius bus of {devices} devices and a bus controller, 153.6 kbaud, new data every turn "
+                     "(`BM_genius_simulator`)",
+                     f"{fmt(rate, 1)} M bit times/s ({fmt(g['device_bit_steps'] / 1e6, 0)} M device-bit steps/s)",
+                     "-", ">= 10 M bit times/s", verdict))
+        console.append((f"Genius simulator, {devices} devices + controller", f"{fmt(rate, 1)} M bit times/s (median)",
+                        ">= 10 M", verdict))
+
     # Where the instructions go, for the workloads with a target.
     hot = []
     for workload in ("decoder_characters_bulk", "decoder_characters_bytewise", "decoder_variables_bulk",

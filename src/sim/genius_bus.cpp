@@ -816,13 +816,18 @@ struct genius_bus::state {
     const genius::character c = genius::from_uart_word(static_cast<std::uint16_t>(wire >> 1));
     const bool stop = framed && c.control && genius::read_control(c.byte).kind == genius::control_kind::stop;
     const bool was_sending = st.dev->sending();
-    const genius::device_counters before = st.dev->counters();
+    // Only a control character (an End of block or a Stop) can fail a CRC-6 check or end a transmission heard:
+    // the counters are compared around those alone (a data character is most of the words).
+    const bool checked = framed && c.control;
+    const genius::device_counters before = checked ? st.dev->counters() : genius::device_counters{};
     const genius::link_request request =
         framed ? st.dev->receive(static_cast<std::uint16_t>(wire >> 1)) : st.dev->framing_error();
-    const genius::device_counters after = st.dev->counters();
-    if (after.crc_errors != before.crc_errors) note_event(rc.who, false);
-    if (after.transmissions_heard != before.transmissions_heard) {
-      if (source* s = origin_of(i, rc)) s->heard_by |= 1u << i;
+    if (checked) {
+      const genius::device_counters after = st.dev->counters();
+      if (after.crc_errors != before.crc_errors) note_event(rc.who, false);
+      if (after.transmissions_heard != before.transmissions_heard) {
+        if (source* s = origin_of(i, rc)) s->heard_by |= 1u << i;
+      }
     }
     if (stop && !was_sending) heard_stop(i, rc, request, end);
     if (was_sending && !st.dev->sending()) refresh_turn_data(st);  // its transmission is over (whole or cut)
