@@ -48,8 +48,9 @@
 //     start_bit, timer_expired, transmit, and everything that a delivery does
 //   program side (one thread context: the main loop or one RTOS task): set_turn_data, clear_turn_data,
 //     queue_directed, directed_waiting, read, deliveries_waiting, netstat, clear_netstat
-//   either side: counters, sba, sending, in_transmission, turn_armed (link-side state, for monitors and
-//   tests)
+//   either side: counters, sba
+//   link side only (plain link-side state, for drivers, monitors and tests; the program side may call them
+//     only while the link side is stopped): sending, in_transmission, turn_armed
 // Deliveries cross in a single-producer, single-consumer queue (a transmission's records published whole,
 // at its Stop); a directed transmission in a ring of slots (one producer index, one consumer index); the
 // turn data in three buffers (the program writes one that the link side neither sends from nor can start
@@ -482,7 +483,8 @@ class device : private trionet::detail::crc_holder<Crc> {
     return true;
   }
 
-  /// Either side: true while its own transmission is under way (its turn taken, the Stop not yet read back).
+  /// Link side: true while its own transmission is under way (its turn taken, the Stop not yet read back).
+  /// Not for the program side while the link side runs: it reads link-side state that is not shared.
   [[nodiscard]] bool sending() const noexcept {
     return state_ == state::sending || state_ == state::turn_due;
   }
