@@ -3,8 +3,10 @@
 #include "genius_bus_cli.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -16,6 +18,7 @@
 #include "genius_plan.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/pcapng.hpp"
+#include "trionet/host/text.hpp"
 
 namespace trionet::cli {
 namespace {
@@ -238,12 +241,15 @@ int simulate_main(const words& all) {
   };
   if (args.has("--pcap")) {
     const std::string& path = args.options.at("--pcap");
+    errno = 0;
     capture_file.open(path, std::ios::binary | std::ios::trunc);
-    if (!capture_file) return fail_io("cannot write " + path);
+    if (!capture_file) {
+      return fail_io("cannot write the capture " + host::printable(path) + ": " + std::strerror(errno != 0 ? errno : EIO));
+    }
     writer = std::make_unique<host::pcapng_writer>(capture_file, version_line());
     const host::pcapng_interface_result line = writer->add_interface(
         std::string("genius ") + genius::properties(config.rate).name + " (simulated bus)", host::capture_network::genius);
-    if (!line) return fail_io("cannot write " + path);
+    if (!line) return fail_io("cannot write the capture " + host::printable(path));
     interface = line.id;
     splitter = std::make_unique<host::genius_record_splitter>();
     // Where the scans' opener is: the controller, else the lowest SBA that sends (as the simulator picks it).
@@ -263,7 +269,9 @@ int simulate_main(const words& all) {
   if (splitter) {
     // A transmission still under way when the run ends stays out of the capture (it has no Stop yet).
     capture_file.flush();
-    if (written != host::pcapng_write_status::ok || !capture_file) return fail_io("cannot write " + args.options.at("--pcap"));
+    if (written != host::pcapng_write_status::ok || !capture_file) {
+      return fail_io("cannot write the capture " + host::printable(args.options.at("--pcap")));
+    }
   }
 
   // GE's published figure for this bus (docs/protocol.md 3.3): each device's inputs + outputs.

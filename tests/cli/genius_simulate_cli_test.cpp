@@ -101,6 +101,13 @@ TEST(GeniusSimulateCli, PcapHoldsTheTransmissionsTheDecoderReads) {
   std::remove(path.c_str());
 }
 
+// A capture that cannot be opened exits 1 (unwritable output) with one message naming the file and the cause.
+TEST(GeniusSimulateCli, ACaptureThatCannotBeOpenedNamesTheFileAndTheCause) {
+  const auto r = run_cli(std::string("genius simulate ") + seed + " --scans 1 --pcap /nonexistent-directory/bus.pcapng");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err, "trionet: cannot write the capture /nonexistent-directory/bus.pcapng: No such file or directory\n");
+}
+
 TEST(GeniusSimulateCli, BadArgumentsExit2WithAMessage) {
   expect_usage_error("genius simulate --device 4@0", "--rate");
   expect_usage_error("genius simulate --rate 153.6s", "--device");

@@ -27,13 +27,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path programs_directory() {
-  const fs::path here = fs::path(__FILE__).parent_path();
-  for (const fs::path& candidate : {here / "basic" / "programs", here.parent_path() / "basic" / "programs"}) {
-    if (fs::is_directory(candidate)) return candidate;
-  }
-  return here / "basic" / "programs";
-}
+// From the source tree CMake names (a relative __FILE__, as Ninja gives, would not resolve where CTest runs).
+fs::path programs_directory() { return fs::path(TRIONET_SOURCE_DIR) / "tests" / "basic" / "programs"; }
 
 std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
