@@ -206,6 +206,7 @@ int simulate_main(const words& all) {
     if (!parse_integer(args.options["--scans"], 1, 100000, scans)) return fail("--scans must be 1..100000");
     config.scans = static_cast<std::uint32_t>(scans);
   }
+  config.record_scans = 2;  // the first scan's turns and transmissions are shown: memory stays flat over --scans
   if (args.has("--seed")) {
     long long seed = 0;
     if (!parse_integer(args.options["--seed"], 0, 9223372036854775807LL, seed)) return fail("--seed must be 0 or more");

@@ -281,6 +281,8 @@ struct genius_bus::state {
 
   // ---- sources ----
   source& src(std::int64_t id) { return sources[static_cast<std::size_t>(id - source_base)]; }
+  // Turns and transmissions are recorded while the scans counted so far are within config.record_scans.
+  bool recording() const { return config.record_turns && result.scan_ends_us.size() <= config.record_scans; }
 
   std::int64_t add_source(source s) {
     s.prop.resize(receivers.size());
@@ -570,7 +572,7 @@ struct genius_bus::state {
       id = add_source(std::move(s));
       st.tx_source = id;
       ++result.transmissions_started;
-      if (config.record_turns) {
+      if (recording()) {
         genius_transmission_record tr;
         tr.sba = st.spec.sba;
         tr.start_us = us_of_ps(now);
@@ -695,7 +697,7 @@ struct genius_bus::state {
       }
     }
     s.content = std::move(content);
-    if (config.record_turns) {
+    if (recording()) {
       genius_stop_record rec;
       rec.sender = stations[static_cast<std::size_t>(s.device)].spec.sba;
       rec.end_us = us_of_ps(s.stop_start + character);
@@ -1028,7 +1030,7 @@ struct genius_bus::state {
   void heard_stop(std::size_t i, const receiver& rc, const genius::link_request& request, std::int64_t end) {
     station_state& st = stations[i];
     source* origin = origin_of(i, rc);
-    if (config.record_turns && origin != nullptr && origin->stop_index >= 0 && st.dev->turn_armed() &&
+    if (recording() && origin != nullptr && origin->stop_index >= 0 && st.dev->turn_armed() &&
         request.timer == genius::timer_action::arm) {
       genius_stop_record& rec = result.stops[static_cast<std::size_t>(origin->stop_index)];
       rec.turns.push_back(genius_stop_record::armed{

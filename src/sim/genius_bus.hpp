@@ -76,6 +76,9 @@ struct genius_bus_config {
   std::uint64_t seed = 1;         ///< noise patterns and the data the devices send
   bool new_data_every_turn = true;  ///< each device's inputs (and the controller's outputs) change every turn
   bool record_turns = true;       ///< keep the turns, transmissions and scans (off for long soaks and benches)
+  /// With record_turns: the turns and transmissions are kept for this many scans from the start only (the scan
+  /// times are kept for every scan), so that a long run's memory does not grow with its turns.
+  std::uint32_t record_scans = 0xFFFFFFFFU;
   /// A listener alone with one transmission takes its characters in a batch (the same calls at the same
   /// simulated times; genius_bus.cpp, "following"). Off: an event per start bit and per word, always.
   bool follow = true;
