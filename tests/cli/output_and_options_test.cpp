@@ -44,8 +44,13 @@ TEST(Output, AClosedPipeIsOneMessageAndExit1NotASignal) {
   for (int i = 0; i < 20000; ++i) candump += "028#0100000000020D7A\n";
   std::string tokens;
   for (int i = 0; i < 20000; ++i) tokens += "c:23 5a c:75\n";
+  // `ring monitor -` reads the port's raw bytes (hex text would be 251 bytes of stray-data report, which fits in
+  // the pipe and ends well before the reader closes it, or not, as the two processes happen to run).
+  std::string wire;
+  for (int i = 0; i < 20000; ++i) wire += std::string("\x91\x48\x45\x4c\x4c\x4f\x90", 7);
+  // Each run writes well over a pipe's 64 KiB (1.4 to 2.2 MB), so the tool is still writing when the reader leaves.
   const std::vector<std::pair<std::string, std::string>> runs = {
-      {"ring decode", frames}, {"can decode", candump}, {"genius decode", tokens}, {"ring monitor - --json", frames}};
+      {"ring decode", frames}, {"can decode", candump}, {"genius decode", tokens}, {"ring monitor - --json", wire}};
   for (const auto& [args, input] : runs) {
     const cli_result r = into_a_pipe_that_closes(args, input);
     EXPECT_EQ(r.exit_code, 1) << args;
