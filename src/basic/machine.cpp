@@ -471,12 +471,19 @@ void machine::start_ready_moves() {
   }
 }
 
+// Bit 0 of a parameter's integer part. A program may set any value: NaN, infinities and magnitudes of 2^53 or
+// more (all even) have it clear, and nothing is converted that does not fit a long long.
+static bool odd(double v) {
+  if (!(std::fabs(v) < 9007199254740992.0)) return false;
+  return (static_cast<long long>(v) & 1) != 0;
+}
+
 void machine::wrap(std::size_t axis, move_state& m, std::size_t k) {
   axis_state& a = axes_[axis];
   const double rep = parameter(axis, axis_parameter::rep_dist) * units(axis);
   if (!(rep > 0)) return;
   double shift = 0;
-  if ((static_cast<long long>(parameter(axis, axis_parameter::rep_option)) & 1) != 0) {
+  if (odd(parameter(axis, axis_parameter::rep_option))) {
     if (a.position >= rep || a.position < 0) shift = std::floor(a.position / rep) * rep;
   } else if (a.position > rep || a.position < -rep) {
     shift = std::floor((a.position + rep) / (2 * rep)) * 2 * rep;
