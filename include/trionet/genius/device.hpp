@@ -97,13 +97,15 @@ constexpr const char* to_string(timer_action value) noexcept {
   return "unknown";
 }
 
-/// What the link driver does after a link-side call (see the file comment).
+/// What the link driver does after a link-side call (see the file comment). Eight bytes, `ticks` first, so that
+/// it is built and returned in one register on a 64-bit host (no store of its bytes read back as a word).
 struct [[nodiscard]] link_request {
-  timer_action timer = timer_action::keep;  ///< the timer: keep, arm for `ticks`, or cancel
   std::uint32_t ticks = 0;                  ///< `arm`: ticks from the end of the character received
                                             ///< (receive, framing_error) or from now (other calls)
+  timer_action timer = timer_action::keep;  ///< the timer: keep, arm for `ticks`, or cancel
   bool transmit = false;                    ///< a word is ready: call `transmit` and send it
 };
+static_assert(sizeof(link_request) == 8, "a link request is one 64-bit word");
 
 /// A device's timing in timer ticks (docs/protocol.md 3.3, 3.4). With one tick per bit time (the default,
 /// `bit_timing`), `skip_ticks` is the rule's 1 (2 at 153.6e) and a character 11. A host model may count in
@@ -408,7 +410,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   link_request start_bit() noexcept {
     if (state_ == state::turn_due) collided();
     armed_ = armed::none;
-    return link_request{timer_action::cancel, 0, false};
+    return link_request{0, timer_action::cancel, false};
   }
 
   /// Link side: a 9-bit UART word received (bit 0 the control bit, bits 8..1 the data byte; bits above 8
@@ -629,7 +631,7 @@ class device : private trionet::detail::crc_holder<Crc> {
 
   link_request arm(armed what, std::uint32_t ticks, bool transmit = false) noexcept {
     armed_ = what;
-    return link_request{timer_action::arm, ticks, transmit};
+    return link_request{ticks, timer_action::arm, transmit};
   }
   std::uint32_t quiet_ticks() const noexcept {
     return static_cast<std::uint32_t>(32u * timing_.skip_ticks +
