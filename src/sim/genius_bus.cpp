@@ -110,6 +110,7 @@ struct source {
   bool whole = false;
   int group = -1;  // collision group
   std::int64_t id = 0;
+  std::size_t followed = 0;  // receivers following it
   // check_losses: each station's state when the transmission began
   struct listener {
     bool powered;
@@ -380,6 +381,16 @@ struct genius_bus::state {
     return true;
   }
 
+  // True when no source can be 0 at receiver `r` from `t` on and no cut is open: the line has no falling edge
+  // there (until a source appends characters, which notifies the receivers).
+  bool quiet_after(std::size_t r, std::int64_t t) const {
+    if (!cuts.empty()) return false;
+    for (const source* sp : active) {
+      if (sp->zero_end + sp->prop[r] > t) return false;
+    }
+    return true;
+  }
+
   // The first falling edge of the line at receiver `r` at or after `t`; `who` the source that made it.
   std::int64_t line_edge(std::size_t r, std::int64_t t, std::int64_t& who) const {
     std::int64_t from = t;
@@ -426,26 +437,40 @@ struct genius_bus::state {
                       static_cast<std::uint16_t>(who), kind});
   }
 
-  // Receiver `r`, idle since `idle_since`: schedules the start-bit check of the next edge.
-  void look(std::size_t r) {
+  // The next character of run `id` that begins at receiver `r` after it went idle, if that run alone can be 0
+  // there until then (so that it is the line's first falling edge): its edge, else never. `continuing`: the
+  // receiver took the run's earlier characters; else only the run's first character is considered.
+  std::int64_t run_edge(std::size_t r, std::int64_t id, bool continuing) const {
+    if (id < source_base || id - source_base >= static_cast<std::int64_t>(sources.size())) return never;
+    const receiver& rc = receivers[r];
+    const source& s = sources[static_cast<std::size_t>(id - source_base)];
+    if (s.device < 0) return never;
+    const std::int64_t rel = rc.idle_since - s.prop[r] - s.start;
+    if (rel >= 0 && !continuing) return never;
+    const std::int64_t k = rel < 0 ? 0 : rel / character + 1;
+    const std::int64_t next = s.start + k * character;
+    if (k < static_cast<std::int64_t>(s.words.size()) && next < s.hi && next + s.prop[r] >= rc.idle_since &&
+        alone(r, s.id, rc.idle_since, next + s.prop[r] + 1))
+      return next + s.prop[r];
+    return never;
+  }
+
+  // Receiver `r`, idle since `idle_since`: schedules the start-bit check of the next edge. `fresh`: a run that
+  // has just begun (notify), whose first character is likely that edge.
+  void look(std::size_t r, std::int64_t fresh = -1) {
     receiver& rc = receivers[r];
     std::int64_t who = -1;
-    std::int64_t e = never;
-    if (rc.who >= source_base && rc.who - source_base < static_cast<std::int64_t>(sources.size())) {
-      // The common case: the next character of the same run, alone on the line until it begins.
-      const source& s = src(rc.who);
-      if (s.device >= 0) {
-        const std::int64_t rel = rc.idle_since - s.prop[r] - s.start;
-        const std::int64_t k = rel < 0 ? 0 : rel / character + 1;
-        const std::int64_t next = s.start + k * character;
-        if (k < static_cast<std::int64_t>(s.words.size()) && next < s.hi && next + s.prop[r] >= rc.idle_since &&
-            alone(r, s.id, rc.idle_since, next + s.prop[r] + 1)) {
-          e = next + s.prop[r];
-          who = s.id;
-        }
-      }
+    // The common cases: the next character of the same run, or the first of a new one, alone on the line
+    // until it begins.
+    // (Both cannot hold: each needs the other run quiet until its own edge.)
+    std::int64_t e = fresh >= 0 && fresh != rc.who ? run_edge(r, fresh, false) : never;
+    if (e != never) {
+      who = fresh;
+    } else {
+      e = run_edge(r, rc.who, true);
+      if (e != never) who = rc.who;
     }
-    if (e == never) e = line_edge(r, rc.idle_since, who);
+    if (e == never && !quiet_after(r, rc.idle_since)) e = line_edge(r, rc.idle_since, who);
     if (e != never && who >= source_base) {
       const source& s = src(who);
       const std::int64_t rel = e - s.prop[r] - s.start;
@@ -464,10 +489,10 @@ struct genius_bus::state {
 
   // A new signal that reaches receiver `r` at `arrival` or later: look again if it may come first.
   void notify(std::int64_t id) {
-    for (std::size_t f = followers.size(); f-- > 0;) {
+    const source& s = src(id);
+    for (std::size_t f = followers.size(); s.followed != followers.size() && f-- > 0;) {
       if (f < followers.size() && receivers[followers[f]].follow != id) unfollow(followers[f]);
     }
-    const source& s = src(id);
     std::int64_t first = s.device < 0 ? (s.zeros.empty() ? never : s.zeros.front().first) : s.start;
     if (s.device >= 0 && !s.words.empty()) first = s.start + (static_cast<std::int64_t>(s.words.size()) - 1) * character;
     if (first == never) return;
@@ -475,7 +500,7 @@ struct genius_bus::state {
       receiver& rc = receivers[r];
       if (rc.receiving || rc.follow >= 0) continue;
       if (rc.device >= 0 && !stations[static_cast<std::size_t>(rc.device)].powered) continue;
-      if (first + s.prop[r] + detection < rc.scheduled) look(r);
+      if (first + s.prop[r] + detection < rc.scheduled) look(r, id);
     }
   }
 
@@ -816,11 +841,12 @@ struct genius_bus::state {
     station_state& st = stations[i];
     const bool framed = (wire & genius::stop_bit_mask) != 0;
     const genius::character c = genius::from_uart_word(static_cast<std::uint16_t>(wire >> 1));
-    const bool stop = framed && c.control && genius::read_control(c.byte).kind == genius::control_kind::stop;
+    const genius::control_kind kind = c.control ? genius::read_control(c.byte).kind : genius::control_kind::unknown;
+    const bool stop = framed && kind == genius::control_kind::stop;
     const bool was_sending = st.dev->sending();
-    // Only a control character (an End of block or a Stop) can fail a CRC-6 check or end a transmission heard:
-    // the counters are compared around those alone (a data character is most of the words).
-    const bool checked = framed && c.control;
+    // Only an End of block or a Stop can fail a CRC-6 check or end a transmission heard: the counters are
+    // compared around those alone (a data character is most of the words).
+    const bool checked = framed && c.control && (kind == genius::control_kind::stop || kind == genius::control_kind::end_of_block);
     const genius::device_counters before = checked ? st.dev->counters() : genius::device_counters{};
     const genius::link_request request =
         framed ? st.dev->receive(static_cast<std::uint16_t>(wire >> 1)) : st.dev->framing_error();
@@ -909,6 +935,7 @@ struct genius_bus::state {
       if (sp->id != s.id && sp->zero_end + sp->prop[r] > rc.idle_since) return false;
     }
     rc.follow = s.id;
+    ++sources[static_cast<std::size_t>(s.id - source_base)].followed;
     rc.next = k;
     ++rc.generation;
     rc.scheduled = never;
@@ -939,20 +966,39 @@ struct genius_bus::state {
       if (q.timer == genius::timer_action::arm) due = base + static_cast<std::int64_t>(q.ticks) * tick;
       if (q.timer == genius::timer_action::cancel) due = never;
     };
-    while (rc.next < s.words.size()) {
-      const std::int64_t edge = s.start + static_cast<std::int64_t>(rc.next) * character + s.prop[r];
-      if (edge - s.prop[r] + character > s.hi || edge + detection + 10 * bit > until) break;
+    // The characters it takes: whole ones (within the run's `hi`) delivered by `until`.
+    const std::int64_t start_here = s.start + s.prop[r];
+    std::size_t last = s.words.size();
+    if (s.hi < never) last = std::min<std::size_t>(last, static_cast<std::size_t>(std::max<std::int64_t>(0, (s.hi - s.start) / character)));
+    const std::int64_t latest = until - start_here - detection - 10 * bit;  // the last character's edge, relative
+    last = latest < 0 ? std::min<std::size_t>(last, 0) : std::min<std::size_t>(last, static_cast<std::size_t>(latest / character) + 1);
+    sim_device* const dev = device >= 0 ? stations[static_cast<std::size_t>(device)].dev : nullptr;
+    const std::size_t first = rc.next;
+    const bool monitor = static_cast<bool>(rc.on_word);
+    for (; rc.next < last; ++rc.next) {
+      const std::int64_t edge = start_here + static_cast<std::int64_t>(rc.next) * character;
+      const std::uint16_t wire = s.words[rc.next];
+      if (monitor) rc.on_word(us_of_ps(edge), wire);
+      if (dev == nullptr) continue;
+      const auto i = static_cast<std::size_t>(device);
+      // A data character (framed, control bit 0) to a device that is listening and has no turn on record: the
+      // two calls alone (device_start_bit and device_word would do nothing more).
+      if ((wire & (genius::stop_bit_mask | 2u)) == genius::stop_bit_mask && stations[i].turn_stop < 0 &&
+          !dev->sending()) {
+        take(dev->start_bit(), edge + detection);
+        take(dev->receive(static_cast<std::uint16_t>(wire >> 1)), edge + character);
+        continue;
+      }
       rc.edge = edge;
       rc.who = s.id;
-      const std::uint16_t wire = s.words[rc.next];
-      if (rc.on_word) rc.on_word(us_of_ps(edge), wire);
-      if (device >= 0) {
-        const auto i = static_cast<std::size_t>(device);
-        take(device_start_bit(i, edge, s.id, edge + detection), edge + detection);
-        take(device_word(i, rc, wire, edge + character), edge + character);
-      }
+      take(device_start_bit(i, edge, s.id, edge + detection), edge + detection);
+      take(device_word(i, rc, wire, edge + character), edge + character);
+    }
+    if (rc.next > first) {
+      const std::int64_t edge = start_here + static_cast<std::int64_t>(rc.next - 1) * character;
+      rc.edge = edge;
+      rc.who = s.id;
       rc.idle_since = edge + detection + 10 * bit;
-      ++rc.next;
     }
     if (device >= 0) {
       station_state& st = stations[static_cast<std::size_t>(device)];
@@ -968,7 +1014,8 @@ struct genius_bus::state {
   void unfollow(std::size_t r) {
     catch_up(r, now);
     receiver& rc = receivers[r];
-    const source& s = src(rc.follow);
+    source& s = src(rc.follow);
+    --s.followed;
     rc.follow = -1;
     followers.erase(std::find(followers.begin(), followers.end(), r));
     if (rc.next < s.words.size()) {
@@ -1356,6 +1403,7 @@ genius_bus_result genius_bus::run() {
         if (e.generation != rc.generation || rc.follow < 0) break;
         s.catch_up(e.who, s.now);
         if (rc.next >= s.src(rc.follow).words.size()) {
+          --s.src(rc.follow).followed;
           rc.follow = -1;
           s.followers.erase(std::find(s.followers.begin(), s.followers.end(), e.who));
           s.look(e.who);
