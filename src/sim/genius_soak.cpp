@@ -164,6 +164,16 @@ genius_soak_report run_genius_soak(const genius_soak_config& config,
     for (const genius_transmission_record& t : r.transmissions) {
       if (t.start_us < quiet && t.end_us > quiet) under_way = std::max(under_way, t.end_us - quiet);
     }
+    // The run of characters under way: that transmission and every one that began less than a character time
+    // after the last ended. A UART that starts listening inside such a run (powered on, a cut mended, thrown
+    // out of step by noise) may take a data bit for a start bit, and then stays out of step, character after
+    // character, until a silence of a character time makes a start bit the next falling edge it sees; it misses
+    // every Start until then (docs/genius.md, "Soak").
+    double run_end = quiet;
+    for (const genius_transmission_record& t : r.transmissions) {
+      if (t.start_us < run_end + character_us && t.end_us > run_end) run_end = t.end_us;
+    }
+    const double run = run_end - quiet;
     // Every device that sends takes its turn again, whole, within the bound.
     double recovered = quiet;
     for (const genius_station& s : stations) {
@@ -184,6 +194,19 @@ genius_soak_report run_genius_soak(const genius_soak_config& config,
       }
       const double ratio = (first - quiet) / (bound + under_way);
       report.worst_recovery_ratio = std::max(report.worst_recovery_ratio, ratio);
+      // Collisions once the faults stopped, before this device's turn (two halves of a mended bus that took
+      // turns on their own, or an idle restart counted from different moments): the colliding devices wait for
+      // a Stop that does not come, so the bus starts again after the idle time at most.
+      double collided_from = 1e300, collided_to = -1;
+      for (const genius_transmission_record& t : r.transmissions) {
+        if (t.collided && t.end_us > quiet && t.start_us < first) {
+          collided_from = std::min(collided_from, t.start_us);
+          collided_to = std::max(collided_to, t.end_us);
+        }
+      }
+      const double collisions = collided_to < 0 ? 0 : std::max(0.0, collided_to - std::max(collided_from, run_end)) + idle_us;
+      const double implied = bound + std::max(under_way, run) + collisions;
+      report.worst_implied_ratio = std::max(report.worst_implied_ratio, (first - quiet) / implied);
       const std::string what = "SBA " + std::to_string(s.sba) + " took its turn " + std::to_string(first - quiet) +
                                " us after the faults stopped (one scan + idle time: " +
                                std::to_string(bound + under_way) + " us)";
@@ -192,7 +215,18 @@ genius_soak_report run_genius_soak(const genius_soak_config& config,
         fail_round(report, round, what);
       } else if (ratio > 1) {
         ++report.late_recoveries;
-        if (report.notes.size() < 20) report.notes.push_back("round " + std::to_string(round) + ": " + what);
+        std::string why;
+        if (first - quiet <= bound + std::max(under_way, run)) {
+          ++report.late_out_of_step;
+          why = "; within the run of characters under way (" + std::to_string(run) + " us) + one scan + idle time";
+        } else if (first - quiet <= implied) {
+          ++report.late_after_collision;
+          why = "; after a collision once the faults stopped (" + std::to_string(collisions) + " us with the idle time)";
+        } else {
+          ++report.late_unexplained;
+          fail_round(report, round, what + "; beyond the run under way and the collisions (" + std::to_string(implied) + " us)");
+        }
+        if (report.notes.size() < 20) report.notes.push_back("round " + std::to_string(round) + ": " + what + why);
       }
       recovered = std::max(recovered, first);
     }

@@ -321,6 +321,80 @@ TEST(GeniusBus, FollowingGivesTheSameRunAsAnEventPerStartBitAndWord) {
   }
 }
 
+// A UART that starts listening in the middle of back-to-back characters can take a 0 data bit for a start bit.
+// It then stays out of step, character after character, through every transmission that follows the last by
+// less than a character time, and misses their Starts: a Stop whose Start it missed hands no turn on
+// (docs/protocol.md 3.4). It is in step again only after a silence of a character time. The Genius soak allows
+// for this run under way (docs/genius.md, "Soak").
+struct powered_on_inside {
+  double into_us;  // how far into SBA 3's transmission SBA 5 powers on
+  double recovery_us = 0;
+  double one_scan_idle_and_under_way_us = 0;
+  double one_scan_idle_and_run_us = 0;
+  bool missed_the_turn_after_sba4 = false;
+  std::uint64_t framing_errors = 0;
+};
+
+powered_on_inside power_on_inside(double into_us) {
+  // 38.4 kbaud: a skip time of one bit, so SBA 4 follows SBA 3 with a gap far shorter than a character.
+  const std::vector<genius_station> layout = {{0, 5683, 1, 4}, {1, 6386, 2, 0}, {2, 4843, 3, 0},
+                                              {3, 1320, 2, 0}, {4, 2853, 6, 4}, {5, 6860, 1, 1}};
+  genius_bus_config config;
+  config.rate = genius::rate::baud_38k4;
+  config.seed = 7000081;
+  config.scans = 30;
+  const genius_bus_result clean = run(layout, config);
+  const genius_transmission_record* three = nullptr;
+  for (const genius_transmission_record& t : clean.transmissions) {
+    if (t.sba == 3 && t.start_us > 50000) {
+      three = &t;
+      break;
+    }
+  }
+  powered_on_inside p{into_us};
+  if (three == nullptr) {
+    ADD_FAILURE() << "no transmission of SBA 3";
+    return p;
+  }
+  double scan = 0;
+  for (std::size_t k = 1; k < clean.scan_ends_us.size(); ++k)
+    scan = std::max(scan, clean.scan_ends_us[k] - clean.scan_ends_us[k - 1]);
+  const double bit = genius::bit_time_us(config.rate), idle = 32 * bit + 22 * bit;
+  // Off for half a microsecond, back on `into_us` into SBA 3's transmission: the bus runs as it ran clean.
+  config.faults.push_back({genius_fault_kind::power_off, three->start_us + into_us - 0.5, 0.5, 5, 0});
+  const genius_bus_result r = run(layout, config);
+  const double on = three->start_us + into_us;
+  double under_way = 0, run_end = on, first = -1, four = -1;
+  for (const genius_transmission_record& t : r.transmissions) {
+    if (t.start_us < on && t.end_us > on) under_way = t.end_us - on;
+    if (t.start_us < run_end + 11 * bit && t.end_us > run_end) run_end = t.end_us;
+    if (t.sba == 4 && four < 0 && t.start_us > on) four = t.end_us;
+    if (t.sba == 5 && first < 0 && t.whole && t.start_us >= on) first = t.start_us;
+  }
+  p.recovery_us = first - on;
+  p.one_scan_idle_and_under_way_us = scan + idle + under_way;
+  p.one_scan_idle_and_run_us = scan + idle + (run_end - on);
+  p.missed_the_turn_after_sba4 = first > four + 2 * scan / 3;
+  p.framing_errors = r.devices[5].counters.framing_errors;
+  EXPECT_EQ(r.devices[5].power_cycles, 1u);
+  EXPECT_EQ(r.collisions, 0u);
+  return p;
+}
+
+TEST(GeniusBus, ADevicePoweredOnInsideBackToBackCharactersMissesStartsUntilASilence) {
+  const powered_on_inside out_of_step = power_on_inside(80);  // on a 0 data bit of SBA 3's first character
+  EXPECT_GT(out_of_step.framing_errors, 0u);
+  EXPECT_TRUE(out_of_step.missed_the_turn_after_sba4);
+  EXPECT_GT(out_of_step.recovery_us, out_of_step.one_scan_idle_and_under_way_us);
+  EXPECT_LE(out_of_step.recovery_us, out_of_step.one_scan_idle_and_run_us);
+  EXPECT_GT(out_of_step.one_scan_idle_and_run_us, out_of_step.one_scan_idle_and_under_way_us);
+
+  const powered_on_inside in_step = power_on_inside(1);  // inside the start bit: the next edge is a start bit
+  EXPECT_EQ(in_step.framing_errors, 0u);
+  EXPECT_FALSE(in_step.missed_the_turn_after_sba4);
+  EXPECT_LE(in_step.recovery_us, in_step.one_scan_idle_and_under_way_us);
+}
+
 TEST(GeniusBus, BadLayoutsAreRefusedWithTheReason) {
   genius_bus_config config;
   EXPECT_EQ(check_genius_bus({}, config), "no devices");

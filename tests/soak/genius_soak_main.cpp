@@ -5,7 +5,8 @@
 //   trionet_genius_soak [--rounds N] [--seed S] [--faults F]
 //
 // Prints what happened and every check; exits 1 if a scan wedged after recovery, a device never took its turn
-// again (or took more than twice one scan plus the idle time), a loss went uncounted, or more deliveries
+// again (or took more than twice one scan plus the idle time, or later than the run of characters under way and
+// the collisions after the faults explain), a loss went uncounted, or more deliveries
 // escaped their CRC-6 than the 1-in-64 expectation's 99.9 % bound allows; 2 on a bad command line.
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,10 @@ int main(int argc, char** argv) {
   std::printf("recovery: %llu devices measured, %llu later than one scan + the idle time (worst %.3f x), %llu later "
               "than twice that or never\n",
               u(r.recoveries), u(r.late_recoveries), r.worst_recovery_ratio, u(r.lost_recoveries));
+  std::printf("late recoveries explained: %llu by the run of characters under way (a UART out of step until a "
+              "silence of a character time), %llu by a collision once the faults stopped (+ the idle time); %llu "
+              "unexplained (worst %.3f x that bound)\n",
+              u(r.late_out_of_step), u(r.late_after_collision), u(r.late_unexplained), r.worst_implied_ratio);
   std::printf("wedged scans after recovery: %llu\n", u(r.wedged_scans));
   std::printf("losses: %llu (transmission, listener) pairs checked, %llu neither heard nor counted\n",
               u(r.losses_checked), u(r.losses_uncounted));
