@@ -493,6 +493,9 @@ struct genius_bus::state {
     for (std::size_t f = followers.size(); s.followed != followers.size() && f-- > 0;) {
       if (f < followers.size() && receivers[followers[f]].follow != id) unfollow(followers[f]);
     }
+    // Every other receiver follows it, and the sender's own is reading back a character: no one to tell.
+    if (s.device >= 0 && s.followed + 1 == receivers.size() && receivers[static_cast<std::size_t>(s.device)].receiving)
+      return;
     std::int64_t first = s.device < 0 ? (s.zeros.empty() ? never : s.zeros.front().first) : s.start;
     if (s.device >= 0 && !s.words.empty()) first = s.start + (static_cast<std::int64_t>(s.words.size()) - 1) * character;
     if (first == never) return;
@@ -975,16 +978,18 @@ struct genius_bus::state {
     sim_device* const dev = device >= 0 ? stations[static_cast<std::size_t>(device)].dev : nullptr;
     const std::size_t first = rc.next;
     const bool monitor = static_cast<bool>(rc.on_word);
+    const auto i = static_cast<std::size_t>(device);
+    // A data character (framed, control bit 0) to a device that is listening and has no turn on record takes
+    // the device's two calls alone (device_start_bit and device_word would do nothing more). Only the full
+    // way (a control character) can change either condition.
+    const auto plain = [&]() { return dev != nullptr && stations[i].turn_stop < 0 && !dev->sending(); };
+    bool fast = plain();
     for (; rc.next < last; ++rc.next) {
       const std::int64_t edge = start_here + static_cast<std::int64_t>(rc.next) * character;
       const std::uint16_t wire = s.words[rc.next];
       if (monitor) rc.on_word(us_of_ps(edge), wire);
       if (dev == nullptr) continue;
-      const auto i = static_cast<std::size_t>(device);
-      // A data character (framed, control bit 0) to a device that is listening and has no turn on record: the
-      // two calls alone (device_start_bit and device_word would do nothing more).
-      if ((wire & (genius::stop_bit_mask | 2u)) == genius::stop_bit_mask && stations[i].turn_stop < 0 &&
-          !dev->sending()) {
+      if (fast && (wire & (genius::stop_bit_mask | 2u)) == genius::stop_bit_mask) {
         take(dev->start_bit(), edge + detection);
         take(dev->receive(static_cast<std::uint16_t>(wire >> 1)), edge + character);
         continue;
@@ -993,6 +998,7 @@ struct genius_bus::state {
       rc.who = s.id;
       take(device_start_bit(i, edge, s.id, edge + detection), edge + detection);
       take(device_word(i, rc, wire, edge + character), edge + character);
+      fast = plain();
     }
     if (rc.next > first) {
       const std::int64_t edge = start_here + static_cast<std::int64_t>(rc.next - 1) * character;
