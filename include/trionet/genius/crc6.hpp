@@ -93,6 +93,8 @@ struct crc6 {
 
   /// The CRC-6 (0..63) of the bytes taken into `reg`.
   [[nodiscard]] static constexpr std::uint8_t finish(register_type reg) noexcept {
+    // Reflected in and out: the register already holds the CRC's bits in output order (reflecting twice).
+    if constexpr (RefIn && RefOut) return static_cast<std::uint8_t>(reg ^ XorOut);
     const std::uint8_t normal = RefIn ? detail::reflect6(reg) : static_cast<std::uint8_t>(reg >> 2);
     const std::uint8_t out = RefOut ? detail::reflect6(normal) : normal;
     return static_cast<std::uint8_t>(out ^ XorOut);
