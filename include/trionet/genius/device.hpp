@@ -56,9 +56,9 @@
 // turn data in three buffers (the program writes one that the link side neither sends from nor can start
 // to); counters are `single_writer`s; NETSTAT is a register whose two bytes have one writer each.
 //
-// Cost (Cortex-M0+, default capacities): 364 bytes of RAM: 3 x (TurnCapacity + 1) for the turn data,
+// Cost (Cortex-M0+, default capacities): 372 bytes of RAM: 3 x (TurnCapacity + 1) for the turn data,
 // DeliveryCapacity + 2 for the delivery queue, DirectedSlots x (DirectedCapacity + 4) for directed
-// transmissions, 60 bytes of counters and the broadcast mask, and about 70 of state and configuration. Every link-side call is O(1) (the turn's start
+// transmissions, 60 bytes of counters and the broadcast mask, and about 80 of state and configuration. Every link-side call is O(1) (the turn's start
 // O(1) too: no copy); `set_turn_data` is O(its bytes); `read` O(the record's bytes). No heap.
 #pragma once
 
@@ -322,6 +322,48 @@ constexpr void write_body(std::uint8_t* out, span<const segment> segments) noexc
   }
 }
 
+// A control layout (transmission.hpp) as a device encodes and decodes it, worked out once: the shifts of the
+// tag and the fields, the tag of each kind (start, stop, start of block, end of block), and the kind of each
+// tag (`control_kind::unknown` for none; a tag shared by two kinds reads as the first, as `read_control`).
+struct control_code {
+  std::uint8_t tag_shift;
+  std::uint8_t field_shift;
+  std::uint8_t tag[4];
+  control_kind kind[4];
+
+  constexpr explicit control_code(const control_layout& layout) noexcept
+      : tag_shift(layout.position == tag_position::high ? 6 : 0),
+        field_shift(layout.position == tag_position::high ? 0 : 2),
+        tag{static_cast<std::uint8_t>(layout.start & 3u), static_cast<std::uint8_t>(layout.stop & 3u),
+            static_cast<std::uint8_t>(layout.start_of_block & 3u),
+            static_cast<std::uint8_t>(layout.end_of_block & 3u)},
+        kind{kind_of(layout, 0), kind_of(layout, 1), kind_of(layout, 2), kind_of(layout, 3)} {}
+
+  static constexpr control_kind kind_of(const control_layout& layout, std::uint8_t tag) noexcept {
+    if (tag == layout.start) return control_kind::start;
+    if (tag == layout.stop) return control_kind::stop;
+    if (tag == layout.start_of_block) return control_kind::start_of_block;
+    if (tag == layout.end_of_block) return control_kind::end_of_block;
+    return control_kind::unknown;
+  }
+  // The control character of `kind` (not unknown) carrying the 6 field bits `fields`.
+  constexpr character encode(control_kind which, unsigned fields) const noexcept {
+    const unsigned tag_bits = tag[static_cast<unsigned>(which)];
+    return control_character(static_cast<std::uint8_t>(tag_bits << tag_shift | (fields & 0x3fu) << field_shift));
+  }
+  // The fields of a control character's byte (as `read_control`).
+  constexpr control_fields decode(std::uint8_t byte) const noexcept {
+    const auto fields = static_cast<std::uint8_t>((byte >> field_shift) & 0x3fu);
+    control_fields f;
+    f.kind = kind[(byte >> tag_shift) & 3u];
+    f.sba = static_cast<std::uint8_t>(fields & 0x1fu);
+    f.broadcast = (fields & 0x20u) != 0;
+    f.crc = fields;
+    if (f.kind == control_kind::start_of_block && f.broadcast) f.kind = control_kind::unknown;
+    return f;
+  }
+};
+
 // NETSTAT for two writers: the link side raises bits by flipping them in `raised_` (when not raised
 // already); the program side clears by copying `raised_` into `cleared_`. A bit is raised while the two
 // bytes differ in it.
@@ -366,7 +408,7 @@ class shared_index {
 /// (each delivery takes its data + 3); `DirectedSlots` directed transmissions of up to `DirectedCapacity`
 /// data bytes may wait. `Crc` is the CRC-6 policy (crc6.hpp).
 ///
-/// Defaults (32 turn-data bytes, a 96-byte delivery queue, two directed transmissions of 16 bytes): 364 bytes
+/// Defaults (32 turn-data bytes, a 96-byte delivery queue, two directed transmissions of 16 bytes): 372 bytes
 /// of RAM on a Cortex-M0+ (`sizeof`). Copy a device only while neither side runs.
 template <std::size_t TurnCapacity = 32, std::size_t DeliveryCapacity = 96, std::size_t DirectedCapacity = 16,
           std::size_t DirectedSlots = 2, class Crc = crc6_g704>
@@ -391,7 +433,7 @@ class device : private trionet::detail::crc_holder<Crc> {
                             const Crc& crc = Crc{}, const control_layout& layout = control_layout{}) noexcept
       : trionet::detail::crc_holder<Crc>(crc),
         sba_(static_cast<std::uint8_t>(sba & max_sba)),
-        layout_(layout),
+        code_(layout),
         skip_ticks_(timing.skip_ticks),
         gap_ticks_(static_cast<std::uint32_t>(timing.idle_characters * timing.character_ticks)),
         character_ticks_(timing.character_ticks) {}
@@ -421,9 +463,9 @@ class device : private trionet::detail::crc_holder<Crc> {
   /// are ignored). A timer it arms runs from the end of this character.
   link_request receive(std::uint16_t word) noexcept {
     characters_.increment();
-    const character c = from_uart_word(word);
-    if (state_ == state::sending) return read_back(c);
-    return hear(c);
+    word &= uart_word_mask;
+    if (state_ == state::sending) return read_back(word);
+    return hear(word);
   }
 
   /// Link side: a character was received with a framing error (start bit not 0 or stop bit not 1). A timer
@@ -432,9 +474,9 @@ class device : private trionet::detail::crc_holder<Crc> {
     count(framing_errors_, netstat_framing_error);
     if (state_ == state::sending) {
       collided();
-      return after_character();
+    } else if (rx_open_) {
+      discard();
     }
-    if (rx_open_) discard();
     return after_character();
   }
 
@@ -467,7 +509,6 @@ class device : private trionet::detail::crc_holder<Crc> {
     }
     const std::uint8_t sender = bus_sender_;
     bus_sender_ = no_sender;
-    if (sender == no_sender) return arm(armed::quiet, quiet_ticks());
     return after_stop_of(sender, false);
   }
 
@@ -481,8 +522,8 @@ class device : private trionet::detail::crc_holder<Crc> {
       return false;
     }
     next_ready_ = false;
-    sent_ = next_character();
-    word = to_uart_word(sent_);
+    sent_ = to_uart_word(next_character());
+    word = sent_;
     return true;
   }
 
@@ -535,10 +576,10 @@ class device : private trionet::detail::crc_holder<Crc> {
     if (static_cast<std::uint8_t>(queued - directed_sent_.acquire()) >= DirectedSlots)
       return queue_status::full;
     directed_slot& slot = slots_[queued % DirectedSlots];
-    slot.destination = destination;
+    slot.body[0] = destination;
     const segment plain{false, 0, data};
-    detail::write_body(slot.body, span<const segment>(&plain, 1));
-    slot.length = static_cast<std::uint8_t>(detail::measure_body(span<const segment>(&plain, 1)).bytes);
+    detail::write_body(slot.body + 1, span<const segment>(&plain, 1));
+    slot.length = static_cast<length_type>(1 + detail::measure_body(span<const segment>(&plain, 1)).bytes);
     queued_.release(static_cast<std::uint8_t>(queued + 1));
     return queue_status::ok;
   }
@@ -603,7 +644,8 @@ class device : private trionet::detail::crc_holder<Crc> {
 
  private:
   using register_type = typename Crc::register_type;
-  using length_type = std::conditional_t<(TurnCapacity <= 255), std::uint8_t, std::uint16_t>;
+  using length_type =
+      std::conditional_t<(TurnCapacity <= 255 && DirectedCapacity <= 252), std::uint8_t, std::uint16_t>;
   static constexpr std::uint8_t no_sender = 0xFF;
 
   enum class state : std::uint8_t {
@@ -617,17 +659,17 @@ class device : private trionet::detail::crc_holder<Crc> {
     quiet,  // the idle restart
     gap,    // silence inside a transmission
   };
-  enum class phase : std::uint8_t { start, destination, segment, data, end_of_block, done };
+  enum class phase : std::uint8_t { start, segment, data, end_of_block, done };
 
+  // A directed transmission: the destination SBA, then its body (segments, as the turn data's).
   struct directed_slot {
-    std::uint8_t destination;
-    std::uint8_t length;  // of `body`
-    std::uint8_t body[DirectedCapacity + 2];
+    length_type length;  // of `body`
+    std::uint8_t body[1 + DirectedCapacity + 2];
   };
 
   // Copies `n` bytes of the delivery queue from slot `at` on (wrapping without a division: none on a
   // Cortex-M0+); returns the slot after them.
-  std::size_t copy_out(std::uint8_t* to, std::size_t at, std::size_t n) const noexcept {
+  TRIONET_NOINLINE std::size_t copy_out(std::uint8_t* to, std::size_t at, std::size_t n) const noexcept {
     const std::uint8_t* const base = deliveries_.slots();
     for (std::size_t k = 0; k < n; ++k) {
       to[k] = base[at];
@@ -650,10 +692,11 @@ class device : private trionet::detail::crc_holder<Crc> {
   }
 
   // The Stop of `sender` ended (now, or at the end of the character just received): arm its turn, or (its own
-  // Stop) the idle restart. An idle restart acts as if SBA 31's Stop ended; SBA 31 itself then waits a full
-  // round of 32 skip times, so that a lone device takes its turns too.
+  // Stop, or `no_sender`: a Stop whose Start it missed, silence with no transmission open) the idle restart.
+  // An idle restart acts as if SBA 31's Stop ended; SBA 31 itself then waits a full round of 32 skip times, so
+  // that a lone device takes its turns too.
   link_request after_stop_of(std::uint8_t sender, bool idle_restart) noexcept {
-    unsigned offset = sba_offset(sender, sba_);
+    unsigned offset = sender == no_sender ? 0 : sba_offset(sender, sba_);
     if (offset == 0 && idle_restart) offset = 32;
     if (offset == 0) return arm(armed::quiet, quiet_ticks());
     turn_offset_ = static_cast<std::uint8_t>(offset);
@@ -709,52 +752,49 @@ class device : private trionet::detail::crc_holder<Crc> {
       stop_crc_ = this->crc().begin();
       at_ = 0;
       const bool directed = source_ == source::directed;
-      if (directed) {
+      phase_ = phase::segment;
+      if (directed) {  // the destination SBA first: a data character outside any segment
         const directed_slot& slot = slots_[directed_sent_.load() % DirectedSlots];
         body_ = slot.body;
         body_length_ = slot.length;
+        left_ = 1;
+        block_ = false;
+        phase_ = phase::data;
       }
-      phase_ = directed ? phase::destination : phase::segment;
-      return start_character(sba_, !directed, layout_);
+      return code_.encode(control_kind::start, (directed ? 0u : 0x20u) | sba_);
     }
     if (phase_ == phase::end_of_block) {
       phase_ = phase::segment;
-      return end_of_block_character(this->crc().finish(block_crc_), layout_);
+      return code_.encode(control_kind::end_of_block, this->crc().finish(block_crc_));
     }
-    std::uint8_t byte;
-    if (phase_ == phase::destination) {
-      byte = slots_[directed_sent_.load() % DirectedSlots].destination;
-      phase_ = phase::segment;
-    } else {
-      if (phase_ != phase::data) {  // the next segment (or, at the end of the body, the Stop)
-        if (at_ >= body_length_) {
-          phase_ = phase::done;
-          return stop_character(this->crc().finish(stop_crc_), layout_);
-        }
-        const std::uint8_t header = body_[at_];
-        left_ = body_[at_ + 1];
-        at_ = static_cast<length_type>(at_ + 2);
-        phase_ = phase::data;
-        block_ = header != detail::plain_segment;
-        if (block_) {
-          block_crc_ = this->crc().begin();
-          return start_of_block_character(header, layout_);
-        }
+    if (phase_ != phase::data) {  // the next segment (or, at the end of the body, the Stop)
+      if (at_ >= body_length_) {
+        phase_ = phase::done;
+        return code_.encode(control_kind::stop, this->crc().finish(stop_crc_));
       }
-      byte = body_[at_];
-      at_ = static_cast<length_type>(at_ + 1);
-      if (block_) block_crc_ = this->crc().update(block_crc_, byte);
-      if (--left_ == 0) phase_ = block_ ? phase::end_of_block : phase::segment;
+      const std::uint8_t header = body_[at_];
+      left_ = body_[at_ + 1];
+      at_ = static_cast<length_type>(at_ + 2);
+      phase_ = phase::data;
+      block_ = header != detail::plain_segment;
+      if (block_) {
+        block_crc_ = this->crc().begin();
+        return code_.encode(control_kind::start_of_block, header & max_sba);
+      }
     }
+    const std::uint8_t byte = body_[at_];
+    at_ = static_cast<length_type>(at_ + 1);
+    if (block_) block_crc_ = this->crc().update(block_crc_, byte);
+    if (--left_ == 0) phase_ = block_ ? phase::end_of_block : phase::segment;
     stop_crc_ = this->crc().update(stop_crc_, byte);
     return data_character(byte);
   }
 
   // A character received while sending: its own, read back.
-  link_request read_back(character c) noexcept {
-    if (c != sent_) {
+  link_request read_back(std::uint16_t word) noexcept {
+    if (word != sent_) {
       collided();
-      return hear(c);  // it may be another device's Start: follow it
+      return hear(word);  // it may be another device's Start: follow it
     }
     if (start_sent_) {
       start_sent_ = false;
@@ -783,66 +823,58 @@ class device : private trionet::detail::crc_holder<Crc> {
 
   // ---- others' transmissions ----
 
-  link_request hear(character c) noexcept {
-    if (c.control) {
-      const control_fields f = read_control(c.byte, layout_);
-      if (f.kind == control_kind::start) {
-        if (rx_open_) wire_error();  // the old transmission ends without its Stop
-        begin(f);
-        return after_character();
-      }
+  // A 9-bit UART word (bits above 8 clear).
+  link_request hear(std::uint16_t word) noexcept {
+    const auto byte = static_cast<std::uint8_t>(word >> 1);
+    if ((word & 1u) == 0) {
+      hear_data(byte);
+    } else {
+      const control_fields f = code_.decode(byte);
       if (f.kind == control_kind::stop) return hear_stop(f.crc);
-      if (!rx_open_) return outside();
-      switch (f.kind) {
-        case control_kind::start_of_block:
-          if (need_destination_ || in_block_) {
-            wire_error();
-          } else {
-            in_block_ = true;
-            block_length_ = 0;
-            block_crc_ = this->crc().begin();
-            block_for_me_ = f.sba == sba_;
-            if (block_for_me_) open_record(delivery_kind::block);
-          }
-          break;
-        case control_kind::end_of_block:
-          if (!in_block_ || block_length_ == 0) {
-            wire_error();
-          } else if (this->crc().finish(block_crc_) != f.crc) {
-            crc_error();
-          } else {
-            in_block_ = false;
-            if (block_for_me_) close_record();
-          }
-          break;
-        default:
-          wire_error();
-          break;
-      }
-      return after_character();
+      hear_control(f);
+    }
+    return after_character();
+  }
+
+  TRIONET_ALWAYS_INLINE void hear_control(const control_fields& f) noexcept {
+    if (f.kind == control_kind::start) {
+      if (rx_open_) wire_error();  // the old transmission ends without its Stop
+      begin(f);
+      return;
     }
     if (!rx_open_) return outside();
-    stop_crc_ = this->crc().update(stop_crc_, c.byte);
+    if (f.kind == control_kind::start_of_block && !need_destination_ && !in_block_) {
+      in_block_ = true;
+      block_length_ = 0;
+      block_crc_ = this->crc().begin();
+      block_for_me_ = f.sba == sba_;
+      if (block_for_me_) open_record(delivery_kind::block);
+    } else if (f.kind == control_kind::end_of_block && in_block_ && block_length_ != 0) {
+      if (this->crc().finish(block_crc_) != f.crc) return crc_error();
+      in_block_ = false;
+      if (block_for_me_) close_record();
+    } else {
+      wire_error();  // a block where none may start or end, or an unknown control character
+    }
+  }
+
+  TRIONET_ALWAYS_INLINE void hear_data(std::uint8_t byte) noexcept {
+    if (!rx_open_) return outside();
+    stop_crc_ = this->crc().update(stop_crc_, byte);
     ++data_characters_;
     if (need_destination_) {
       need_destination_ = false;
-      if (c.byte > max_sba) {
-        wire_error();
-      } else {
-        for_me_ = c.byte == sba_;
-      }
-      return after_character();
-    }
-    if (in_block_) {
-      block_crc_ = this->crc().update(block_crc_, c.byte);
+      if (byte > max_sba) return wire_error();
+      for_me_ = byte == sba_;
+    } else if (in_block_) {
+      block_crc_ = this->crc().update(block_crc_, byte);
       ++block_length_;
-      if (block_for_me_) stage(c.byte);
+      if (block_for_me_) stage(byte);
     } else if (for_me_) {
       if (record_ != record_kind::plain)
         open_record(broadcast_ ? delivery_kind::broadcast : delivery_kind::directed);
-      stage(c.byte);
+      stage(byte);
     }
-    return after_character();
   }
 
   void begin(const control_fields& f) noexcept {
@@ -877,17 +909,16 @@ class device : private trionet::detail::crc_holder<Crc> {
     } else {
       skipped_.increment();  // the end of a transmission it had dropped, or whose Start it missed
     }
-    if (sender == no_sender) return arm(armed::quiet, quiet_ticks());  // a Stop whose Start it missed
     return after_stop_of(sender, false);
   }
 
-  link_request outside() noexcept {
+  // A character outside any transmission it follows.
+  void outside() noexcept {
     if (!resync_ && bus_sender_ == no_sender) {
       wire_error_outside();
     } else {
       skipped_.increment();
     }
-    return after_character();
   }
 
   // ---- deliveries: staged past the queue's tail while the transmission comes, published at its Stop ----
@@ -933,7 +964,7 @@ class device : private trionet::detail::crc_holder<Crc> {
     records_ = 0;
   }
   // The open transmission is dropped (its staged records with it); characters are skipped to the next Start.
-  void discard() noexcept {
+  TRIONET_NOINLINE void discard() noexcept {
     rx_open_ = false;
     resync_ = true;
     staged_ = 0;
@@ -988,7 +1019,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   register_type block_crc_{};
   length_type at_ = 0;
   length_type body_length_ = 0;
-  character sent_{};
+  std::uint16_t sent_ = 0;  // the UART word it sent last
 
   // Shared: one writer each.
   detail::netstat_bits netstat_;
@@ -997,7 +1028,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   trionet::detail::single_writer<std::uint8_t> queued_;  // program side: directed transmissions queued
   trionet::detail::single_writer<std::uint8_t>
       directed_sent_;  // link side: directed transmissions sent whole
-  control_layout layout_;  // configuration
+  detail::control_code code_;  // configuration: the control layout
 
   // Link side only.
   std::uint16_t data_characters_ = 0;

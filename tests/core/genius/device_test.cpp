@@ -17,9 +17,9 @@ using trionet::span;
 
 using default_device = device<>;
 
-std::vector<std::uint16_t> words_of(const transmission& t) {
+std::vector<std::uint16_t> words_of(const transmission& t, const control_layout& layout = control_layout{}) {
   std::vector<character> chars(encoded_length(t).length);
-  EXPECT_TRUE(encode_transmission(span<character>(chars.data(), chars.size()), t));
+  EXPECT_TRUE(encode_transmission(span<character>(chars.data(), chars.size()), t, crc6_g704{}, layout));
   std::vector<std::uint16_t> words;
   for (const character c : chars) words.push_back(to_uart_word(c));
   return words;
@@ -310,6 +310,64 @@ TEST(GeniusDevice, ABlockAddressedToItInsideAnyTransmissionIsDelivered) {
   ASSERT_TRUE(block.result);
   EXPECT_EQ(block.result.kind, delivery_kind::block);
   EXPECT_EQ(block.data, (std::vector<std::uint8_t>{0x01, 0x02}));
+}
+
+TEST(GeniusDevice, InAnotherControlLayoutItSendsAndReceivesInThatLayout) {
+  control_layout tags_low_reversed;
+  tags_low_reversed.start = 3;
+  tags_low_reversed.stop = 2;
+  tags_low_reversed.start_of_block = 1;
+  tags_low_reversed.end_of_block = 0;
+  tags_low_reversed.position = tag_position::low;
+  control_layout tags_high_swapped;
+  tags_high_swapped.start = 1;
+  tags_high_swapped.stop = 0;
+  tags_high_swapped.start_of_block = 3;
+  tags_high_swapped.end_of_block = 2;
+  for (const control_layout& layout : {tags_low_reversed, tags_high_swapped, control_layout{}}) {
+    default_device d(6, bit_timing(rate::standard_153k6), crc6_g704{}, layout);
+    const std::uint8_t outputs[] = {0x5A, 0xA5};
+    const std::uint8_t other[] = {0x01};
+    const std::uint8_t plain_bytes[] = {0x0F, 0xF0};
+    const segment from_controller[] = {
+        {true, 5, byte_view(other, 1)}, {true, 6, byte_view(outputs, 2)}, {false, 0, byte_view(plain_bytes, 2)}};
+    (void)hear(d, words_of(transmission{31, true, 0, span<const segment>(from_controller, 3)}, layout));
+    read_delivery block = next_delivery(d);
+    ASSERT_TRUE(block.result);
+    EXPECT_EQ(block.result.kind, delivery_kind::block);
+    EXPECT_EQ(block.result.sender, 31);
+    EXPECT_EQ(block.data, (std::vector<std::uint8_t>{0x5A, 0xA5}));
+    read_delivery plain = next_delivery(d);
+    ASSERT_TRUE(plain.result);
+    EXPECT_EQ(plain.result.kind, delivery_kind::broadcast);
+    EXPECT_EQ(plain.data, (std::vector<std::uint8_t>{0x0F, 0xF0}));
+    // A directed transmission to it from SBA 2 (its turn 4 skip times after that Stop), then its own turn.
+    const std::uint8_t command[] = {0x42};
+    const segment directed[] = {{false, 0, byte_view(command, 1)}};
+    const link_request r = hear(d, words_of(transmission{2, false, 6, span<const segment>(directed, 1)}, layout));
+    EXPECT_EQ(r.timer, timer_action::arm);
+    EXPECT_EQ(r.ticks, 4u);
+    read_delivery to_it = next_delivery(d);
+    ASSERT_TRUE(to_it.result);
+    EXPECT_EQ(to_it.result.kind, delivery_kind::directed);
+    EXPECT_EQ(to_it.result.sender, 2);
+    EXPECT_EQ(to_it.data, (std::vector<std::uint8_t>{0x42}));
+    const std::uint8_t inputs[] = {0x11, 0x22, 0x33};
+    ASSERT_EQ(d.set_turn_data(byte_view(inputs, 3)), turn_data_status::ok);
+    const segment own[] = {{false, 0, byte_view(inputs, 3)}};
+    EXPECT_EQ(take_turn(d), words_of(transmission{6, true, 0, span<const segment>(own, 1)}, layout));
+    // A Start of block with its top field bit set is no control character of this layout: a wire error.
+    std::vector<std::uint16_t> unknown = words_of(transmission{3, true, 0, span<const segment>(own, 1)}, layout);
+    unknown.insert(unknown.begin() + 2, to_uart_word(unknown_control_character(layout)));
+    (void)hear(d, unknown);
+    EXPECT_FALSE(next_delivery(d).result);
+    const device_counters c = d.counters();
+    EXPECT_EQ(c.wire_errors, 1u);
+    EXPECT_EQ(c.crc_errors, 0u);
+    EXPECT_EQ(c.transmissions_heard, 2u);
+    EXPECT_EQ(c.deliveries, 3u);
+    EXPECT_EQ(c.transmissions_sent, 1u);
+  }
 }
 
 TEST(GeniusDevice, NothingThatFailsItsCrc6IsDeliveredAndTheErrorIsCounted) {
