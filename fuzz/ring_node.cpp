@@ -78,6 +78,7 @@ bool same(const motion_coordinator_counters& a, const motion_coordinator_counter
 }
 
 bool same_answer(int a, int b) { return a == b; }
+bool same_answer(receive_status a, receive_status b) { return a == b; }
 bool same_answer(send_status a, send_status b) { return a == b; }
 bool same_answer(const print_result& a, const print_result& b) { return a.status == b.status && a.queued == b.queued; }
 bool same_answer(const get_result& a, const get_result& b) { return a.status == b.status && a.value == b.value; }
@@ -261,8 +262,9 @@ class harness {
   void receive(std::uint8_t byte) {
     const motion_coordinator_counters before = mc_.counters();
     const std::size_t waiting_before = mc_.characters_waiting();
+    const link_counters links_before = mc_.forwarding_counters();
 
-    mc_.receive(byte);
+    const receive_status answered = mc_.receive(byte);
     twin_pending_.push_back(byte);
 
     // The link model says where the byte went; the node's forwarding counters follow it.
@@ -334,6 +336,21 @@ class harness {
     }
     FUZZ_CHECK(same(mc_.counters(), want));
     FUZZ_CHECK(mc_.characters_waiting() == waiting_.size());
+
+    // What `receive` answered: the fate of the message the byte ended (a loss before a message for the node
+    // that the same header cut short), else nothing.
+    receive_status answer = receive_status::incomplete;
+    if (r == byte_route::lost) {
+      answer = links.forwards_cut != links_before.forwards_cut ? receive_status::forward_cut
+                                                                 : receive_status::forward_lost;
+    } else if (want.receive_overflows != before.receive_overflows) {
+      answer = receive_status::no_room;
+    } else if (expected.status != decode_status::incomplete) {
+      answer = trionet::detail::decode_outcome::of(expected.status);
+    } else if (r == byte_route::forwarded && classify(byte) == byte_class::end_of_message) {
+      answer = receive_status::forwarded;
+    }
+    FUZZ_CHECK(answered == answer);
 
     receive_keypad(byte);
   }
@@ -594,20 +611,21 @@ class harness {
   void line_idle() {
     const motion_coordinator_counters before = mc_.counters();
     const std::uint32_t ended = mc_.forwarding_counters().forwards_ended_idle;
-    both([](node_type& node) {
-      node.line_idle();
-      return 0;
-    });
+    const receive_status answered = both([](node_type& node) { return node.line_idle(); });
     FUZZ_CHECK(!mc_.in_message());
     FUZZ_CHECK(mc_.forwarding_counters().forwards_ended_idle == ended + (link_.open ? 1u : 0u));
     if (link_.open) FUZZ_CHECK((mc_.netstat() & netstat_tx_buffer_error) != 0);
+    const bool open = link_.open;
     link_.open = false;
     link_.discarding = false;
     motion_coordinator_counters want = before;
+    receive_status answer = open ? receive_status::forward_ended_idle : receive_status::incomplete;
     if (reference_.line_idle().status == decode_status::frame_error) {
       ++want.frame_errors;
       FUZZ_CHECK((mc_.netstat() & netstat_rx_frame_error) != 0);
+      answer = receive_status::frame_error;
     }
+    FUZZ_CHECK(answered == answer);  // what the idle line ended
     FUZZ_CHECK(same(mc_.counters(), want));
     keypad_.line_idle();
     FUZZ_CHECK(!keypad_.in_message());

@@ -38,21 +38,23 @@
 
 #include <cstdint>
 
+#include "trionet/ring/decode_result.hpp"
+
 namespace trionet {
 
 /// What a ring node offers its link: the link side of the node. Every call is O(1) (amortised), never
 /// blocks and may run in an ISR.
 class byte_port {
  public:
-  /// A byte arrived from the link.
-  virtual void receive(std::uint8_t byte) noexcept = 0;
+  /// A byte arrived from the link; returns what became of the message it ended (`incomplete`: none).
+  virtual ring::receive_status receive(std::uint8_t byte) noexcept = 0;
   /// The next byte to send, if there is one now; false leaves `byte` untouched.
   [[nodiscard]] virtual bool transmit(std::uint8_t& byte) noexcept = 0;
   /// True when `transmit` would give a byte: use it to (re-)enable a transmit interrupt.
   [[nodiscard]] virtual bool transmit_pending() const noexcept = 0;
   /// The line has carried no byte for a while: a message open on the receive side has lost its rest and is
-  /// ended (counted). Harmless when nothing is open.
-  virtual void line_idle() noexcept = 0;
+  /// ended (counted), and what became of it is returned. Harmless when nothing is open (`incomplete`).
+  virtual ring::receive_status line_idle() noexcept = 0;
   /// True while a message has begun on the receive side and not ended (for this node, passing through it,
   /// or being dropped): what `line_idle` would end.
   [[nodiscard]] virtual bool in_message() const noexcept = 0;

@@ -53,9 +53,9 @@ class watched_node final : public byte_port {
 
   void set_time(std::uint64_t time_ns) noexcept { time_ = time_ns; }
 
-  void receive(std::uint8_t byte) noexcept override {
+  ring::receive_status receive(std::uint8_t byte) noexcept override {
     in_->push(byte, time_, on_in_);
-    node_->receive(byte);
+    return node_->receive(byte);
   }
   bool transmit(std::uint8_t& byte) noexcept override {
     if (!node_->transmit(byte)) return false;
@@ -63,9 +63,10 @@ class watched_node final : public byte_port {
     return true;
   }
   bool transmit_pending() const noexcept override { return node_->transmit_pending(); }
-  void line_idle() noexcept override {
-    node_->line_idle();
+  ring::receive_status line_idle() noexcept override {
+    const ring::receive_status ended = node_->line_idle();
     in_->idle(time_, on_in_);
+    return ended;
   }
   bool in_message() const noexcept override { return node_->in_message() || in_->open(); }
 

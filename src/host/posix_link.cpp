@@ -13,9 +13,10 @@ short fd_link::poll_events() const noexcept {
   return static_cast<short>(POLLIN | (unsent() != 0 || node_->transmit_pending() ? POLLOUT : 0));
 }
 
-bool fd_link::idle() noexcept {
+bool fd_link::idle(std::size_t* ended) noexcept {
   if (!node_->in_message()) return false;
-  node_->line_idle();
+  const bool answered = node_->line_idle() != ring::receive_status::incomplete;
+  if (ended != nullptr) *ended += answered;
   return true;
 }
 
@@ -30,7 +31,7 @@ pump_result fd_link::pump(int timeout_ms) {
     return result;
   }
   if (ready == 0) {  // nothing for timeout_ms: the line is idle (docs/protocol.md 1.10)
-    result.line_idle = idle();
+    result.line_idle = idle(&result.ended);
     return result;
   }
   return service(p.revents);
@@ -42,7 +43,7 @@ pump_result fd_link::service(short revents) {
     std::uint8_t in[256];
     const ssize_t got = ::read(fd_, in, sizeof in);
     if (got > 0) {
-      receive(byte_view(in, static_cast<std::size_t>(got)));
+      result.ended = receive(byte_view(in, static_cast<std::size_t>(got)));
       result.received = static_cast<std::size_t>(got);
     } else if (got == 0) {
       result.closed = true;
@@ -70,9 +71,11 @@ pump_result fd_link::service(short revents) {
   return result;
 }
 
-void fd_link::receive(byte_view in) noexcept {
+std::size_t fd_link::receive(byte_view in) noexcept {
   if (receive_bulk_ != nullptr) return receive_bulk_(*node_, in);
-  for (std::uint8_t byte : in) node_->receive(byte);
+  std::size_t ended = 0;
+  for (std::uint8_t byte : in) ended += node_->receive(byte) != ring::receive_status::incomplete;
+  return ended;
 }
 
 std::size_t fd_link::transmit(byte_buffer out) noexcept {

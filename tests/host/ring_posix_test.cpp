@@ -36,14 +36,16 @@ TEST(RingPosixLink, TwoNodeRingOverASocketPair) {
   ASSERT_EQ(a.print(10, "HELLO").status, ring::send_status::ok);
   ASSERT_EQ(a.send_variable(10, 200, 99), ring::send_status::ok);
   ASSERT_EQ(a.print(11, "ROUND").status, ring::send_status::ok);  // 2 hops: b forwards it back to a
+  std::size_t ended_at_b = 0;  // messages b's pumps saw end: HELLO and the variable (for b), ROUND (forwarded)
   for (int i = 0; i < 200 && !(read_all(b) == "HELLO" || b.characters_waiting() != 0); ++i) {
     (void)link_a.pump(5);
-    (void)link_b.pump(5);
+    ended_at_b += link_b.pump(5).ended;
   }
   for (int i = 0; i < 50; ++i) {
     (void)link_a.pump(1);
-    (void)link_b.pump(1);
+    ended_at_b += link_b.pump(1).ended;
   }
+  EXPECT_EQ(ended_at_b, 3u);
   EXPECT_EQ(vr_b[200], 99.0);
   EXPECT_EQ(read_all(a), "ROUND");
   EXPECT_EQ(b.forwarding_counters().messages_forwarded, 1u);
@@ -68,8 +70,10 @@ TEST(RingPosixLink, SerialPortOnAPty) {
   trionet::host::fd_link link(fd, mc);
   const std::uint8_t frame[] = {0x89, 'O', 'K', 0x88};
   ASSERT_EQ(::write(master, frame, sizeof frame), static_cast<ssize_t>(sizeof frame));
-  for (int i = 0; i < 50 && mc.characters_waiting() < 2; ++i) (void)link.pump(10);
+  std::size_t ended = 0;
+  for (int i = 0; i < 50 && mc.characters_waiting() < 2; ++i) ended += link.pump(10).ended;
   EXPECT_EQ(read_all(mc), "OK");
+  EXPECT_EQ(ended, 1u);
   ::close(fd);
   ::close(master);
 
@@ -95,8 +99,14 @@ TEST(RingPosixLink, ReadTimeoutIsTheIdleLine) {
   ASSERT_EQ(::write(sv[1], partial, sizeof partial), static_cast<ssize_t>(sizeof partial));
   ASSERT_EQ(mc.print(10, "OWN").status, ring::send_status::ok);
   bool idle = false;
-  for (int i = 0; i < 20 && !idle; ++i) idle = link.pump(5).line_idle;
+  std::size_t ended = 0;
+  for (int i = 0; i < 20 && !idle; ++i) {
+    const auto r = link.pump(5);
+    idle = r.line_idle;
+    ended += r.ended;
+  }
   EXPECT_TRUE(idle);
+  EXPECT_EQ(ended, 1u);  // the idle line ended the forwarded message (lost: counted)
   EXPECT_EQ(mc.forwarding_counters().forwards_ended_idle, 1u);
   for (int i = 0; i < 5; ++i) (void)link.pump(5);
   std::uint8_t got[16] = {};

@@ -57,4 +57,35 @@ class single_writer {
   std::atomic<T> value_;
 };
 
+/// A request from one side that the other side carries out: the one thing both sides write, as a handshake.
+/// The asking side only `raise`s it, the other side only `lower`s it, once it has done what was asked, and it
+/// does nothing else between doing it and lowering the flag, so a request that comes meanwhile is served
+/// by what it did (a node's `clear_counters`: the link side clears its counters). Cost: 1 byte.
+class request_flag {
+ public:
+  /// Not raised.
+  constexpr request_flag() noexcept : raised_(false) {}
+  /// Copies the flag.
+  request_flag(const request_flag& other) noexcept : raised_(other.raised_.load(std::memory_order_relaxed)) {}
+  /// Copies the flag.
+  request_flag& operator=(const request_flag& other) noexcept {
+    raised_.store(other.raised_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+    return *this;
+  }
+  ~request_flag() = default;
+
+  /// The asking side: asks, after everything it stored before.
+  void raise() noexcept { raised_.store(true, std::memory_order_release); }
+  /// The serving side: true while a request waits (one load: for its hot paths).
+  TRIONET_ALWAYS_INLINE bool waiting() const noexcept { return raised_.load(std::memory_order_relaxed); }
+  /// Either side: true while a request waits; once it is false, what the serving side did before it lowered
+  /// the flag is visible.
+  bool raised() const noexcept { return raised_.load(std::memory_order_acquire); }
+  /// The serving side: the request is done, after everything stored before.
+  void lower() noexcept { raised_.store(false, std::memory_order_release); }
+
+ private:
+  std::atomic<bool> raised_;
+};
+
 }  // namespace trionet::detail

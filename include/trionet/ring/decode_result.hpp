@@ -1,10 +1,12 @@
 // What the streaming ring decoder (ring/decoder.hpp) reports for a pushed byte: `decode_status`, the reason of a
 // frame error (`frame_error`), their names (`to_string`) and the `decode_result` that carries them with the
-// message. A node's counters and NETSTAT bits (ring/node.hpp) are made from these.
+// message. A node's counters and NETSTAT bits (ring/node.hpp) are made from these, and so is what a node's
+// `receive` answers for a byte (`receive_status`).
 #pragma once
 
 #include <cstdint>
 
+#include "trionet/detail/status_map.hpp"
 #include "trionet/ring/message.hpp"
 
 namespace trionet::ring {
@@ -33,6 +35,52 @@ constexpr const char* to_string(decode_status status) noexcept {
       return "crc_error";
     case decode_status::no_room:
       return "no_room";
+  }
+  return "unknown";
+}
+
+/// What became of the message that a byte received by a node ended (a node's `receive` and `line_idle`; its
+/// counters count each outcome). The decoder's outcomes for a message for the node keep their names and order
+/// here (from `incomplete` to `no_room`); the outcomes of a message passing through the node follow.
+enum class receive_status : std::uint8_t {
+  incomplete,          ///< the byte ended no message
+  ok,                  ///< a valid message for the node, delivered (what the node did with it: its counters)
+  frame_error,         ///< a message for the node discarded: a frame error (NETSTAT bit 3)
+  crc_error,           ///< a direct variable transfer for the node failed its CRC (NETSTAT bit 2)
+  no_room,             ///< a valid character transfer for the node with no room in its receive buffer, dropped
+                       ///< whole (NETSTAT bit 4)
+  forwarded,           ///< the end of message of a message passing through went on (`messages_forwarded`
+                       ///< counted it at its header)
+  dropped,             ///< a message to or through a node that does not forward it now (a keypad in local
+                       ///< mode), dropped at its header (`messages_dropped`)
+  forward_lost,        ///< a message passing through lost: no room in the forward buffer (NETSTAT bit 1)
+  forward_cut,         ///< ... longer than the longest legal message of its type (NETSTAT bit 1)
+  forward_ended_idle,  ///< ... its end of message never came: the line went idle (`line_idle`; NETSTAT bit 1)
+};
+
+/// The enumerator's name as spelled in the code ("unknown" for a value outside the enum).
+constexpr const char* to_string(receive_status status) noexcept {
+  switch (status) {
+    case receive_status::incomplete:
+      return "incomplete";
+    case receive_status::ok:
+      return "ok";
+    case receive_status::frame_error:
+      return "frame_error";
+    case receive_status::crc_error:
+      return "crc_error";
+    case receive_status::no_room:
+      return "no_room";
+    case receive_status::forwarded:
+      return "forwarded";
+    case receive_status::dropped:
+      return "dropped";
+    case receive_status::forward_lost:
+      return "forward_lost";
+    case receive_status::forward_cut:
+      return "forward_cut";
+    case receive_status::forward_ended_idle:
+      return "forward_ended_idle";
   }
   return "unknown";
 }
@@ -90,3 +138,9 @@ struct [[nodiscard]] decode_result {
 };
 
 }  // namespace trionet::ring
+
+namespace trionet::detail {
+/// The decoder's outcomes as a node's `receive_status`.
+using decode_outcome =
+    status_map<ring::decode_status::incomplete, ring::decode_status::no_room, ring::receive_status::incomplete>;
+}  // namespace trionet::detail

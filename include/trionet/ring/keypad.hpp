@@ -124,16 +124,18 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
   /// Link side: the 2 x 20 display.
   const keypad_display& display() const noexcept { return display_; }
 
-  /// Either side: the counters now (each read whole; not all at one instant).
+  /// Either side: the counters now (each read whole; not all at one instant), since construction or
+  /// `clear_counters`.
   keypad_counters counters() const noexcept {
     keypad_counters c;
+    c.keys_sent = keys_sent_.load();
+    c.keys_lost = keys_lost_.load();
+    if (this->counters_clearing()) return c;  // the link side's: 0 until it clears them
     c.frame_errors = this->frame_errors();
     c.crc_errors = this->crc_errors();
     c.dropped_in_local_mode = dropped_in_local_mode_.load();
     c.display_messages = display_messages_.load();
     c.variables_ignored = variables_ignored_.load();
-    c.keys_sent = keys_sent_.load();
-    c.keys_lost = keys_lost_.load();
     return c;
   }
 
@@ -152,6 +154,18 @@ class keypad final : public node<keypad<ForwardCapacity, TransmitCapacity, MaxCh
     }
     keys_sent_.increment();
     return key_status::ok;
+  }
+
+  // Program side, in `clear_counters`: the counters it writes.
+  void clear_program_counters() noexcept {
+    keys_sent_.store(0);
+    keys_lost_.store(0);
+  }
+  // Link side, before it next counts after `clear_counters`: the counters it writes here.
+  void clear_delivery_counters() noexcept {
+    dropped_in_local_mode_.store(0);
+    display_messages_.store(0);
+    variables_ignored_.store(0);
   }
 
   // A message for this keypad (the core has counted errors already). In local mode the link forwards nothing

@@ -257,9 +257,12 @@ class motion_coordinator final
   /// Program side: characters waiting in the receive buffer.
   std::size_t characters_waiting() const noexcept { return this->character_store().waiting(); }
 
-  /// Either side: the counters now (each read whole; not all at one instant).
+  /// Either side: the counters now (each read whole; not all at one instant), since construction or
+  /// `clear_counters`.
   motion_coordinator_counters counters() const noexcept {
     motion_coordinator_counters c;
+    c.sends_refused = sends_refused_.load();
+    if (this->counters_clearing()) return c;  // the link side's: 0 until it clears them
     c.frame_errors = this->frame_errors();
     c.crc_errors = this->crc_errors();
     c.receive_overflows = receive_overflows_.load();
@@ -269,7 +272,6 @@ class motion_coordinator final
     c.variables_out_of_range = variables_[2].load();
     c.variables_value_out_of_range = variables_[3].load();
     c.keypad_messages_ignored = keypad_messages_ignored_.load();
-    c.sends_refused = sends_refused_.load();
     return c;
   }
 
@@ -300,6 +302,16 @@ class motion_coordinator final
     TRIONET_ASSERT(queued.status == encode_status::buffer_too_small);
     refuse();
     return send_status::queue_full;
+  }
+
+  // Program side, in `clear_counters`: the counters it writes.
+  void clear_program_counters() noexcept { sends_refused_.store(0); }
+  // Link side, before it next counts after `clear_counters`: the counters it writes here.
+  void clear_delivery_counters() noexcept {
+    character_messages_.store(0);
+    for (auto& v : variables_) v.store(0);
+    keypad_messages_ignored_.store(0);
+    receive_overflows_.store(0);
   }
 
   // Link side: a message for this node, `ok` or `no_room` (the core has counted errors already), still in the

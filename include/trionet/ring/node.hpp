@@ -38,14 +38,19 @@
 //     bulk), line_idle, transmit_pending, in_message, forward_backlog, and everything a delivered message
 //     does (deliver: the receive buffer, VR() through its vr_store, the keypad's display and mode)
 //   program side (one thread context: the main loop or one RTOS task): PRINT#, SEND, GET#, KEY#, key
-//     presses, transmit_free, netstat, clear_netstat
+//     presses, transmit_free, netstat, clear_netstat, clear_counters
 //   either side: counters, forwarding_counters (each counter is read whole; not all at one instant)
 // The transmit queue is a single-producer, single-consumer queue between them, NETSTAT a netstat register
-// (each side writes one byte), and every counter is written by one side only.
+// (each side writes one byte), and every counter is written by one side only: `clear_counters` clears the
+// program side's and raises a flag on which the link side clears its own, before it next counts.
+//
+// What became of a message is the answer of the byte that ended it (`receive_status`, decode_result.hpp);
+// every other byte answers `incomplete`.
 //
 // Cost: ForwardCapacity + TransmitCapacity bytes, the decoder's RAM and about 40 bytes. Per byte O(1).
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 
@@ -65,27 +70,13 @@
 
 namespace trionet::ring {
 
-/// Counters of a node's link, as read at one moment; they only ever grow. The forwarding losses (wire errors)
-/// wrap at 2^32, the traffic counts (messages forwarded, dropped, sent) at 2^16.
-struct link_counters {
-  std::uint32_t forwards_lost = 0;        ///< forwarded messages lost to a full forward buffer
-  std::uint32_t forwards_cut = 0;         ///< ... longer than the longest legal message of their type
-  std::uint32_t forwards_ended_idle = 0;  ///< ... whose end of message never came: the line went idle
-  std::uint32_t messages_forwarded = 0;   ///< headers of messages passed on (A decremented)
-  std::uint32_t messages_dropped = 0;     ///< messages dropped while forwarding was off: a keypad in local mode
-  std::uint32_t messages_sent = 0;        ///< own messages whose end of message has gone out
-
-  /// Forwarded messages lost for any reason (each sets NETSTAT bit 1).
-  constexpr std::uint32_t forwards_failed() const noexcept {
-    return forwards_lost + forwards_cut + forwards_ended_idle;
-  }
-};
-
 /// The ring-node core (see the file comment). `Node` (the derived node, CRTP) provides
-///   void deliver(detail::decode_step)   // a valid message for it (`ok`), or one with no room (`no_room`),
-///                                       // still in the decoder
-/// which runs on the link side. `Decoder` is a `basic_decoder`, whose CRC policy and layout the node's own
-/// direct variable transfers use; `Switchable`: whether forwarding can be turned off (a keypad).
+///   void deliver(detail::decode_step)   // link side: a valid message for it (`ok`), or one with no room
+///                                       // (`no_room`), still in the decoder
+///   void clear_program_counters()       // program side, in `clear_counters`: the counters it writes
+///   void clear_delivery_counters()      // link side: the counters `deliver` writes
+/// `Decoder` is a `basic_decoder`, whose CRC policy and layout the node's own direct variable transfers use;
+/// `Switchable`: whether forwarding can be turned off (a keypad).
 template <class Node, class Decoder, std::size_t ForwardCapacity, std::size_t TransmitCapacity, bool Switchable>
 class node : public byte_port,
              private detail::crc_holder<typename Decoder::crc_type>,
@@ -114,12 +105,12 @@ class node : public byte_port,
 
   // ---- the link side (byte_port): per byte, for a UART interrupt ----
 
-  /// Link side: a byte arrived. A data byte of a message passing through takes the forward buffer's fast
-  /// path (inlined into a caller that knows the node's type, e.g. the UART interrupt); every other byte the
-  /// state machine.
-  TRIONET_ALWAYS_INLINE void receive(std::uint8_t byte) noexcept final {
-    if (TRIONET_LIKELY(is_data(byte)) && TRIONET_LIKELY(forward_.put_fast(byte))) return;
-    receive_slow(byte);
+  /// Link side: a byte arrived; returns what became of the message it ended (`incomplete`: none). A data byte
+  /// of a message passing through takes the forward buffer's fast path (inlined into a caller that knows the
+  /// node's type, e.g. the UART interrupt); every other byte the state machine.
+  TRIONET_ALWAYS_INLINE receive_status receive(std::uint8_t byte) noexcept final {
+    if (TRIONET_LIKELY(is_data(byte)) && TRIONET_LIKELY(forward_.put_fast(byte))) return receive_status::incomplete;
+    return receive_slow(byte);
   }
   /// Link side: the next byte to send, if there is one now: forwarded bytes first, then the node's own frames,
   /// never mixing two messages. The next forwarded byte takes the fast path (inlined as `receive` is).
@@ -137,21 +128,22 @@ class node : public byte_port,
     byte = static_cast<std::uint8_t>(next);
     return true;
   }
-  /// Link side: true when `transmit` would give a byte now.
-  [[nodiscard]] bool transmit_pending() const noexcept final {
+  [[nodiscard]] bool transmit_pending() const noexcept final {  ///< Link side: `transmit` would give a byte now.
     return !forward_.empty() || !(forwarding_message() || queue_.empty());  // (parked: the queue has the rest)
   }
   /// Link side: the idle line (docs/protocol.md 1.10): a message open in the decoder is a frame error (NETSTAT
-  /// bit 3); a message being forwarded is ended and counted as lost (NETSTAT bit 1), and any later byte of it
-  /// is stray data; the node's own messages may then be sent.
-  void line_idle() noexcept final {
-    if (forwarding_message()) {
+  /// bit 3); a message being forwarded is ended and counted as lost (NETSTAT bit 1), any later byte of it is
+  /// stray data, and own messages may be sent. Returns what became of the message it ended.
+  receive_status line_idle() noexcept final {
+    if (forwarding_message()) {  // (the decoder is between messages: the message's header closed it)
       forward_.close();
-      forwards_ended_idle_.increment();
-      netstat_.raise(netstat_tx_buffer_error);
+      (void)lost(receive_status::forward_ended_idle);
+      receiving_ = receiving::local;
+      return receive_status::forward_ended_idle;
     }
     receiving_ = receiving::local;
-    handle(decoder_.close(frame_error::idle_line));
+    const detail::decode_step step = decoder_.close(frame_error::idle_line);
+    return step == 0 ? receive_status::incomplete : handle(step);
   }
   /// Link side: true while a message has begun on the receive side and not ended (for this node, passing
   /// through it, or being dropped): what `line_idle` would end.
@@ -162,14 +154,17 @@ class node : public byte_port,
   // ---- the link side in bulk: a DMA-fed UART, or a host's read() and write() ----
 
   /// Link side: many received bytes at once: exactly `receive` of each, in order, with the data of a message
-  /// passing through copied a run at a time. Not virtual, so firmware that does not call it does not link it.
-  void receive(byte_view bytes) noexcept {
+  /// passing through copied a run at a time. Returns how many of the bytes ended a message (`receive` did not
+  /// answer `incomplete`). Not virtual, so firmware that does not call it does not link it.
+  std::size_t receive(byte_view bytes) noexcept {
     const std::uint8_t* p = bytes.begin();
     const std::uint8_t* const end = bytes.end();
+    std::size_t ended = 0;
     while (p != end) {
       p = forward_.put_run(p, end);
-      if (p != end) receive_slow(*p++);
+      if (p != end) ended += receive_slow(*p++) != receive_status::incomplete;
     }
+    return ended;
   }
   /// Link side: fills `out` with up to out.size() bytes to send and returns how many: exactly as many calls of
   /// `transmit`, stopping at the first that has none, with forwarded bytes copied a run at a time.
@@ -193,17 +188,24 @@ class node : public byte_port,
   /// Program side: NETSTAT, errors since it was last cleared (docs/protocol.md 1.6); cleared only by
   /// `clear_netstat`.
   std::uint8_t netstat() const noexcept { return netstat_.read(); }
-  /// Program side: clears NETSTAT.
-  void clear_netstat() noexcept { netstat_.clear(); }
+  void clear_netstat() noexcept { netstat_.clear(); }  ///< Program side: clears NETSTAT.
   /// Program side: room left in the transmit queue, in bytes (a message takes its data + 2).
   std::size_t transmit_free() const noexcept { return queue_.free(); }
+  /// Program side: starts every count of `counters()` and `forwarding_counters()` again from 0 (not NETSTAT).
+  /// The link side clears its own counters (one writer each) before it next counts; until then they read 0.
+  void clear_counters() noexcept {
+    static_cast<Node*>(this)->clear_program_counters();
+    clearer_.store(&node::clear_link_counters_of, std::memory_order_relaxed);
+    clear_asked_.raise();  // (release: the link side finds the pointer set)
+  }
 
   /// Either side: the forwarding counters now (each read whole; not all at one instant).
   link_counters forwarding_counters() const noexcept {
     link_counters c;
-    c.forwards_lost = forwards_lost_.load();
-    c.forwards_cut = forwards_cut_.load();
-    c.forwards_ended_idle = forwards_ended_idle_.load();
+    if (counters_clearing()) return c;
+    c.forwards_lost = errors_[0].load();
+    c.forwards_cut = errors_[1].load();
+    c.forwards_ended_idle = errors_[2].load();
     c.messages_forwarded = messages_forwarded_.load();
     c.messages_dropped = this->dropped();
     c.messages_sent = messages_sent_.load();
@@ -214,10 +216,8 @@ class node : public byte_port,
   node() noexcept = default;
   /// A node whose decoder and own frames use `crc` (a CRC object such as `crc16_runtime`).
   explicit node(const crc_type& crc) noexcept : detail::crc_holder<crc_type>(crc), decoder_(crc) {}
-  /// Copies a node (both sides idle).
-  node(const node&) = default;
-  /// Copies a node (both sides idle).
-  node& operator=(const node&) = default;
+  node(const node&) = default;             ///< Copies a node (both sides idle).
+  node& operator=(const node&) = default;  ///< Copies a node (both sides idle).
   ~node() = default;
 
   /// Program side: queues one of the node's own messages whole: `buffer_too_small` if the transmit queue has
@@ -264,10 +264,10 @@ class node : public byte_port,
     this->on = forwarding;
   }
 
-  /// Frame errors so far (link side writes).
-  std::uint32_t frame_errors() const noexcept { return frame_errors_.load(); }
-  /// CRC errors so far (link side writes).
-  std::uint32_t crc_errors() const noexcept { return crc_errors_.load(); }
+  /// Either side: true while the link side's counters read 0: a `clear_counters` it has not carried out yet.
+  bool counters_clearing() const noexcept { return clear_asked_.raised(); }
+  std::uint32_t frame_errors() const noexcept { return errors_[3].load(); }  ///< So far (link side writes).
+  std::uint32_t crc_errors() const noexcept { return errors_[4].load(); }    ///< So far (link side writes).
 
   /// Link side, in `deliver`: the type of the message delivered (still in the decoder).
   message_type delivered_type() const noexcept { return decoder_.type(); }
@@ -292,78 +292,112 @@ class node : public byte_port,
   static constexpr std::uint16_t longest_data[8] = {0, max_characters, variable_data_length, 1, 1,
                                                     max_characters, max_characters, max_characters};
 
-  // The state machine (see the file comment): one received byte that the fast path did not take.
-  TRIONET_NOINLINE void receive_slow(std::uint8_t byte) noexcept {
+  // The state machine (see the file comment): a byte the fast path did not take, and what became of the
+  // message it ended (a header that ends one message and loses its own answers for the second).
+  TRIONET_NOINLINE receive_status receive_slow(std::uint8_t byte) noexcept {
     if (is_data(byte)) {
-      if (receiving_ == receiving::local) return decode(byte);
-      if (receiving_ == receiving::dropping) return;
-      const detail::append_status appended = forward_.append(byte);
-      if (appended == detail::append_status::ok) return;
-      return lose(appended == detail::append_status::full ? forwards_lost_ : forwards_cut_);
-    }
-    if (type_of(byte) == 0) {  // an end of message
-      if (receiving_ == receiving::local) return decode(byte);
-      if (forwarding_message() && !forward_.end(decrement_hops(byte))) lose(forwards_lost_);
-      receiving_ = receiving::local;  // the message has ended, lost or not: nothing of it is left to drop
-      return;
-    }
-    // A header ends the message passing through (its destination will see it cut short): `begin` ends it in
-    // the forward buffer, `close` otherwise.
-    if (hops_of(byte) <= 1 || !this->forwarding()) {
+      if (receiving_ != receiving::local) return forward_data(byte);
+    } else if (type_of(byte) == 0) {  // an end of message
+      if (receiving_ != receiving::local) return forward_end(byte);
+    } else {
+      // A header, counted one way or another, ends the message passing through (cut short: `begin`, `close`).
+      count_from_here();
+      if (hops_of(byte) > 1 && this->forwarding()) return forward_header(byte);
       if (forwarding_message()) forward_.close();
-      if (hops_of(byte) <= 1) {  // for this node (A = 0: the decoder reports it)
-        receiving_ = receiving::local;
-        return decode(byte);
-      }
-      passed_header();
-      receiving_ = receiving::dropping;  // a keypad in local mode
-      if constexpr (Switchable) this->drops.increment();
-      return;
+      if (hops_of(byte) > 1) return drop_header();
+      receiving_ = receiving::local;  // for this node (A = 0: the decoder reports it)
     }
-    passed_header();
+    return decode(byte);
+  }
+  TRIONET_ALWAYS_INLINE receive_status forward_data(std::uint8_t byte) noexcept {
+    if (receiving_ == receiving::dropping) return receive_status::incomplete;
+    const detail::append_status appended = forward_.append(byte);
+    if (appended == detail::append_status::ok) return receive_status::incomplete;
+    return lose(appended == detail::append_status::full ? receive_status::forward_lost : receive_status::forward_cut);
+  }
+  TRIONET_ALWAYS_INLINE receive_status forward_end(std::uint8_t byte) noexcept {
+    // (A message being dropped was answered for at its header, or when it was lost.)
+    const receive_status ended = !forwarding_message()                 ? receive_status::incomplete
+                                 : forward_.end(decrement_hops(byte)) ? receive_status::forwarded
+                                                                      : lose(receive_status::forward_lost);
+    receiving_ = receiving::local;  // the message has ended, lost or not: nothing of it is left to drop
+    return ended;
+  }
+  TRIONET_ALWAYS_INLINE receive_status forward_header(std::uint8_t byte) noexcept {
+    const receive_status ended = passed_header();
     messages_forwarded_.increment();
     receiving_ = static_cast<receiving>(0x80u | type_of(byte));
     if (!forward_.begin(static_cast<std::uint8_t>(byte - 0x08), longest_data[type_of(byte)])) {
-      lost(forwards_lost_);  // no room for its header (A > 1: decrement_hops without its check): nothing of
-    }                        // it is in the forward buffer
+      // No room for its header (A > 1: decrement_hops without its check): nothing of it is in the buffer.
+      return lost(receive_status::forward_lost);
+    }
+    return ended;
   }
-
-  // The message being forwarded is lost (counted in `counter`): what of it is still in the forward buffer goes
-  // if none of it has gone out, and the rest of it is dropped.
-  void lose(detail::single_writer<std::uint32_t>& counter) noexcept {
+  receive_status drop_header() noexcept {  // a keypad in local mode
+    (void)passed_header();
+    receiving_ = receiving::dropping;
+    if constexpr (Switchable) this->drops.increment();  // (counted here, `count_from_here` before)
+    return receive_status::dropped;
+  }
+  // The message being forwarded is lost (`outcome`: counted, and answered): what of it is still in the forward
+  // buffer goes if none of it has gone out, and the rest of it is dropped.
+  receive_status lose(receive_status outcome) noexcept {
     forward_.lose(longest_data[forward_type()]);
-    lost(counter);
+    return lost(outcome);
   }
-  void lost(detail::single_writer<std::uint32_t>& counter) noexcept {
-    counter.increment();
+  receive_status lost(receive_status outcome) noexcept {
+    count_from_here_cold();
+    errors_[static_cast<unsigned>(outcome) - static_cast<unsigned>(receive_status::forward_lost)].increment();
     netstat_.raise(netstat_tx_buffer_error);
     receiving_ = receiving::dropping;
+    return outcome;
   }
 
   // A header passed through the node: it ends any message the node was receiving, and the decoder is then
   // between messages.
-  void passed_header() noexcept {
-    if (TRIONET_LIKELY(decoder_.idle())) return;
+  receive_status passed_header() noexcept {
+    if (TRIONET_LIKELY(decoder_.idle())) return receive_status::incomplete;
     if (decoder_.in_message()) return handle(decoder_.close(frame_error::interrupted));
     decoder_.reset();  // out of a run of stray data or a skipped A = 0 message: nothing to report
+    return receive_status::incomplete;
   }
 
   // A byte for the node's decoder, and what it completed: errors are counted here, messages go to the node.
-  TRIONET_ALWAYS_INLINE void decode(std::uint8_t byte) noexcept { handle(decoder_.step(byte)); }
-  void handle(detail::decode_step step) noexcept {
-    if (step != 0) completed(step);  // 0: incomplete, the common case
+  TRIONET_ALWAYS_INLINE receive_status decode(std::uint8_t byte) noexcept {
+    const detail::decode_step step = decoder_.step(byte);
+    return step == 0 ? receive_status::incomplete : handle(step);  // (0, incomplete: the common case)
   }
-  TRIONET_NOINLINE void completed(detail::decode_step step) noexcept {
+  TRIONET_NOINLINE receive_status handle(detail::decode_step step) noexcept {  // (step != 0)
+    count_from_here_cold();
     const decode_status status = detail::status_of(step);
     if (status == decode_status::ok || status == decode_status::no_room) {
       static_cast<Node*>(this)->deliver(step);
-    } else if (status == decode_status::crc_error) {
-      crc_errors_.increment();
-      netstat_.raise(netstat_rx_crc_error);
-    } else {  // the only other status of a completed step
-      frame_errors_.increment();
-      netstat_.raise(netstat_rx_frame_error);
+    } else {  // a frame error or a CRC error: counted in that order, NETSTAT bit 3 or 2
+      const unsigned error = static_cast<unsigned>(status) - static_cast<unsigned>(decode_status::frame_error);
+      errors_[3 + error].increment();
+      netstat_.raise(static_cast<std::uint8_t>(netstat_rx_frame_error >> error));
     }
+    return detail::decode_outcome::of(status);
+  }
+
+  // Before the link side counts (a header, `handle`, `lost`, an own message's end going out), a
+  // `clear_counters` asked for is carried out. The clearing code is reached through a pointer that
+  // `clear_counters` sets before it asks, so that firmware that never clears links none of it.
+  TRIONET_ALWAYS_INLINE void count_from_here() noexcept {
+    if (clear_asked_.waiting()) count_from_here_cold();
+  }
+  TRIONET_NOINLINE void count_from_here_cold() noexcept {
+    if (clear_asked_.raised()) clearer_.load(std::memory_order_relaxed)(*this);  // (acquire: the pointer is set)
+  }
+  static void clear_link_counters_of(node& self) noexcept { self.clear_link_counters(); }
+  static inline std::atomic<void (*)(node&) noexcept> clearer_{nullptr};
+  void clear_link_counters() noexcept {
+    for (auto& c : errors_) c.store(0);
+    messages_forwarded_.store(0);
+    messages_sent_.store(0);
+    if constexpr (Switchable) this->drops.store(0);
+    static_cast<Node*>(this)->clear_delivery_counters();
+    clear_asked_.lower();
   }
 
   // The transmitter's general path: own frames, the wrapped-round part of the forward buffer, message
@@ -377,6 +411,7 @@ class node : public byte_port,
       }
       if (classify(byte) == byte_class::end_of_message) {
         forward_.unpark();
+        count_from_here_cold();
         messages_sent_.increment();
       }
       return byte;
@@ -402,13 +437,12 @@ class node : public byte_port,
   detail::forward_buffer<ForwardCapacity> forward_;           // link side
   detail::netstat_register netstat_;                          // each side writes one byte
   receiving receiving_ = receiving::local;                    // link side
+  detail::request_flag clear_asked_;  // `clear_counters` asked: the program side raises, the link side lowers
   detail::single_writer<std::uint16_t> messages_forwarded_;   // link side
   detail::single_writer<std::uint16_t> messages_sent_;        // link side
-  detail::single_writer<std::uint32_t> forwards_lost_;        // link side
-  detail::single_writer<std::uint32_t> forwards_cut_;         // link side
-  detail::single_writer<std::uint32_t> forwards_ended_idle_;  // link side
-  detail::single_writer<std::uint32_t> frame_errors_;         // link side
-  detail::single_writer<std::uint32_t> crc_errors_;           // link side
+  // Link side: the wire errors, each counted by its `receive_status` (in the enum's order): forward_lost,
+  // forward_cut, forward_ended_idle, then frame_error, crc_error.
+  detail::single_writer<std::uint32_t> errors_[5];
   detail::spsc_fifo<TransmitCapacity> queue_;  // the transmit queue: the program side produces, the link side consumes
   Decoder decoder_;                            // the decoder of messages for this node (link side)
 };

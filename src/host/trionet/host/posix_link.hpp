@@ -32,6 +32,8 @@ namespace trionet::host {
 
 struct pump_result {
   std::size_t received = 0;  ///< bytes read and handed to the node
+  std::size_t ended = 0;     ///< messages those bytes (or the idle line) ended: delivered, forwarded or dropped,
+                             ///< each counted by the node (its `receive` answers other than `incomplete`)
   std::size_t sent = 0;      ///< bytes written
   bool closed = false;       ///< the other end closed (read returned 0 or POLLHUP)
   bool line_idle = false;    ///< nothing arrived for the whole timeout while a message was open
@@ -48,7 +50,7 @@ class fd_link {
   fd_link(int fd, Node& node) noexcept
       : fd_(fd),
         node_(&node),
-        receive_bulk_([](byte_port& port, byte_view in) noexcept { static_cast<Node&>(port).receive(in); }),
+        receive_bulk_([](byte_port& port, byte_view in) noexcept { return static_cast<Node&>(port).receive(in); }),
         transmit_bulk_([](byte_port& port, byte_buffer out) noexcept {
           return static_cast<Node&>(port).transmit(out);
         }) {}
@@ -62,19 +64,19 @@ class fd_link {
   /// what the node has (the same as `pump` after its poll).
   pump_result service(short revents);
   /// The read timeout passed without a byte: tells the node its line is idle if a message is open
-  /// (docs/protocol.md 1.10). True if it did.
-  bool idle() noexcept;
+  /// (docs/protocol.md 1.10). True if it did; `ended` (if given) counts the message it ended.
+  bool idle(std::size_t* ended = nullptr) noexcept;
 
   /// Bytes taken from the node and not yet written.
   std::size_t unsent() const noexcept { return out_length_ - out_offset_; }
 
  private:
-  void receive(byte_view in) noexcept;
+  std::size_t receive(byte_view in) noexcept;  // how many messages the bytes ended
   std::size_t transmit(byte_buffer out) noexcept;
 
   int fd_;
   byte_port* node_;
-  void (*receive_bulk_)(byte_port&, byte_view) noexcept = nullptr;         // the node's bulk calls, if any
+  std::size_t (*receive_bulk_)(byte_port&, byte_view) noexcept = nullptr;  // the node's bulk calls, if any
   std::size_t (*transmit_bulk_)(byte_port&, byte_buffer) noexcept = nullptr;
   std::uint8_t out_[256] = {};
   std::size_t out_length_ = 0;
