@@ -74,8 +74,9 @@ class request_flag {
   }
   ~request_flag() = default;
 
-  /// The asking side: asks, after everything it stored before.
-  void raise() noexcept { raised_.store(true, std::memory_order_release); }
+  /// The asking side: asks, after everything it stored before, and before anything it does after (a full
+  /// barrier: on a host the serving thread sees the request from its next look on).
+  void raise() noexcept { raised_.store(true, std::memory_order_seq_cst); }
   /// The serving side: true while a request waits (one load: for its hot paths).
   TRIONET_ALWAYS_INLINE bool waiting() const noexcept { return raised_.load(std::memory_order_relaxed); }
   /// Either side: true while a request waits; once it is false, what the serving side did before it lowered
