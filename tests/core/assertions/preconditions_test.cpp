@@ -44,6 +44,20 @@ class Preconditions : public ::testing::Test {
   }
 };
 
+// A documented precondition broken on purpose is caught: the direct variable transfer's VR (encode.hpp,
+// "Precondition: vr <= 16383"); the encoders check the VR before they get there.
+TEST_F(Preconditions, AVrOutOfRangeIsCaughtByTheCheck) {
+  std::uint8_t data[ring::variable_data_length] = {};
+  trionet::detail::write_variable_data<ring::crc16_ccitt_false, ring::default_variable_layout>(
+      data, ring::max_vr, 1, ring::crc16_ccitt_false{});
+  EXPECT_EQ(trionet_test::failed_checks, 0);
+  trionet::detail::write_variable_data<ring::crc16_ccitt_false, ring::default_variable_layout>(
+      data, ring::max_vr + 1, 1, ring::crc16_ccitt_false{});
+  EXPECT_EQ(trionet_test::failed_checks, 1);
+  EXPECT_EQ(trionet_test::first_failed, "vr <= ring::max_vr");
+  trionet_test::failed_checks = 0;  // the one expected
+}
+
 // SEND refused for want of room: the queue is full (the only reason a checked message is not queued).
 TEST_F(Preconditions, ASendRefusedForWantOfRoom) {
   trionet::vr_table<16> vr;
