@@ -56,10 +56,11 @@
 // turn data in three buffers (the program writes one that the link side neither sends from nor can start
 // to); counters are `single_writer`s; NETSTAT is a register whose two bytes have one writer each.
 //
-// Cost (Cortex-M0+, default capacities): 372 bytes of RAM: 3 x (TurnCapacity + 1) for the turn data,
+// Cost (Cortex-M0+, default capacities): 368 bytes of RAM: 3 x (TurnCapacity + 1) for the turn data,
 // DeliveryCapacity + 2 for the delivery queue, DirectedSlots x (DirectedCapacity + 4) for directed
-// transmissions, 60 bytes of counters and the broadcast mask, and about 80 of state and configuration. Every link-side call is O(1) (the turn's start
-// O(1) too: no copy); `set_turn_data` is O(its bytes); `read` O(the record's bytes). No heap.
+// transmissions, 60 bytes of counters and the broadcast mask, and about 70 of state and configuration. Every
+// link-side call is O(1) (the turn's start O(1) too: no copy); `set_turn_data` is O(its bytes); `read` O(the
+// record's bytes). No heap.
 #pragma once
 
 #include <atomic>
@@ -293,6 +294,11 @@ struct body_size {
   std::size_t bytes;
 };
 
+// The encoded size of plain data of `n` bytes: segments of up to 255 bytes.
+constexpr std::size_t plain_body_size(std::size_t n) noexcept {
+  return 2 * ((n + 254) / 255) + n;
+}
+
 constexpr body_size measure_body(span<const segment> segments) noexcept {
   std::size_t bytes = 0;
   for (const segment& s : segments) {
@@ -302,24 +308,29 @@ constexpr body_size measure_body(span<const segment> segments) noexcept {
       if (s.data.size() > 255) return {turn_data_status::too_long, 0};
       bytes += 2 + s.data.size();
     } else {
-      bytes += 2 * ((s.data.size() + 254) / 255) + s.data.size();
+      bytes += plain_body_size(s.data.size());
     }
   }
   return {turn_data_status::ok, bytes};
 }
 
-constexpr void write_body(std::uint8_t* out, span<const segment> segments) noexcept {
-  std::size_t at = 0;
-  for (const segment& s : segments) {
-    std::size_t from = 0;
-    while (from < s.data.size()) {
-      const std::size_t n = s.block || s.data.size() - from <= 255 ? s.data.size() - from : 255;
-      out[at++] = s.block ? s.destination : plain_segment;
-      out[at++] = static_cast<std::uint8_t>(n);
-      for (std::size_t i = 0; i < n; ++i) out[at++] = s.data[from + i];
-      from += n;
-    }
+// Writes `data` as segments with the header `header` (a block's destination, or `plain_segment`: a plain
+// segment holds up to 255 bytes, a block all of `data`); returns the end of what it wrote.
+constexpr std::uint8_t* write_segments(std::uint8_t* out, std::uint8_t header, byte_view data) noexcept {
+  std::size_t from = 0;
+  while (from < data.size()) {
+    const std::size_t n = header != plain_segment || data.size() - from <= 255 ? data.size() - from : 255;
+    *out++ = header;
+    *out++ = static_cast<std::uint8_t>(n);
+    for (std::size_t i = 0; i < n; ++i) *out++ = data[from + i];
+    from += n;
   }
+  return out;
+}
+
+constexpr void write_body(std::uint8_t* out, span<const segment> segments) noexcept {
+  for (const segment& s : segments)
+    out = write_segments(out, s.block ? s.destination : plain_segment, s.data);
 }
 
 // A control layout (transmission.hpp) as a device encodes and decodes it, worked out once: the shifts of the
@@ -351,6 +362,10 @@ struct control_code {
     const unsigned tag_bits = tag[static_cast<unsigned>(which)];
     return control_character(static_cast<std::uint8_t>(tag_bits << tag_shift | (fields & 0x3fu) << field_shift));
   }
+  // The same as a 9-bit UART word (`to_uart_word(encode(which, fields))`).
+  constexpr std::uint16_t encode_word(control_kind which, unsigned fields) const noexcept {
+    return to_uart_word(encode(which, fields));
+  }
   // The fields of a control character's byte (as `read_control`).
   constexpr control_fields decode(std::uint8_t byte) const noexcept {
     const auto fields = static_cast<std::uint8_t>((byte >> field_shift) & 0x3fu);
@@ -372,7 +387,7 @@ class netstat_bits {
   void raise(std::uint8_t bits) noexcept {
     const std::uint8_t raised = raised_.load();
     const auto pending = static_cast<std::uint8_t>(bits & ~(raised ^ cleared_.load()));
-    if (pending != 0) raised_.store(static_cast<std::uint8_t>(raised ^ pending));
+    raised_.store(static_cast<std::uint8_t>(raised ^ pending));  // its own value again when none is pending
   }
   std::uint8_t read() const noexcept { return static_cast<std::uint8_t>(raised_.load() ^ cleared_.load()); }
   void clear() noexcept { cleared_.store(raised_.load()); }
@@ -395,6 +410,9 @@ class shared_index {
   }
   ~shared_index() = default;
   std::uint8_t load() const noexcept { return value_.load(std::memory_order_seq_cst); }
+  // A look that orders nothing (no `dmb`): its writer's own look, or the other side's look at a candidate
+  // that a sequentially consistent load then confirms.
+  std::uint8_t load_relaxed() const noexcept { return value_.load(std::memory_order_relaxed); }
   void store(std::uint8_t value) noexcept { value_.store(value, std::memory_order_seq_cst); }
 
  private:
@@ -408,7 +426,7 @@ class shared_index {
 /// (each delivery takes its data + 3); `DirectedSlots` directed transmissions of up to `DirectedCapacity`
 /// data bytes may wait. `Crc` is the CRC-6 policy (crc6.hpp).
 ///
-/// Defaults (32 turn-data bytes, a 96-byte delivery queue, two directed transmissions of 16 bytes): 372 bytes
+/// Defaults (32 turn-data bytes, a 96-byte delivery queue, two directed transmissions of 16 bytes): 368 bytes
 /// of RAM on a Cortex-M0+ (`sizeof`). Copy a device only while neither side runs.
 template <std::size_t TurnCapacity = 32, std::size_t DeliveryCapacity = 96, std::size_t DirectedCapacity = 16,
           std::size_t DirectedSlots = 2, class Crc = crc6_g704>
@@ -461,17 +479,20 @@ class device : private trionet::detail::crc_holder<Crc> {
 
   /// Link side: a 9-bit UART word received (bit 0 the control bit, bits 8..1 the data byte; bits above 8
   /// are ignored). A timer it arms runs from the end of this character.
-  link_request receive(std::uint16_t word) noexcept {
+  TRIONET_ALWAYS_INLINE link_request receive(std::uint16_t word) noexcept {
     characters_.increment();
     word &= uart_word_mask;
-    if (state_ == state::sending) return read_back(word);
+    if (state_ == state::sending) {
+      if (word == sent_) return read_back();
+      collided();  // it may be another device's Start: follow it
+    }
     return hear(word);
   }
 
   /// Link side: a character was received with a framing error (start bit not 0 or stop bit not 1). A timer
   /// it arms runs from the end of this character.
   link_request framing_error() noexcept {
-    count(framing_errors_, netstat_framing_error);
+    count(error::framing);
     if (state_ == state::sending) {
       collided();
     } else if (rx_open_) {
@@ -483,33 +504,30 @@ class device : private trionet::detail::crc_holder<Crc> {
   /// Link side: the timer expired: its turn (it sends, or the turn passes), silence inside a transmission
   /// (lost: as if its sender's Stop had ended now), or the quiet bus (an idle restart). A timer it arms runs
   /// from now.
-  link_request timer_expired() noexcept {
+  TRIONET_ALWAYS_INLINE link_request timer_expired() noexcept {
     const armed what = armed_;
     armed_ = armed::none;
-    switch (what) {
-      case armed::none:
-        return link_request{};
-      case armed::turn:
-        return take_turn();
-      case armed::quiet:
-        count(idle_restarts_, netstat_idle_restart);
-        return after_stop_of(max_sba, true);
-      case armed::gap:
-        break;
-    }
-    // Silence inside a transmission: its rest is lost.
-    const bool own = sending();  // its own read-back stopped coming: the transmission is over as far as it can tell
-    if (own || rx_open_) {
-      count(lost_transmissions_, netstat_lost_transmission);
-      if (own) {
-        state_ = state::listening;
-      } else {
-        discard();
+    if (what == armed::none) return link_request{};
+    if (what == armed::turn) return take_turn();
+    std::uint8_t sender = max_sba;  // the quiet bus: as if the Stop of SBA 31 had ended
+    if (what == armed::quiet) {
+      count(error::idle_restart);
+    } else {
+      // Silence inside a transmission: its rest is lost.
+      // Its own read-back stopped coming: the transmission is over as far as it can tell.
+      const bool own = sending();
+      if (own || rx_open_) {
+        count(error::lost_transmission);
+        if (own) {
+          state_ = state::listening;
+        } else {
+          discard();
+        }
       }
+      sender = bus_sender_;
+      bus_sender_ = no_sender;
     }
-    const std::uint8_t sender = bus_sender_;
-    bus_sender_ = no_sender;
-    return after_stop_of(sender, false);
+    return after_stop_of(sender, what == armed::quiet);
   }
 
   /// Link side: the next word to send (9-bit UART word), if one is due now: the first word of its turn, or
@@ -517,12 +535,11 @@ class device : private trionet::detail::crc_holder<Crc> {
   [[nodiscard]] bool transmit(std::uint16_t& word) noexcept {
     if (state_ == state::turn_due) {
       state_ = state::sending;
-      start_sent_ = true;
     } else if (state_ != state::sending || !next_ready_) {
       return false;
     }
     next_ready_ = false;
-    sent_ = to_uart_word(next_character());
+    sent_ = next_word();
     word = sent_;
     return true;
   }
@@ -542,8 +559,12 @@ class device : private trionet::detail::crc_holder<Crc> {
   /// Program side: the turn data, a broadcast of `data` sent at every turn from the next on until changed.
   /// Empty: no turn data (its turns pass, unless a directed transmission waits).
   turn_data_status set_turn_data(byte_view data) noexcept {
-    const segment plain{false, 0, data};
-    return set_turn_data(span<const segment>(&plain, 1));
+    const std::size_t bytes = detail::plain_body_size(data.size());
+    if (bytes > TurnCapacity) return turn_data_status::too_long;
+    const std::uint8_t free = free_turn_buffer();
+    detail::write_segments(turn_[free], detail::plain_segment, data);
+    publish_turn_data(free, bytes);
+    return turn_data_status::ok;
   }
   /// Program side: the turn data as plain data and blocks (a bus controller's outputs, one block per
   /// device), in order. No data at all: no turn data.
@@ -551,16 +572,9 @@ class device : private trionet::detail::crc_holder<Crc> {
     const detail::body_size size = detail::measure_body(segments);
     if (size.status != turn_data_status::ok) return size.status;
     if (size.bytes > TurnCapacity) return turn_data_status::too_long;
-    // A buffer that the link side neither reads nor can start to read: not the one published, not the one it
-    // reads (docs/design.md; the two indices are sequentially consistent, so a stale `reading_` is never
-    // seen once the link side has confirmed it).
-    const std::uint8_t published = published_.load();  // its own variable
-    const std::uint8_t reading = reading_.load();
-    std::uint8_t free = 0;
-    while (free == published || free == reading) ++free;
+    const std::uint8_t free = free_turn_buffer();
     detail::write_body(turn_[free], segments);
-    turn_length_[free] = static_cast<length_type>(size.bytes);
-    published_.store(free);
+    publish_turn_data(free, size.bytes);
     return turn_data_status::ok;
   }
   /// Program side: no turn data (its turns pass, unless a directed transmission waits).
@@ -577,9 +591,8 @@ class device : private trionet::detail::crc_holder<Crc> {
       return queue_status::full;
     directed_slot& slot = slots_[queued % DirectedSlots];
     slot.body[0] = destination;
-    const segment plain{false, 0, data};
-    detail::write_body(slot.body + 1, span<const segment>(&plain, 1));
-    slot.length = static_cast<length_type>(1 + detail::measure_body(span<const segment>(&plain, 1)).bytes);
+    detail::write_segments(slot.body + 1, detail::plain_segment, data);
+    slot.length = static_cast<length_type>(1 + detail::plain_body_size(data.size()));
     queued_.release(static_cast<std::uint8_t>(queued + 1));
     return queue_status::ok;
   }
@@ -628,16 +641,16 @@ class device : private trionet::detail::crc_holder<Crc> {
     c.turns_taken = turns_taken_.load();
     c.turns_passed = turns_passed_.load();
     c.transmissions_sent = transmissions_sent_.load();
-    c.collisions = collisions_.load();
+    c.collisions = errors_[error::collision].load();
     c.characters = characters_.load();
-    c.framing_errors = framing_errors_.load();
+    c.framing_errors = errors_[error::framing].load();
     c.transmissions_heard = transmissions_heard_.load();
-    c.crc_errors = crc_errors_.load();
-    c.wire_errors = wire_errors_.load();
-    c.lost_transmissions = lost_transmissions_.load();
+    c.crc_errors = errors_[error::crc].load();
+    c.wire_errors = errors_[error::wire].load();
+    c.lost_transmissions = errors_[error::lost_transmission].load();
     c.deliveries = delivered_.load();
-    c.delivery_overflows = delivery_overflows_.load();
-    c.idle_restarts = idle_restarts_.load();
+    c.delivery_overflows = errors_[error::delivery_overflow].load();
+    c.idle_restarts = errors_[error::idle_restart].load();
     c.skipped = skipped_.load();
     return c;
   }
@@ -678,6 +691,24 @@ class device : private trionet::detail::crc_holder<Crc> {
     return at;
   }
 
+  // ---- turn data ----
+
+  // Program side: a buffer that the link side neither reads nor can start to read: not the one published,
+  // not the one it reads (docs/design.md; the two indices are sequentially consistent, so a stale `reading_`
+  // is never seen once the link side has confirmed it).
+  std::uint8_t free_turn_buffer() const noexcept {
+    const std::uint8_t published = published_.load_relaxed();  // its own variable
+    const std::uint8_t reading = reading_.load();
+    std::uint8_t free = 0;
+    while (free == published || free == reading) ++free;
+    return free;
+  }
+  // Program side: buffer `index`, written with a body of `bytes`, is the newest turn data.
+  void publish_turn_data(std::uint8_t index, std::size_t bytes) noexcept {
+    turn_length_[index] = static_cast<length_type>(bytes);
+    published_.store(index);
+  }
+
   // ---- timers ----
 
   link_request arm(armed what, std::uint32_t ticks, bool transmit = false) noexcept {
@@ -695,7 +726,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   // Stop, or `no_sender`: a Stop whose Start it missed, silence with no transmission open) the idle restart.
   // An idle restart acts as if SBA 31's Stop ended; SBA 31 itself then waits a full round of 32 skip times, so
   // that a lone device takes its turns too.
-  link_request after_stop_of(std::uint8_t sender, bool idle_restart) noexcept {
+  TRIONET_ALWAYS_INLINE link_request after_stop_of(std::uint8_t sender, bool idle_restart) noexcept {
     unsigned offset = sender == no_sender ? 0 : sba_offset(sender, sba_);
     if (offset == 0 && idle_restart) offset = 32;
     if (offset == 0) return arm(armed::quiet, quiet_ticks());
@@ -712,7 +743,7 @@ class device : private trionet::detail::crc_holder<Crc> {
 
   // ---- its turn and its own transmission ----
 
-  link_request take_turn() noexcept {
+  TRIONET_ALWAYS_INLINE link_request take_turn() noexcept {
     if (directed_sent_.load() != queued_.acquire()) {
       source_ = source::directed;
     } else if (claim_turn_data()) {
@@ -732,22 +763,27 @@ class device : private trionet::detail::crc_holder<Crc> {
 
   // Claims the newest turn data for this turn (see set_turn_data); false when there is none.
   bool claim_turn_data() noexcept {
-    std::uint8_t newest = published_.load();
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      reading_.store(newest);
-      const std::uint8_t now = published_.load();
-      if (now == newest) {
-        body_ = turn_[newest];
-        body_length_ = turn_length_[newest];
-        return body_length_ != 0;
-      }
+    std::uint8_t newest = published_.load_relaxed();  // a candidate: `confirm` looks again
+    const std::uint8_t now = confirm(newest);
+    if (now != newest) {
       newest = now;  // published again meanwhile: claim that one
+      // The program side published twice meanwhile (never on one core): send it next turn.
+      if (confirm(newest) != newest) return false;
     }
-    return false;  // the program side published twice meanwhile (never on one core): send it next turn
+    body_ = turn_[newest];
+    body_length_ = turn_length_[newest];
+    return body_length_ != 0;
   }
 
-  // The next character of its transmission.
-  character next_character() noexcept {
+  // Marks turn data buffer `index` as the one it reads, then returns the newest published (`index` is
+  // claimed when they are the same). Out of line: a claim may take two.
+  TRIONET_NOINLINE std::uint8_t confirm(std::uint8_t index) noexcept {
+    reading_.store(index);
+    return published_.load();
+  }
+
+  // The next character of its transmission, as a 9-bit UART word.
+  std::uint16_t next_word() noexcept {
     if (phase_ == phase::start) {
       stop_crc_ = this->crc().begin();
       at_ = 0;
@@ -761,16 +797,16 @@ class device : private trionet::detail::crc_holder<Crc> {
         block_ = false;
         phase_ = phase::data;
       }
-      return code_.encode(control_kind::start, (directed ? 0u : 0x20u) | sba_);
+      return code_.encode_word(control_kind::start, (directed ? 0u : 0x20u) | sba_);
     }
     if (phase_ == phase::end_of_block) {
       phase_ = phase::segment;
-      return code_.encode(control_kind::end_of_block, this->crc().finish(block_crc_));
+      return code_.encode_word(control_kind::end_of_block, this->crc().finish(block_crc_));
     }
     if (phase_ != phase::data) {  // the next segment (or, at the end of the body, the Stop)
       if (at_ >= body_length_) {
         phase_ = phase::done;
-        return code_.encode(control_kind::stop, this->crc().finish(stop_crc_));
+        return code_.encode_word(control_kind::stop, this->crc().finish(stop_crc_));
       }
       const std::uint8_t header = body_[at_];
       left_ = body_[at_ + 1];
@@ -779,7 +815,7 @@ class device : private trionet::detail::crc_holder<Crc> {
       block_ = header != detail::plain_segment;
       if (block_) {
         block_crc_ = this->crc().begin();
-        return code_.encode(control_kind::start_of_block, header & max_sba);
+        return code_.encode_word(control_kind::start_of_block, header & max_sba);
       }
     }
     const std::uint8_t byte = body_[at_];
@@ -787,19 +823,14 @@ class device : private trionet::detail::crc_holder<Crc> {
     if (block_) block_crc_ = this->crc().update(block_crc_, byte);
     if (--left_ == 0) phase_ = block_ ? phase::end_of_block : phase::segment;
     stop_crc_ = this->crc().update(stop_crc_, byte);
-    return data_character(byte);
+    return to_uart_word(data_character(byte));
   }
 
   // A character received while sending: its own, read back.
-  link_request read_back(std::uint16_t word) noexcept {
-    if (word != sent_) {
-      collided();
-      return hear(word);  // it may be another device's Start: follow it
-    }
-    if (start_sent_) {
-      start_sent_ = false;
-      bus_sender_ = sba_;  // its own Start heard: a transmission of its own is open on the bus
-    }
+  link_request read_back() noexcept {
+    // Its own Start heard: a transmission of its own is open on the bus. (Set again at each later character
+    // read back, which finds it so: while it sends, nothing else changes the sender.)
+    bus_sender_ = sba_;
     if (phase_ != phase::done) {
       next_ready_ = true;
       return arm(armed::gap, gap_ticks(), true);
@@ -814,7 +845,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   }
 
   void collided() noexcept {
-    count(collisions_, netstat_collision);
+    count(error::collision);
     state_ = state::listening;
     next_ready_ = false;
     rx_open_ = false;
@@ -824,7 +855,7 @@ class device : private trionet::detail::crc_holder<Crc> {
   // ---- others' transmissions ----
 
   // A 9-bit UART word (bits above 8 clear).
-  link_request hear(std::uint16_t word) noexcept {
+  TRIONET_ALWAYS_INLINE link_request hear(std::uint16_t word) noexcept {
     const auto byte = static_cast<std::uint8_t>(word >> 1);
     if ((word & 1u) == 0) {
       hear_data(byte);
@@ -843,16 +874,15 @@ class device : private trionet::detail::crc_holder<Crc> {
       return;
     }
     if (!rx_open_) return outside();
-    if (f.kind == control_kind::start_of_block && !need_destination_ && !in_block_) {
-      in_block_ = true;
+    if (f.kind == control_kind::start_of_block && part_ == part::plain) {
+      part_ = part::block;
       block_length_ = 0;
       block_crc_ = this->crc().begin();
-      block_for_me_ = f.sba == sba_;
-      if (block_for_me_) open_record(delivery_kind::block);
-    } else if (f.kind == control_kind::end_of_block && in_block_ && block_length_ != 0) {
+      if (f.sba == sba_) open_record(delivery_kind::block);
+    } else if (f.kind == control_kind::end_of_block && part_ == part::block && block_length_ != 0) {
       if (this->crc().finish(block_crc_) != f.crc) return crc_error();
-      in_block_ = false;
-      if (block_for_me_) close_record();
+      part_ = part::plain;
+      if (record_ == record_kind::block) close_record();  // a block for it
     } else {
       wire_error();  // a block where none may start or end, or an unknown control character
     }
@@ -862,17 +892,16 @@ class device : private trionet::detail::crc_holder<Crc> {
     if (!rx_open_) return outside();
     stop_crc_ = this->crc().update(stop_crc_, byte);
     ++data_characters_;
-    if (need_destination_) {
-      need_destination_ = false;
+    if (part_ == part::destination) {
+      part_ = part::plain;
       if (byte > max_sba) return wire_error();
-      for_me_ = byte == sba_;
-    } else if (in_block_) {
+      plain_ = byte == sba_ ? plain_for::it_directed : plain_for::others;
+    } else if (part_ == part::block) {
       block_crc_ = this->crc().update(block_crc_, byte);
       ++block_length_;
-      if (block_for_me_) stage(byte);
-    } else if (for_me_) {
-      if (record_ != record_kind::plain)
-        open_record(broadcast_ ? delivery_kind::broadcast : delivery_kind::directed);
+      if (record_ == record_kind::block) stage(byte);  // a block for it
+    } else if (plain_ != plain_for::others) {
+      if (record_ != record_kind::plain) open_record(static_cast<delivery_kind>(plain_));
       stage(byte);
     }
   }
@@ -882,10 +911,9 @@ class device : private trionet::detail::crc_holder<Crc> {
     resync_ = false;
     bus_sender_ = f.sba;
     rx_sender_ = f.sba;
-    broadcast_ = f.broadcast;
-    need_destination_ = !f.broadcast;
-    for_me_ = f.broadcast && ((broadcast_senders_.load() >> f.sba) & 1u) != 0;
-    in_block_ = false;
+    part_ = f.broadcast ? part::plain : part::destination;
+    plain_ = f.broadcast && ((broadcast_senders_.load() >> f.sba) & 1u) != 0 ? plain_for::it_broadcast
+                                                                             : plain_for::others;
     data_characters_ = 0;
     stop_crc_ = this->crc().begin();
     staged_ = 0;
@@ -894,21 +922,19 @@ class device : private trionet::detail::crc_holder<Crc> {
   }
 
   link_request hear_stop(std::uint8_t crc) noexcept {
-    const std::uint8_t sender = bus_sender_;
-    bus_sender_ = no_sender;
     if (rx_open_) {
-      if (in_block_ || need_destination_ || data_characters_ == 0) {
+      if (part_ != part::plain || data_characters_ == 0) {
         wire_error();
       } else if (this->crc().finish(stop_crc_) != crc) {
         crc_error();
       } else {
         deliver();
       }
-    } else if (sender == no_sender && !resync_) {
-      wire_error_outside();
     } else {
-      skipped_.increment();  // the end of a transmission it had dropped, or whose Start it missed
+      outside();  // (skipped: the end of a transmission it had dropped, or whose Start it missed)
     }
+    const std::uint8_t sender = bus_sender_;
+    bus_sender_ = no_sender;
     return after_stop_of(sender, false);
   }
 
@@ -924,6 +950,37 @@ class device : private trionet::detail::crc_holder<Crc> {
   // ---- deliveries: staged past the queue's tail while the transmission comes, published at its Stop ----
 
   enum class record_kind : std::uint8_t { none, plain, block };
+  // What a data character of the transmission heard is: its destination SBA (a directed transmission's
+  // first), plain data, or a block's.
+  enum class part : std::uint8_t { destination, plain, block };
+  // Whom the plain data of the transmission heard is for: it, as a broadcast (from a sender it delivers) or
+  // as a transmission directed to it, whose records have that delivery kind; or others (also a directed
+  // transmission's until its destination is heard).
+  enum class plain_for : std::uint8_t {
+    it_broadcast = static_cast<std::uint8_t>(delivery_kind::broadcast),
+    it_directed = static_cast<std::uint8_t>(delivery_kind::directed),
+    others,
+  };
+  // The errors NETSTAT shows, in the order of their bits: error e raises bit 1 << e.
+  struct error {
+    enum index : std::uint8_t {
+      collision,
+      crc,
+      framing,
+      lost_transmission,
+      wire,
+      delivery_overflow,
+      idle_restart,
+      count
+    };
+  };
+  static_assert(netstat_collision == 1u << error::collision && netstat_crc_error == 1u << error::crc &&
+                    netstat_framing_error == 1u << error::framing &&
+                    netstat_lost_transmission == 1u << error::lost_transmission &&
+                    netstat_wire_error == 1u << error::wire &&
+                    netstat_delivery_overflow == 1u << error::delivery_overflow &&
+                    netstat_idle_restart == 1u << error::idle_restart,
+                "error e raises NETSTAT bit 1 << e");
   enum class source : std::uint8_t { turn_data, directed };
 
   void open_record(delivery_kind kind) noexcept {
@@ -937,7 +994,10 @@ class device : private trionet::detail::crc_holder<Crc> {
   void close_record() noexcept {
     if (record_ == record_kind::none) return;
     const std::size_t length = staged_ - record_at_ - delivery_header_bytes;
-    if (length > 255) overflow_ = true;
+    // (A record never outgrows a queue of up to 258 bytes: staging stops at the queue's room.)
+    if constexpr (DeliveryCapacity > 255 + delivery_header_bytes) {
+      if (length > 255) overflow_ = true;
+    }
     if (!overflow_) deliveries_.stage(record_at_ + 2, static_cast<std::uint8_t>(length));
     ++records_;
     record_ = record_kind::none;
@@ -955,7 +1015,7 @@ class device : private trionet::detail::crc_holder<Crc> {
     rx_open_ = false;
     transmissions_heard_.increment();
     if (overflow_) {
-      count(delivery_overflows_, netstat_delivery_overflow);
+      count(error::delivery_overflow);
     } else if (staged_ != 0) {
       deliveries_.publish(staged_);
       delivered_.add(records_);
@@ -972,21 +1032,22 @@ class device : private trionet::detail::crc_holder<Crc> {
     record_ = record_kind::none;
   }
   void wire_error() noexcept {
-    count(wire_errors_, netstat_wire_error);
+    count(error::wire);
     discard();
   }
   void wire_error_outside() noexcept {
-    count(wire_errors_, netstat_wire_error);
+    count(error::wire);
     resync_ = true;
   }
   void crc_error() noexcept {
-    count(crc_errors_, netstat_crc_error);
+    count(error::crc);
     discard();
   }
-  // A counted event that NETSTAT shows: one call site's code for every error.
-  TRIONET_NOINLINE void count(trionet::detail::single_writer<std::uint32_t>& counter, std::uint8_t bit) noexcept {
-    counter.increment();
-    netstat_.raise(bit);
+  // A counted event that NETSTAT shows: one call site's code for every error (its counter is errors_[e], its
+  // NETSTAT bit 1 << e).
+  TRIONET_NOINLINE void count(std::uint8_t e) noexcept {
+    errors_[e].increment();
+    netstat_.raise(static_cast<std::uint8_t>(1u << e));
   }
 
   // ---- state ----
@@ -1005,15 +1066,11 @@ class device : private trionet::detail::crc_holder<Crc> {
   std::uint8_t rx_sender_ = 0;
   std::uint8_t left_ = 0;
   bool next_ready_ = false;
-  bool start_sent_ = false;
   bool block_ = false;
   bool rx_open_ = false;
   bool resync_ = true;  // skip to the first Start after power-up (a transmission joined half way)
-  bool broadcast_ = false;
-  bool need_destination_ = false;
-  bool for_me_ = false;
-  bool in_block_ = false;
-  bool block_for_me_ = false;
+  plain_for plain_ = plain_for::others;  // whom the plain data heard is for
+  part part_ = part::plain;              // what the next data character heard is
   bool overflow_ = false;
   register_type stop_crc_{};
   register_type block_crc_{};
@@ -1049,17 +1106,11 @@ class device : private trionet::detail::crc_holder<Crc> {
   trionet::detail::single_writer<std::uint32_t> turns_taken_;
   trionet::detail::single_writer<std::uint32_t> turns_passed_;
   trionet::detail::single_writer<std::uint32_t> transmissions_sent_;
-  trionet::detail::single_writer<std::uint32_t> collisions_;
   trionet::detail::single_writer<std::uint32_t> characters_;
-  trionet::detail::single_writer<std::uint32_t> framing_errors_;
   trionet::detail::single_writer<std::uint32_t> transmissions_heard_;
-  trionet::detail::single_writer<std::uint32_t> crc_errors_;
-  trionet::detail::single_writer<std::uint32_t> wire_errors_;
-  trionet::detail::single_writer<std::uint32_t> lost_transmissions_;
   trionet::detail::single_writer<std::uint32_t> delivered_;
-  trionet::detail::single_writer<std::uint32_t> delivery_overflows_;
-  trionet::detail::single_writer<std::uint32_t> idle_restarts_;
   trionet::detail::single_writer<std::uint32_t> skipped_;
+  trionet::detail::single_writer<std::uint32_t> errors_[error::count];  // the errors' counters, by `error`
   length_type turn_length_[3] = {};
   std::uint8_t turn_[3][TurnCapacity] = {};
   directed_slot slots_[DirectedSlots] = {};

@@ -312,6 +312,73 @@ TEST(GeniusDevice, ABlockAddressedToItInsideAnyTransmissionIsDelivered) {
   EXPECT_EQ(block.data, (std::vector<std::uint8_t>{0x01, 0x02}));
 }
 
+TEST(GeniusDevice, PlainDataAroundABlockForAnotherDeviceIsOneRecordAndAroundItsOwnThree) {
+  default_device d(6);
+  const std::uint8_t first[] = {0x01};
+  const std::uint8_t block[] = {0x02};
+  const std::uint8_t last[] = {0x03};
+  const segment others[] = {
+      {false, 0, byte_view(first, 1)}, {true, 5, byte_view(block, 1)}, {false, 0, byte_view(last, 1)}};
+  (void)hear(d, words_of(transmission{31, true, 0, span<const segment>(others, 3)}));
+  read_delivery plain = next_delivery(d);
+  ASSERT_TRUE(plain.result);
+  EXPECT_EQ(plain.result.kind, delivery_kind::broadcast);
+  EXPECT_EQ(plain.data, (std::vector<std::uint8_t>{0x01, 0x03}));  // SBA 5's block is not its to see
+  EXPECT_EQ(next_delivery(d).result.status, delivery_status::none_waiting);
+  const segment its_own[] = {
+      {false, 0, byte_view(first, 1)}, {true, 6, byte_view(block, 1)}, {false, 0, byte_view(last, 1)}};
+  (void)hear(d, words_of(transmission{31, true, 0, span<const segment>(its_own, 3)}));
+  const delivery_kind kinds[] = {delivery_kind::broadcast, delivery_kind::block, delivery_kind::broadcast};
+  const std::uint8_t bytes[] = {0x01, 0x02, 0x03};
+  for (int k = 0; k < 3; ++k) {
+    const read_delivery got = next_delivery(d);
+    ASSERT_TRUE(got.result);
+    EXPECT_EQ(got.result.kind, kinds[k]);
+    EXPECT_EQ(got.data, (std::vector<std::uint8_t>{bytes[k]}));
+  }
+  EXPECT_EQ(d.counters().deliveries, 4u);
+}
+
+TEST(GeniusDevice, AFramingErrorInItsOwnTransmissionWaitsForTheGapThenTheIdleRestart) {
+  default_device d(6);
+  const std::uint8_t inputs[] = {0x01, 0x02};
+  ASSERT_EQ(d.set_turn_data(byte_view(inputs, 2)), turn_data_status::ok);
+  (void)hear(d, broadcast_from(4, {0x33}));
+  ASSERT_TRUE(d.timer_expired().transmit);
+  std::uint16_t w = 0;
+  for (int k = 0; k < 2; ++k) {  // its Start and first data character go out and come back
+    ASSERT_TRUE(d.transmit(w));
+    (void)d.start_bit();
+    ASSERT_TRUE(d.receive(w).transmit);
+  }
+  (void)d.start_bit();
+  const link_request r = d.framing_error();  // the next character comes back with a framing error
+  EXPECT_EQ(r.ticks, 22u);                   // its own transmission is open on the bus: the two-character gap
+  EXPECT_FALSE(r.transmit);
+  EXPECT_FALSE(d.sending());
+  EXPECT_EQ(d.counters().collisions, 1u);
+  const link_request after = d.timer_expired();  // silence: as if its own Stop had ended
+  EXPECT_EQ(after.ticks, 32u + 22u);             // no turn after its own Stop, only the idle restart
+  EXPECT_FALSE(d.turn_armed());
+  EXPECT_EQ(d.counters().lost_transmissions, 0u);  // the collision ended it, not the silence
+}
+
+TEST(GeniusDevice, AStrayStopIsAWireErrorOnceThenSkippedUntilTheNextStart) {
+  default_device d(6);
+  (void)hear(d, broadcast_from(4, {0x11}));  // in step
+  const std::uint16_t stray = to_uart_word(stop_character(0));
+  const link_request r = hear(d, {stray});
+  EXPECT_EQ(r.ticks, 32u + 22u);  // no sender: no turn to hand on
+  EXPECT_EQ(d.counters().wire_errors, 1u);
+  EXPECT_NE(d.netstat() & netstat_wire_error, 0);
+  const std::uint32_t skipped = d.counters().skipped;
+  (void)hear(d, {stray});
+  EXPECT_EQ(d.counters().wire_errors, 1u);
+  EXPECT_EQ(d.counters().skipped, skipped + 1);
+  (void)hear(d, broadcast_from(4, {0x22}));  // a Start brings it back in step
+  EXPECT_EQ(d.counters().transmissions_heard, 2u);
+}
+
 TEST(GeniusDevice, InAnotherControlLayoutItSendsAndReceivesInThatLayout) {
   control_layout tags_low_reversed;
   tags_low_reversed.start = 3;
