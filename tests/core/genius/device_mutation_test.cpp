@@ -127,4 +127,11 @@ TEST(GeniusDeviceEdges, AFramingErrorInsideItsOwnTransmissionWaitsForTheSilenceT
   EXPECT_EQ(r.ticks, 32u * 1u + 2u * 11u);
 }
 
+// "3 x (TurnCapacity + 1) for the turn data" (device.hpp, Cost): three buffers, so each byte more of
+// turn-data capacity costs three bytes of RAM (32 more, in steps that keep every alignment).
+TEST(GeniusDeviceEdges, TurnDataCapacityCostsThreeBuffers) {
+  static_assert(sizeof(device<64>) - sizeof(device<32>) == 3 * 32, "three turn-data buffers");
+  static_assert(sizeof(device<96>) - sizeof(device<64>) == 3 * 32, "three turn-data buffers");
+}
+
 }  // namespace
