@@ -58,6 +58,18 @@ TEST_F(Preconditions, AVrOutOfRangeIsCaughtByTheCheck) {
   trionet_test::failed_checks = 0;  // the one expected
 }
 
+// The byte queue's precondition for a byte staged beyond its room (detail/fifo.hpp, "Precondition: k <
+// free()").
+TEST_F(Preconditions, ABytePastTheQueuesRoomIsCaughtByTheCheck) {
+  trionet::detail::spsc_fifo<4> fifo;
+  fifo.stage(3, 0x33);  // the last free byte
+  EXPECT_EQ(trionet_test::failed_checks, 0);
+  fifo.stage(4, 0x44);
+  EXPECT_EQ(trionet_test::failed_checks, 1);
+  EXPECT_EQ(trionet_test::first_failed, "k < free()");
+  trionet_test::failed_checks = 0;  // the one expected
+}
+
 // SEND refused for want of room: the queue is full (the only reason a checked message is not queued).
 TEST_F(Preconditions, ASendRefusedForWantOfRoom) {
   trionet::vr_table<16> vr;
