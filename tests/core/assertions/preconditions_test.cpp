@@ -68,6 +68,13 @@ TEST_F(Preconditions, ABytePastTheQueuesRoomIsCaughtByTheCheck) {
   EXPECT_EQ(trionet_test::failed_checks, 1);
   EXPECT_EQ(trionet_test::first_failed, "k < free()");
   trionet_test::failed_checks = 0;  // the one expected
+  const std::uint8_t bytes[] = {1, 2, 3};
+  fifo.stage(1, bytes, 3);  // up to the last free byte
+  EXPECT_EQ(trionet_test::failed_checks, 0);
+  fifo.stage(2, bytes, 3);  // one past it
+  EXPECT_EQ(trionet_test::failed_checks, 1);
+  EXPECT_EQ(trionet_test::first_failed, "k + n <= free()");
+  trionet_test::failed_checks = 0;
 }
 
 // SEND refused for want of room: the queue is full (the only reason a checked message is not queued).
