@@ -17,6 +17,13 @@ static_assert(std::is_same_v<index_for<255>, std::uint8_t>, "0..255 fits a byte"
 static_assert(std::is_same_v<index_for<256>, std::uint16_t>, "256 does not");
 static_assert(std::is_same_v<index_for<65535>, std::uint16_t>);
 
+// "two indices (one byte each up to a capacity of 128, else two bytes)" (fifo.hpp, Cost).
+template <std::size_t Capacity>
+constexpr std::size_t index_bytes = sizeof(typename spsc_fifo<Capacity>::index);
+static_assert(index_bytes<3> == 1 && index_bytes<100> == 1 && index_bytes<127> == 1 && index_bytes<128> == 1,
+              "one byte up to a capacity of 128");
+static_assert(index_bytes<129> == 2 && index_bytes<200> == 2 && index_bytes<256> == 2, "two bytes above");
+
 template <class Fifo>
 void expect_takes_exactly_its_capacity() {
   Fifo fifo;
