@@ -77,6 +77,16 @@ TEST_F(Preconditions, ABytePastTheQueuesRoomIsCaughtByTheCheck) {
   trionet_test::failed_checks = 0;
 }
 
+// A status map's precondition (detail/status_map.hpp: `from` one of First .. Last), broken on purpose.
+TEST_F(Preconditions, AStatusOutsideItsMapIsCaughtByTheCheck) {
+  using map = trionet::detail::decode_outcome;
+  EXPECT_EQ(map::of(ring::decode_status::ok), ring::receive_status::ok);
+  EXPECT_EQ(trionet_test::failed_checks, 0);
+  (void)map::of(static_cast<ring::decode_status>(99));
+  EXPECT_EQ(trionet_test::failed_checks, 1);
+  trionet_test::failed_checks = 0;  // the one expected
+}
+
 // SEND refused for want of room: the queue is full (the only reason a checked message is not queued).
 TEST_F(Preconditions, ASendRefusedForWantOfRoom) {
   trionet::vr_table<16> vr;
