@@ -66,6 +66,9 @@ TEST(LiveEnding, AMonitorWhosePtyClosesSaysSoAndExits1) {
   const std::string port = pty->slave_path;
   const std::string err = temp_path("lost.err");
   tool_process monitor({"ring", "monitor", port, "--json"}, err);
+  // Closed only once the tool has the port open (a loaded machine under ASan took over 300 ms to open it, and
+  // the tool then rightly said it could not open the port), then given the time to set the port up.
+  ASSERT_TRUE(monitor.holds_open(port, 30000));
   pause_ms(300);
   pty.reset();
   EXPECT_EQ(monitor.wait(5000), 1);

@@ -175,6 +175,21 @@ class tool_process {
   const std::string& read_lines_with(const std::string& text, std::size_t count, int timeout_ms) {
     return read_until([&](const std::string& all) { return occurrences(all, text) >= count; }, timeout_ms);
   }
+  /// Whether the process holds `path` open within `timeout_ms` (its /proc/PID/fd links): a test that acts on a
+  /// port once the tool has opened it, however slow a loaded machine makes the start.
+  bool holds_open(const std::string& path, int timeout_ms) const {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    do {
+      for (int fd = 0; fd < 64; ++fd) {
+        const std::string link = "/proc/" + std::to_string(pid_) + "/fd/" + std::to_string(fd);
+        char target[256];
+        const ssize_t n = ::readlink(link.c_str(), target, sizeof target - 1);
+        if (n > 0 && path == std::string(target, static_cast<std::size_t>(n))) return true;
+      }
+      ::usleep(10000);
+    } while (std::chrono::steady_clock::now() < until);
+    return false;
+  }
   /// Waits for the process to end (at most `timeout_ms`); its exit code, or -1.
   int wait(int timeout_ms) {
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
