@@ -58,9 +58,10 @@ const char* const ring_wire_usage =
     "  --baud B        serial ports: bits per second (default 125000)\n"
     "Commands on standard input, one per line: drop [L:]P | flip [L:]P | cut L D (link L for D ms, now) |\n"
     "  faults off | counters | quit\n"
-    "Events: pty, faults, cut, cut_end, damaged (a message the faults changed: its bytes as sent and as\n"
-    "received), frame_error and crc_error as the next endpoint receives them (each with its link), and one\n"
-    "counters event per link at the end, on SIGUSR1 and on `counters`.\n"
+    "Events: pty, faults, cut, cut_end, damaged (a message the faults changed, at its end: its bytes as sent\n"
+    "and as received, and `began`, when its first byte came), frame_error and crc_error as the next endpoint\n"
+    "receives them (each with its link), and one counters event per link at the end, on SIGUSR1 and on\n"
+    "`counters`.\n"
     "Exit status: 0 stopped by quit, Ctrl-C or SIGTERM; 1 an endpoint could not be opened, or it closed or\n"
     "failed while the wire ran (the ring is broken); 2 bad arguments.\n";
 
@@ -363,7 +364,7 @@ class link {
       const std::uint8_t sent = bytes[i];
       if (!ring::is_data(sent) && ring::type_of(sent) != 0) end_segment(time_ns, events);  // a header
       if (segment_.size() < damaged_bytes_shown) segment_.push_back(sent);
-      ++segment_length_;
+      if (segment_length_++ == 0) segment_began_ = time_ns;
       bool keep = true;
       std::uint8_t byte = sent;
       if (cut_until_ != 0) {
@@ -464,6 +465,7 @@ class link {
       e.boolean("vanished", vanished).number("length", segment_length_);
       e.text("bytes", hex_line(segment_.data(), segment_.size()));
       e.text("received", hex_line(received_.data(), received_.size()));
+      e.json("began", "\"" + epoch_text(segment_began_) + "\"");
     }
     segment_.clear();
     received_.clear();
@@ -494,6 +496,7 @@ class link {
   std::vector<std::uint8_t> segment_;
   std::vector<std::uint8_t> received_;
   std::uint64_t segment_length_ = 0;
+  std::uint64_t segment_began_ = 0;  // epoch ns of the read that carried the segment's first byte
   std::uint64_t segment_dropped_ = 0;
   std::uint64_t segment_flipped_ = 0;
   std::uint64_t segment_cut_ = 0;
