@@ -964,14 +964,14 @@ class device : private trionet::detail::crc_holder<Crc> {
   // The errors NETSTAT shows, in the order of their bits: error e raises bit 1 << e.
   struct error {
     enum index : std::uint8_t {
-      collision,
-      crc,
-      framing,
-      lost_transmission,
-      wire,
-      delivery_overflow,
-      idle_restart,
-      count
+      collision,          ///< NETSTAT bit 0: `netstat_collision`
+      crc,                ///< bit 1: `netstat_crc_error`
+      framing,            ///< bit 2: `netstat_framing_error`
+      lost_transmission,  ///< bit 3: `netstat_lost_transmission`
+      wire,               ///< bit 4: `netstat_wire_error`
+      delivery_overflow,  ///< bit 5: `netstat_delivery_overflow`
+      idle_restart,       ///< bit 6: `netstat_idle_restart`
+      count               ///< how many there are
     };
   };
   static_assert(netstat_collision == 1u << error::collision && netstat_crc_error == 1u << error::crc &&
