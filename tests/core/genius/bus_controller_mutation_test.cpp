@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "support/genius_words.hpp"
 #include "trionet/genius/bus_controller.hpp"
 #include "trionet/genius/transmission.hpp"
 
@@ -16,24 +17,8 @@ namespace {
 using namespace trionet::genius;
 using trionet::byte_view;
 using trionet::span;
-
-std::vector<std::uint16_t> broadcast_from(std::uint8_t sender, const std::vector<std::uint8_t>& data) {
-  const segment plain{false, 0, byte_view(data.data(), data.size())};
-  const transmission t{sender, true, 0, span<const segment>(&plain, 1)};
-  std::vector<character> chars(encoded_length(t).length);
-  EXPECT_TRUE(encode_transmission(span<character>(chars.data(), chars.size()), t));
-  std::vector<std::uint16_t> words;
-  for (const character c : chars) words.push_back(to_uart_word(c));
-  return words;
-}
-
-template <class Device>
-void hear(Device& d, const std::vector<std::uint16_t>& words) {
-  for (const std::uint16_t w : words) {
-    (void)d.start_bit();
-    (void)d.receive(w);
-  }
-}
+using trionet::test::broadcast_from;
+using trionet::test::hear;
 
 std::vector<std::uint8_t> bytes(byte_view v) {
   return {v.begin(), v.end()};
@@ -47,7 +32,7 @@ TEST(GeniusBusControllerDefaults, SixteenBytesOfOutputsAndOfInputsPerDevice) {
   EXPECT_EQ(controller.set_outputs(3, byte_view(seventeen.data(), 17)), outputs_status::too_long);
   std::vector<std::uint8_t> inputs(17);
   for (std::size_t i = 0; i < inputs.size(); ++i) inputs[i] = static_cast<std::uint8_t>(i);
-  hear(controller, broadcast_from(5, inputs));
+  (void)hear(controller, broadcast_from(5, inputs));
   EXPECT_EQ(controller.collect(), 1U);
   EXPECT_EQ(bytes(controller.inputs(5)), std::vector<std::uint8_t>(inputs.begin(), inputs.begin() + 16));
   EXPECT_EQ(controller.input_overflows(), 1U);
@@ -55,8 +40,8 @@ TEST(GeniusBusControllerDefaults, SixteenBytesOfOutputsAndOfInputsPerDevice) {
 
 TEST(GeniusBusControllerDefaults, InputsOfAnyLengthUpToItsCapacityAreNoOverflowAndSba31Counts) {
   bus_controller<4, 4> controller(0);
-  hear(controller, broadcast_from(31, {1, 2, 3, 4}));  // exactly what it keeps
-  hear(controller, broadcast_from(2, {9}));
+  (void)hear(controller, broadcast_from(31, {1, 2, 3, 4}));  // exactly what it keeps
+  (void)hear(controller, broadcast_from(2, {9}));
   EXPECT_EQ(controller.collect(), 2U);
   EXPECT_EQ(controller.input_overflows(), 0U);
   EXPECT_EQ(controller.input_updates(31), 1U);

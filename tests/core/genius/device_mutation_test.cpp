@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "support/genius_words.hpp"
 #include "trionet/genius/device.hpp"
 #include "trionet/genius/transmission.hpp"
 
@@ -14,14 +15,8 @@ namespace {
 using namespace trionet::genius;
 using trionet::byte_view;
 using trionet::span;
-
-std::vector<std::uint16_t> words_of(const transmission& t) {
-  std::vector<character> chars(encoded_length(t).length);
-  EXPECT_TRUE(encode_transmission(span<character>(chars.data(), chars.size()), t));
-  std::vector<std::uint16_t> words;
-  for (const character c : chars) words.push_back(to_uart_word(c));
-  return words;
-}
+using trionet::test::take_turn;
+using trionet::test::words_of;
 
 // From power-up to its turn: the quiet bus restarts the turns as if SBA 31's Stop had ended; the next timer
 // is its turn.
@@ -30,20 +25,6 @@ void to_its_turn(Device& d) {
   (void)d.power_on();
   const link_request r = d.timer_expired();  // the idle restart
   ASSERT_EQ(r.timer, timer_action::arm);
-}
-
-// What the device sends in its turn, each word read back unchanged, until it has nothing more.
-template <class Device>
-std::vector<std::uint16_t> take_turn(Device& d) {
-  std::vector<std::uint16_t> sent;
-  link_request r = d.timer_expired();
-  std::uint16_t w = 0;
-  while (r.transmit && d.transmit(w)) {
-    sent.push_back(w);
-    (void)d.start_bit();
-    r = d.receive(w);
-  }
-  return sent;
 }
 
 TEST(GeniusDeviceEdges, TheLongestTimerMayBeExactlyTheLargest32BitTickCount) {
@@ -86,7 +67,7 @@ TEST(GeniusDeviceEdges, TurnDataClearedLetsItsTurnPassInSilence) {
   ASSERT_EQ(d.set_turn_data(data), turn_data_status::ok);
   d.clear_turn_data();
   to_its_turn(d);
-  EXPECT_TRUE(take_turn(d).empty());
+  EXPECT_TRUE(take_turn(d, false).empty());
   EXPECT_EQ(d.counters().turns_passed, 1u);
   EXPECT_EQ(d.counters().turns_taken, 0u);
 }

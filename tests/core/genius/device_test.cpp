@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "support/genius_words.hpp"
 #include "trionet/genius/bus_controller.hpp"
 #include "trionet/genius/device.hpp"
 #include "trionet/genius/transmission.hpp"
@@ -15,48 +16,12 @@ using trionet::byte_buffer;
 using trionet::byte_view;
 using trionet::span;
 
+using trionet::test::broadcast_from;
+using trionet::test::hear;
+using trionet::test::take_turn;
+using trionet::test::words_of;
+
 using default_device = device<>;
-
-std::vector<std::uint16_t> words_of(const transmission& t, const control_layout& layout = control_layout{}) {
-  std::vector<character> chars(encoded_length(t).length);
-  EXPECT_TRUE(encode_transmission(span<character>(chars.data(), chars.size()), t, crc6_g704{}, layout));
-  std::vector<std::uint16_t> words;
-  for (const character c : chars) words.push_back(to_uart_word(c));
-  return words;
-}
-
-std::vector<std::uint16_t> broadcast_from(std::uint8_t sender, std::vector<std::uint8_t> data) {
-  static std::vector<std::uint8_t> keep;
-  keep = std::move(data);
-  const segment plain{false, 0, byte_view(keep.data(), keep.size())};
-  return words_of(transmission{sender, true, 0, span<const segment>(&plain, 1)});
-}
-
-// Every word with its start bit before it, as the UART reports them; the request of the last word.
-template <class Device>
-link_request hear(Device& d, const std::vector<std::uint16_t>& words) {
-  link_request last{};
-  for (const std::uint16_t w : words) {
-    (void)d.start_bit();
-    last = d.receive(w);
-  }
-  return last;
-}
-
-// What the device sends in its turn, each word read back unchanged, until it has nothing more.
-template <class Device>
-std::vector<std::uint16_t> take_turn(Device& d) {
-  std::vector<std::uint16_t> sent;
-  link_request r = d.timer_expired();
-  EXPECT_TRUE(r.transmit);
-  std::uint16_t w = 0;
-  while (r.transmit && d.transmit(w)) {
-    sent.push_back(w);
-    (void)d.start_bit();
-    r = d.receive(w);
-  }
-  return sent;
-}
 
 struct read_delivery {
   delivery_result result;
