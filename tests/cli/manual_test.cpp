@@ -8,34 +8,32 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "support/run_cli.hpp"
+#include "support/text_match.hpp"
 
 namespace {
 
+using trionet::test::find_all_patterns;
+using trionet::test::find_pattern;
+using trionet::test::replace_pattern;
 using trionet::test::run_cli;
 
 // Group 1 of every match of `pattern` in `text`.
 std::vector<std::string> all_matches(const std::string& text, const std::string& pattern) {
-  const std::regex re(pattern);
   std::vector<std::string> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
-    found.push_back((*it)[1]);
-  }
+  for (const std::vector<std::string>& m : find_all_patterns(text, pattern)) found.push_back(m[1]);
   return found;
 }
 
 // The options a text names: "--name" words, and "-x" for a lowercase letter x.
 std::set<std::string> options_named(const std::string& text) {
-  static const std::regex option_word(R"((^|[\s\[(`|,])(--[a-z][a-z0-9-]*|-[a-z])(?![A-Za-z0-9_-]))");
+  const std::string option_word = R"((^|[\s\[(`|,])(--[a-z][a-z0-9-]*|-[a-z])(?![A-Za-z0-9_-]))";
   std::set<std::string> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), option_word); it != std::sregex_iterator(); ++it) {
-    found.insert((*it)[2]);
-  }
+  for (const std::vector<std::string>& m : find_all_patterns(text, option_word)) found.insert(m[2]);
   return found;
 }
 
@@ -45,12 +43,12 @@ std::vector<std::string> listed_under(const std::string& usage, const std::strin
   std::size_t at = usage.find(heading + "\n");
   if (at == std::string::npos) return names;
   at += heading.size() + 1;
-  static const std::regex entry(R"(^  (\S+)\s)");
+  const std::string entry = R"(^  (\S+)\s)";
   while (at < usage.size()) {
     const std::size_t end = usage.find('\n', at);
     const std::string line = usage.substr(at, end - at);
-    std::smatch m;
-    if (!std::regex_search(line, m, entry)) break;
+    const std::vector<std::string> m = find_pattern(line, entry);
+    if (m.empty()) break;
     names.push_back(m[1]);
     at = end + 1;
   }
@@ -59,8 +57,7 @@ std::vector<std::string> listed_under(const std::string& usage, const std::strin
 
 // roff text as read: \- is -, \e is \, fonts and \& are dropped.
 std::string unroff(std::string text) {
-  static const std::regex font(R"(\\f(\(..|[BIRP]))");
-  text = std::regex_replace(text, font, "");
+  text = replace_pattern(text, R"(\\f(\(..|[BIRP]))", "");
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {
     if (text[i] == '\\' && i + 1 < text.size()) {
@@ -116,15 +113,17 @@ completion_entry completion_of(const std::string& script, const std::string& par
   if (at == std::string::npos) return e;
   const std::size_t end = script.find(";;", at);
   const std::string body = script.substr(at + key.size(), end - at - key.size());
-  std::smatch m;
-  if (std::regex_search(body, m, std::regex(R"(options='([^']*)')"))) {
-    for (const std::string& word : lines_of(std::regex_replace(std::string(m[1]), std::regex(" "), "\n")))
+  std::vector<std::string> m = find_pattern(body, R"(options='([^']*)')");
+  if (!m.empty()) {
+    for (const std::string& word : lines_of(replace_pattern(m[1], " ", "\n")))
       e.options.insert(word);
   }
-  if (std::regex_search(body, m, std::regex(R"(values=\(([^)]*)\))"))) {
+  m = find_pattern(body, R"(values=\(([^)]*)\))");
+  if (!m.empty()) {
     for (const std::string& name : all_matches(m[1], R"('(\S+) )")) e.value_options.insert(name);
   }
-  if (std::regex_search(body, m, std::regex(R"(operands=\(([^)]*)\))"))) {
+  m = find_pattern(body, R"(operands=\(([^)]*)\))");
+  if (!m.empty()) {
     e.operands = all_matches(m[1], R"('([^']*)')");
   }
   e.found = true;
@@ -141,11 +140,11 @@ struct man_section {
 man_section man_section_of(const std::string& page, const std::string& part, const std::string& command) {
   man_section s;
   const std::vector<std::string> lines = lines_of(page);
-  const std::regex names_command("(^| |, )" + command + "(,| |$)");
+  const std::string names_command = "(^| |, )" + command + "(,| |$)";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string title = unroff(lines[i]);
     if (title.rfind(".SS trionet " + part + " ", 0) != 0) continue;
-    if (!std::regex_search(title.substr(13 + part.size()), names_command)) continue;
+    if (find_pattern(title.substr(13 + part.size()), names_command).empty()) continue;
     for (std::size_t j = i + 1; j < lines.size() && lines[j].rfind(".SS", 0) != 0 && lines[j].rfind(".SH", 0) != 0;
          ++j) {
       s.text += unroff(lines[j]) + "\n";

@@ -14,7 +14,6 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -133,12 +132,11 @@ struct wire_run {
 
 // The JSON field `name` of the counters event of link `link` (the last one printed), or -1.
 long long counter(const std::string& out, int link, const std::string& name) {
-  const std::regex line("\\{\"event\":\"counters\",[^\\n]*\"link\":" + std::to_string(link) + ",[^\\n]*");
+  const std::string line = "\\{\"event\":\"counters\",[^\\n]*\"link\":" + std::to_string(link) + ",[^\\n]*";
   long long value = -1;
-  for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it) {
-    const std::string l = it->str();
-    std::smatch m;
-    if (std::regex_search(l, m, std::regex("\"" + name + "\":([0-9]+)"))) value = std::stoll(m[1]);
+  for (const std::vector<std::string>& l : trionet::test::find_all_patterns(out, line)) {
+    const std::vector<std::string> m = trionet::test::find_pattern(l[0], "\"" + name + "\":([0-9]+)");
+    if (!m.empty()) value = std::stoll(m[1]);
   }
   return value;
 }
@@ -171,14 +169,13 @@ TEST(RingWire, EndpointSendsToTheNextAndTheLastToTheFirst) {
 TEST(RingWire, PtyEventNamesThePathAnotherProgramOpens) {
   wire_run w({"p1", "p2"}, {});
   const std::string& out = w.process.output();
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, std::regex("\"event\":\"pty\",\"time\":\"[0-9.]+\",\"endpoint\":0,"
-                                                   "\"path\":\"(/dev/pts/[0-9]+)\",\"link\":\"([^\"]+)\"")))
-      << out;
+  const std::vector<std::string> m = trionet::test::find_pattern(
+      out, "\"event\":\"pty\",\"time\":\"[0-9.]+\",\"endpoint\":0,\"path\":\"(/dev/pts/[0-9]+)\",\"link\":\"([^\"]+)\"");
+  ASSERT_FALSE(m.empty()) << out;
   char target[256] = {};
   ASSERT_GT(::readlink(temp_path("p1").c_str(), target, sizeof target - 1), 0);
-  EXPECT_EQ(std::string(target), m[1].str());
-  EXPECT_EQ(m[2].str(), temp_path("p1"));
+  EXPECT_EQ(std::string(target), m[1]);
+  EXPECT_EQ(m[2], temp_path("p1"));
   EXPECT_EQ(w.quit(), 0);
 }
 
@@ -317,10 +314,9 @@ TEST(RingWire, TheDamagedEventSaysWhenItsMessageBegan) {
   ASSERT_EQ(w.ends[1].read_bytes(rest.size(), patience_ms).size(), rest.size());
   EXPECT_EQ(w.quit(), 0);
   const std::string& out = w.process.output();
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, std::regex("\\{\"event\":\"damaged\",\"time\":\"([0-9.]+)\"[^\\n]*"
-                                                   "\"began\":\"([0-9.]+)\"\\}")))
-      << out;
+  const std::vector<std::string> m =
+      trionet::test::find_pattern(out, "\\{\"event\":\"damaged\",\"time\":\"([0-9.]+)\"[^\\n]*\"began\":\"([0-9.]+)\"\\}");
+  ASSERT_FALSE(m.empty()) << out;
   const double ended = std::stod(m[1]), began = std::stod(m[2]);
   EXPECT_GE(ended - began, 0.3) << out;  // the rest was written 300 ms after the wire had carried the start
   EXPECT_LT(ended - began, 60.0) << out;

@@ -15,9 +15,10 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
-#include <regex>
 #include <string>
 #include <vector>
+
+#include "support/text_match.hpp"
 
 namespace trionet::test {
 
@@ -234,14 +235,14 @@ class tool_process {
 /// with 9 decimals) taken out, so that a test can look for the fields after it. The number of lines that
 /// had no such field is added to `without`.
 inline std::string without_times(const std::string& events, std::size_t* without = nullptr) {
-  static const std::regex time_field(",\"time\":\"[0-9]+\\.[0-9]{9}\"");
+  const std::string time_field = ",\"time\":\"[0-9]+\\.[0-9]{9}\"";
   std::string out;
   std::size_t at = 0;
   while (at < events.size()) {
     std::size_t end = events.find('\n', at);
     end = end == std::string::npos ? events.size() : end + 1;
     const std::string line = events.substr(at, end - at);
-    const std::string cut = std::regex_replace(line, time_field, "", std::regex_constants::format_first_only);
+    const std::string cut = replace_pattern(line, time_field, "", true);
     if (without != nullptr && cut == line && line.rfind("{\"event\":", 0) == 0) ++*without;
     out += cut;
     at = end;
@@ -254,8 +255,7 @@ inline std::string without_times(const std::string& events, std::size_t* without
 /// the capture it wrote.
 inline std::vector<std::string> events_without_positions(const std::string& events,
                                                          const std::vector<std::string>& kinds) {
-  static const std::regex position(
-      ",\"(time|line|record|interface_id|interface)\":(\"([^\"\\\\]|\\\\.)*\"|[0-9]+)");
+  const std::string position = ",\"(time|line|record|interface_id|interface)\":(\"([^\"\\\\]|\\\\.)*\"|[0-9]+)";
   std::vector<std::string> out;
   std::size_t at = 0;
   while (at < events.size()) {
@@ -264,7 +264,7 @@ inline std::vector<std::string> events_without_positions(const std::string& even
     const std::string line = events.substr(at, end - at);
     at = end + 1;
     for (const std::string& kind : kinds) {
-      if (line.rfind("{\"event\":\"" + kind + "\"", 0) == 0) out.push_back(std::regex_replace(line, position, ""));
+      if (line.rfind("{\"event\":\"" + kind + "\"", 0) == 0) out.push_back(replace_pattern(line, position, ""));
     }
   }
   return out;
