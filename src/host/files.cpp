@@ -65,13 +65,21 @@ std::string file_result::message(const std::string& path, const std::string& nou
 
 namespace {
 
+// True when `path` names a FIFO (stat follows a symbolic link, as open() does).
+bool names_fifo(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISFIFO(info.st_mode);
+}
+
 // Opens `path` to be read as a file: a directory or a device is refused before a byte is read (O_NONBLOCK:
-// a device that waits for a carrier does not hang in open()). A FIFO is opened again without O_NONBLOCK, to
-// wait for its writer as any reader of a FIFO does. `fd` is the descriptor when the result is ok, else -1.
+// a device that waits for a carrier does not hang in open()). A FIFO is opened once, without O_NONBLOCK, to
+// wait for its writer as any reader of a FIFO does: a first descriptor closed and a second opened would lose
+// what a quick writer wrote in between, and then wait for a writer for ever. `fd` is the descriptor when the
+// result is ok, else -1.
 file_result open_file(const std::string& path, std::size_t max_bytes, int& fd) {
   file_result result;
   result.max_bytes = max_bytes;
-  fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | (names_fifo(path) ? 0 : O_NONBLOCK));
   if (fd < 0) {
     result.status = file_status::cannot_open;
     result.system_error = errno;
@@ -85,15 +93,7 @@ file_result open_file(const std::string& path, std::size_t max_bytes, int& fd) {
     result.status = file_status::directory;
   } else if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)) {
     result.status = file_status::device;
-  } else if (S_ISFIFO(info.st_mode)) {
-    ::close(fd);
-    fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
-    if (fd < 0) {
-      result.status = file_status::cannot_open;
-      result.system_error = errno;
-    }
-    return result;
-  } else {
+  } else {  // a file or a FIFO
     const int flags = ::fcntl(fd, F_GETFL);
     if (flags >= 0) (void)::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
     return result;
@@ -117,10 +117,13 @@ file_result read_bounded_file(const std::string& path, std::size_t max_bytes, st
 }
 
 file_result open_input_stream(const std::string& path, std::ifstream& stream) {
-  int fd = -1;
-  file_result result = open_file(path, 0, fd);
-  if (!result) return result;
-  ::close(fd);
+  file_result result;
+  if (!names_fifo(path)) {  // (a FIFO is opened once, by the stream: see open_file)
+    int fd = -1;
+    result = open_file(path, 0, fd);
+    if (!result) return result;
+    ::close(fd);
+  }
   stream.open(path, std::ios::binary);
   if (!stream) {
     result.status = file_status::cannot_open;

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <future>
 #include <string>
 #include <thread>
 
@@ -179,6 +180,36 @@ TEST(ReadBoundedFile, ANamedFifoIsReadToItsEnd) {
   ::unlink(path.c_str());
   EXPECT_TRUE(r) << r.message(path);
   EXPECT_EQ(text, "12 34\n");
+}
+
+// Writers that open the FIFO, write and close at once, round after round. A reader that opened the FIFO twice
+// (a first look without waiting, then again to wait for the writer) lost what a writer wrote between its two
+// opens and then waited for a writer for ever: the test above hung so in CI now and then. A read that hangs
+// here is released by a writer that comes and goes, and fails the test.
+TEST(ReadBoundedFile, AFifoWhoseWriterIsGoneAtOnceIsReadWhole) {
+  const std::string path = temp_path("quick-fifo");
+  for (int round = 0; round < 300; ++round) {
+    ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+    std::thread writer([&] {
+      const int fd = ::open(path.c_str(), O_WRONLY);
+      (void)!::write(fd, "56 78\n", 6);
+      ::close(fd);
+    });
+    std::string text;
+    std::future<file_result> reading =
+        std::async(std::launch::async, [&] { return read_bounded_file(path, 100, text); });
+    writer.join();
+    const bool hung = reading.wait_for(std::chrono::seconds(5)) != std::future_status::ready;
+    if (hung) {
+      const int release = ::open(path.c_str(), O_WRONLY | O_NONBLOCK);
+      if (release >= 0) ::close(release);
+    }
+    const file_result r = reading.get();
+    ::unlink(path.c_str());
+    ASSERT_FALSE(hung) << "round " << round << ": the reader waited for a writer that had come and gone";
+    ASSERT_TRUE(r) << r.message(path);
+    ASSERT_EQ(text, "56 78\n") << "round " << round;
+  }
 }
 
 TEST(ReadBoundedFile, TheNameInAMessageIsShownEscaped) {
