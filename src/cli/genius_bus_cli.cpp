@@ -478,8 +478,9 @@ int plan_main(const words& all) {
                   pad(format_real(devices[i].position_ft), 7).c_str(), pad(std::to_string(a.sba[i]), 3).c_str());
     }
     if (a.worst.any) {
-      std::printf("  smallest margin %s us (after %s's Stop, %s's turn after %s's start bit); detection %s us\n",
-                  fixed(a.worst.margin_us, 2).c_str(), devices[a.worst.after].name.c_str(),
+      std::printf("  smallest margin %s us (%s %s's Stop, %s's turn after %s's start bit); detection %s us\n",
+                  fixed(a.worst.margin_us, 2).c_str(),
+                  a.worst.idle_restart ? "at an idle restart after" : "after", devices[a.worst.after].name.c_str(),
                   devices[a.worst.second].name.c_str(), devices[a.worst.first].name.c_str(),
                   fixed(detection_at(a.rate), 2).c_str());
     }
@@ -489,7 +490,8 @@ int plan_main(const words& all) {
               asked.name, asked.description);
   show(r.given);
   if (r.given_ok) {
-    std::printf("no collision risk: every margin after every device's Stop is at least the detection time\n");
+    std::printf("no collision risk: every margin after every device's Stop and at an idle restart is at least the "
+                "detection time\n");
   } else if (!r.given.fits_rate) {
     std::printf("not possible at %s: the bus is %s ft long with %zu devices (%s allows %u ft and %u devices)\n", asked.name,
                 format_real(r.given.bus_length_ft).c_str(), devices.size(), asked.name,
@@ -536,12 +538,12 @@ const char* const genius_simulate_usage =
 const char* const genius_plan_usage =
     "usage: trionet genius plan --rate 153.6s|153.6e|76.8|38.4 --device NAME@FEET[=SBA] ... [--json] [--check]\n"
     "                           [--prop-us-per-2000ft P] [--detect-us D]\n"
-    "Assigns SBAs so that after every device's Stop every margin between consecutive turns is at least the\n"
-    "detection time (genius timing), with the shortest turn overhead per scan; with NAME@FEET=SBA for every\n"
-    "device, checks those first. Removes a collision risk by resequencing SBAs along the bus and skipping an\n"
-    "SBA (free: a scan's skip times add up to 32 whatever the SBAs), then by 153.6e, then by a lower rate, in\n"
-    "that order of cost, and says which it used and why. --check: exit status 3 when the SBAs given have a\n"
-    "collision risk.\n";
+    "Assigns SBAs so that every margin between consecutive turns is at least the detection time, after every\n"
+    "device's Stop (genius timing) and at an idle restart, with the shortest turn overhead per scan; with\n"
+    "NAME@FEET=SBA for every device, checks those first. Removes a collision risk by resequencing SBAs along\n"
+    "the bus and skipping an SBA (free: a scan's skip times add up to 32 whatever the SBAs), then by 153.6e,\n"
+    "then by a lower rate, in that order of cost, and says which it used and why. --check: exit status 3 when\n"
+    "the SBAs given have a collision risk.\n";
 
 const option_list& genius_simulate_option_list() {
   static const option_list options = {

@@ -47,6 +47,29 @@ std::vector<std::uint8_t> sbas_of(const std::vector<std::size_t>& order, const s
   return sba;
 }
 
+// The margins of the idle restart (docs/protocol.md 3.4). Every device acts as if SBA 31's Stop had ended, each
+// counting the idle time from the last character it heard, so the turns go in SBA order from the lowest, timed
+// from the last sender L's Stop as it reached each device. For consecutive turns a < b the margin is
+// skip x (b - a) - (p(L,a) + p(a,b) - p(L,b)): the margin after L's own Stop when L is neither of them, and
+// smallest when L is b itself, skip x (b - a) - 2 p(a,b): the start bit goes from b to a and back. No Stop's
+// analysis has that pair (a sender takes no turn after its own Stop), so it is checked here.
+struct restart_margin {
+  std::size_t first = 0, second = 0;  // indices into the devices; `second` is the last sender
+  double margin_us = 0;
+};
+
+std::vector<restart_margin> restart_margins(const std::vector<genius_plan_device>& devices,
+                                            const std::vector<std::uint8_t>& sba, const genius::bus_timing& timing) {
+  std::vector<restart_margin> margins;
+  const std::vector<std::size_t> by_sba = order_of(sba);
+  for (std::size_t k = 1; k < by_sba.size(); ++k) {
+    const std::size_t a = by_sba[k - 1], b = by_sba[k];
+    const double round_trip = 2 * genius::propagation_us(timing, devices[a].position_ft, devices[b].position_ft);
+    margins.push_back({a, b, timing.skip_us * (sba[b] - sba[a]) - round_trip});
+  }
+  return margins;
+}
+
 struct candidate {
   genius_assignment assignment;
   std::vector<std::size_t> order;
@@ -74,6 +97,10 @@ candidate widen(const std::vector<genius_plan_device>& devices, std::vector<std:
     for (std::size_t i = 0; i < n; ++i) positions.push_back({sba[i], devices[i].position_ft, 1});
     // Which gaps to widen: the one before each too-small pair's second turn.
     std::vector<bool> widen_before(n, false);
+    for (const restart_margin& m : restart_margins(devices, sba, timing)) {
+      if (!(m.margin_us < timing.detection_us)) continue;
+      for (std::size_t k = 1; k < n; ++k) widen_before[k] = widen_before[k] || c.order[k] == m.second;
+    }
     for (std::size_t s = 0; s < n; ++s) {
       const genius::turn_analysis a = genius::analyse_turns(
           span<const genius::device_position>(positions.data(), positions.size()), timing, sba[s]);
@@ -145,6 +172,14 @@ genius_assignment assess_genius_assignment(const std::vector<genius_plan_device>
         if (sba[i] == a.margins[m].second) out.worst.second = i;
       }
     }
+  }
+  for (const restart_margin& m : restart_margins(devices, sba, timing)) {
+    if (m.margin_us < timing.detection_us) {
+      ++out.too_small;
+      ++out.restart_too_small;
+    }
+    if (out.worst.any && m.margin_us >= out.worst.margin_us) continue;
+    out.worst = genius_worst_margin{true, m.margin_us, m.second, m.first, m.second, true};
   }
   const std::vector<std::size_t> order = order_of(sba);
   double propagation = 0;
@@ -288,6 +323,7 @@ genius_plan_result plan_genius_bus(const std::vector<genius_plan_device>& device
       const unsigned gap = (result.plan.sba[b] + 32u - result.plan.sba[a]) % 32u;
       const unsigned before = (start[b] + 32u - start[a]) % 32u;
       if (gap <= 1 || (same_cyclic_order(result.plan.sba, start) && gap <= before)) continue;
+      const double away = genius::propagation_us(timing, devices[a].position_ft, devices[b].position_ft);
       std::string unused;
       for (unsigned u = 1; u < gap; ++u) {
         if (!unused.empty()) unused += ", ";
@@ -296,9 +332,12 @@ genius_plan_result plan_genius_bus(const std::vector<genius_plan_device>& device
       result.remedies.push_back(
           {"skip an SBA", "SBA " + unused + " left unused: " + devices[b].name + "'s turn comes " + std::to_string(gap) +
                               " skip times after " + devices[a].name + "'s, so that " + devices[b].name +
-                              " detects " + devices[a].name + "'s start bit (" +
-                              us_text(genius::propagation_us(timing, devices[a].position_ft, devices[b].position_ft)) +
-                              " us away) before its own turn"});
+                              " detects " + devices[a].name + "'s start bit (" + us_text(away) +
+                              " us away) before its own turn" +
+                              (timing.skip_us - 2 * away < timing.detection_us
+                                   ? ", also at an idle restart that follows " + devices[b].name +
+                                         "'s own Stop (the start bit's way there and back: " + us_text(2 * away) + " us)"
+                                   : std::string())});
     }
     return result;
   }

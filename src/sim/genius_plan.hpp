@@ -1,7 +1,7 @@
 // An SBA planner for a Genius bus (docs/genius.md, "Planning SBAs"): given where each device sits, SBAs (and
-// if need be a rate) such that after every device's Stop every margin between consecutive turns is at least
-// the detection time (analyse_turns, docs/protocol.md 3.3), with the shortest turn overhead per scan; or a
-// check of SBAs given. It removes a collision risk in this order of cost: resequencing SBAs along the bus
+// if need be a rate) such that after every device's Stop, and at an idle restart (docs/protocol.md 3.4), every
+// margin between consecutive turns is at least the detection time (analyse_turns, docs/protocol.md 3.3), with
+// the shortest turn overhead per scan; or a check of SBAs given. It removes a collision risk in this order of cost: resequencing SBAs along the bus
 // and skipping SBAs (neither lengthens a scan: the skip times of a whole scan add up to 32 whatever the
 // SBAs), then 153.6 extended, then a lower rate (each lengthens every scan).
 //
@@ -42,13 +42,15 @@ struct genius_worst_margin {
   std::size_t after = 0;   ///< whose Stop (index into the devices)
   std::size_t first = 0;   ///< the turn that comes first
   std::size_t second = 0;  ///< the turn that must detect its start bit
+  bool idle_restart = false;  ///< the margin of an idle restart that follows `after`'s Stop (`after` == `second`)
 };
 
 struct genius_assignment {
   genius::rate rate = genius::rate::standard_153k6;
   std::vector<std::uint8_t> sba;  ///< per device, in the order given
   genius_worst_margin worst;
-  std::size_t too_small = 0;      ///< margins below the detection time, over every device's Stop
+  std::size_t too_small = 0;      ///< margins below the detection time, over every device's Stop and the idle restart
+  std::size_t restart_too_small = 0;  ///< of those, margins of the idle restart
   double overhead_us = 0;         ///< turn overhead of one scan: 32 skip times + the propagation between turns
   double bus_length_ft = 0;
   bool fits_rate = true;          ///< length and device count within the rate's limits
@@ -65,7 +67,8 @@ struct genius_plan_result {
   std::string why_not;                ///< no plan: why
 };
 
-/// The margins of one assignment at its rate (every device's Stop, every pair of consecutive turns).
+/// The margins of one assignment at its rate (every device's Stop and the idle restart, every pair of
+/// consecutive turns).
 genius_assignment assess_genius_assignment(const std::vector<genius_plan_device>& devices,
                                            const std::vector<std::uint8_t>& sba, genius::rate rate,
                                            const genius_plan_options& options);

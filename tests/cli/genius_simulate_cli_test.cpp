@@ -185,15 +185,19 @@ TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
             "  B        2000    1\n"
             "  C           0    2\n"
             "  smallest margin 0.51 us (after A's Stop, C's turn after B's start bit); detection 3.26 us\n"
-            "collision risk: 1 margin below the detection time\n"
+            "collision risk: 3 margins below the detection time\n"
             "plan at 153.6s (153.6 kbaud standard), without collision risk:\n"
             "  name     feet  SBA\n"
             "  A           0    0\n"
-            "  B        2000    1\n"
-            "  C           0    3\n"
-            "  smallest margin 6.51 us (after C's Stop, B's turn after A's start bit); detection 3.26 us\n"
-            "remedy: skip an SBA: SBA 2 left unused: C's turn comes 2 skip times after B's, so that C detects B's "
-            "start bit (3.00 us away) before its own turn\n"
+            "  B        2000    2\n"
+            "  C           0    4\n"
+            "  smallest margin 7.02 us (after A's Stop, C's turn after B's start bit); detection 3.26 us\n"
+            "remedy: skip an SBA: SBA 1 left unused: B's turn comes 2 skip times after A's, so that B detects A's "
+            "start bit (3.00 us away) before its own turn, also at an idle restart that follows B's own Stop (the "
+            "start bit's way there and back: 6.00 us)\n"
+            "remedy: skip an SBA: SBA 3 left unused: C's turn comes 2 skip times after B's, so that C detects B's "
+            "start bit (3.00 us away) before its own turn, also at an idle restart that follows C's own Stop (the "
+            "start bit's way there and back: 6.00 us)\n"
             "turn overhead per scan: 214.33 us (32 skip times and the propagation between turns)\n");
 }
 
@@ -201,9 +205,22 @@ TEST(GeniusPlanCli, ChecksSbasGivenAndExits3WithCheck) {
   const char* const given = "genius plan --rate 153.6s --device A@0=4 --device B@2000=5 --device C@0=6";
   EXPECT_EQ(run_cli(given).exit_code, 0);
   EXPECT_EQ(run_cli(std::string(given) + " --check").exit_code, 3);
-  const auto ok = run_cli("genius plan --rate 153.6s --device A@0=4 --device B@0=5 --device C@2000=6 --check");
+  const auto ok = run_cli("genius plan --rate 153.6s --device A@0=4 --device B@0=5 --device C@2000=7 --check");
   EXPECT_EQ(ok.exit_code, 0);
   EXPECT_NE(ok.out.find("no collision risk"), std::string::npos) << ok.out;
+}
+
+// The idle restart (docs/protocol.md 3.4) times every turn from the last sender's Stop, that sender included: when
+// C sent last, B's start bit must go to C and back within C's one skip time after B. No Stop's own turns have
+// that pair (a sender takes no turn after its own Stop).
+TEST(GeniusPlanCli, AMarginOfTheIdleRestartIsChecked) {
+  const auto r = run_cli("genius plan --rate 153.6s --device A@0=4 --device B@0=5 --device C@2000=6 --check");
+  EXPECT_EQ(r.exit_code, 3) << r.out;
+  EXPECT_NE(r.out.find("smallest margin 0.51 us (at an idle restart after C's Stop, C's turn after B's start bit)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("collision risk: 1 margin below the detection time"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  C        2000    7\n"), std::string::npos) << r.out;
 }
 
 TEST(GeniusPlanCli, ABusTooLongForTheRateMovesTo153k6Extended) {
