@@ -316,6 +316,7 @@ void bind_ring(py::module_& m) {
       .def_property_readonly("transmit_free",
                              [](motion_coordinator_node& n) { return n.node().transmit_free(); })
       .def("counters", [](motion_coordinator_node& n) { return counters_of(n.node().counters()); })
+      .def("clear_counters", [](motion_coordinator_node& n) { n.node().clear_counters(); })
       .def("forwarding_counters",
            [](motion_coordinator_node& n) { return counters_of(n.node().forwarding_counters()); });
 
@@ -345,6 +346,7 @@ void bind_ring(py::module_& m) {
       .def_property_readonly("netstat", [](keypad_node& n) { return n.node().netstat(); })
       .def("clear_netstat", [](keypad_node& n) { n.node().clear_netstat(); })
       .def("counters", [](keypad_node& n) { return counters_of(n.node().counters()); })
+      .def("clear_counters", [](keypad_node& n) { n.node().clear_counters(); })
       .def("forwarding_counters", [](keypad_node& n) { return counters_of(n.node().forwarding_counters()); });
 
   py::class_<simulator>(m, "Simulator")

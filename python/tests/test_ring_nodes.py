@@ -43,6 +43,29 @@ def test_send_writes_the_next_controllers_vr_and_print_reaches_get():
     assert a.forwarding_counters()["messages_sent"] == 2
 
 
+def test_clear_counters_starts_every_count_again_from_zero_and_keeps_netstat():
+    a, b, keypad = ring.MotionCoordinator(), ring.MotionCoordinator(), ring.Keypad()
+    sim = ring.Simulator([a, b, keypad])
+    assert keypad.press("up") is ring.KeyStatus.local_mode  # counted as a key lost
+    assert a.send(10, 3, 2.5) and a.send(11, 4, 1.0)  # one for b, one that b forwards to the keypad
+    while a.send(10, 1, 1.0):
+        pass  # until the transmit queue refuses one: NETSTAT bit 0
+    sim.run_until_quiet()
+    sim.run(5)
+    assert a.forwarding_counters()["messages_sent"] >= 2 and b.counters()["variables_written"] >= 1
+    assert b.forwarding_counters()["messages_forwarded"] == 1 and keypad.counters()["keys_lost"] == 1
+    assert a.netstat & 1
+    for node in (a, b, keypad):
+        node.clear_counters()
+        assert not any(node.counters().values()), node.counters()
+        assert not any(node.forwarding_counters().values()), node.forwarding_counters()
+    assert a.netstat & 1
+    assert a.send(10, 5, 3.0)
+    sim.run_until_quiet()
+    sim.run(5)
+    assert a.forwarding_counters()["messages_sent"] == 1 and b.counters()["variables_written"] == 1
+
+
 def test_a_message_for_a_node_further_on_is_forwarded():
     nodes = [ring.MotionCoordinator() for _ in range(4)]
     sim = ring.Simulator(nodes)

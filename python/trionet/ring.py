@@ -307,6 +307,10 @@ class RingNode:
         """The link's counters (ring::link_counters): forwarded, lost, cut, dropped, sent."""
         return dict(self._node.forwarding_counters())
 
+    def clear_counters(self) -> None:
+        """Starts every count of :meth:`counters` and :meth:`forwarding_counters` again from 0 (not NETSTAT)."""
+        self._node.clear_counters()
+
 
 def _to(to: int, what: str = "a BASIC address") -> int:
     """A BASIC address as an int; out of 10..24 it is passed on for the node to refuse (SendStatus)."""
