@@ -569,7 +569,9 @@ class wire {
     bool input_open = true;
     std::string ended;
     bool quit = false;
-    while (!quit && !live::signal_watch::stop_requested()) {
+    // A standard output that cannot be written ends the wire (its events are what it reports): the events
+    // would otherwise be lost in silence, the paths of its ptys among them.
+    while (!quit && !live::signal_watch::stop_requested() && !output_failed()) {
       if (live::signal_watch::take_report_request()) counters();
       const std::uint64_t now = monotonic_ns();
       schedule(now);
@@ -630,6 +632,7 @@ class wire {
     log_.flush();
     for (auto& e : endpoints_) e->close();
     if (!ended.empty()) return fail_io("ring wire: " + ended);
+    if (output_failed()) return fail_output();
     if (!capture_.good()) return fail_io("ring wire: writing the capture " + settings_.pcap + " failed");
     return exit_ok;
   }

@@ -8,11 +8,13 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -252,6 +254,18 @@ TEST(RingWire, AnEndpointThatClosesEndsTheWireWithStatusOne) {
   EXPECT_NE(err.find(" closed\n"), std::string::npos) << err;
   EXPECT_NE(w.output().find("\"event\":\"counters\""), std::string::npos) << w.output();  // counters still
   std::remove(temp_path("gone.err").c_str());
+}
+
+// Its events are what it reports: with standard output unwritable it ends at once with status 1, whatever its
+// standard input does (here: at its end from the start, which leaves the wire running otherwise).
+TEST(RingWire, AnUnwritableStandardOutputEndsTheWireWithStatusOne) {
+  const std::string err = temp_path("full.err");
+  const int status = std::system(("timeout 60 " + std::string(TRIONET_CLI_PATH) + " ring wire pty pty >/dev/full "
+                                  "</dev/null 2>" + err).c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);  // (124: still running after 60 s)
+  EXPECT_EQ(trionet::test::slurp(err), "trionet: cannot write standard output: No space left on device\n");
+  std::remove(err.c_str());
 }
 
 TEST(RingWire, AnEndpointThatCannotBeOpenedIsStatusOne) {
