@@ -7,9 +7,9 @@
 //   program: collect() --> the inputs of SBA s, the latest broadcast heard from s
 //
 // It is the device core plus two tables that only the program side touches: the link side is exactly the
-// device's (docs/design.md, "Contexts"). Cost: the device (turn data 3 x 32 x (OutputCapacity + 2) bytes)
-// plus 32 x (OutputCapacity + InputCapacity + 6) bytes of tables; `publish_outputs` O(outputs), `collect`
-// O(the deliveries waiting). No heap.
+// device's (docs/design.md, "Contexts"). Cost: the device (turn data 3 x 31 x (OutputCapacity + 2) bytes: a
+// block for each of the 31 other SBAs) plus 32 x (OutputCapacity + InputCapacity + 6) bytes of tables;
+// `publish_outputs` O(outputs), `collect` O(the deliveries waiting). No heap.
 #pragma once
 
 #include <cstddef>
