@@ -448,7 +448,9 @@ int plan_main(const words& all) {
                ",\"sba\":" + std::to_string(a.sba[i]) + "}";
       }
       out += "],\"margins_below_detection\":" + std::to_string(a.too_small) +
+             ",\"idle_restart_margins_below_detection\":" + std::to_string(a.restart_too_small) +
              ",\"smallest_margin_us\":" + (a.worst.any ? json_us(a.worst.margin_us) : std::string("null")) +
+             ",\"smallest_margin_at_idle_restart\":" + (a.worst.any && a.worst.idle_restart ? "true" : "false") +
              ",\"detection_us\":" + json_us(detection_at(a.rate)) + ",\"overhead_us\":" + json_us(a.overhead_us) +
              ",\"fits_rate\":" + (a.fits_rate ? "true" : "false") + "}";
       return out;

@@ -221,6 +221,11 @@ TEST(GeniusPlanCli, AMarginOfTheIdleRestartIsChecked) {
       << r.out;
   EXPECT_NE(r.out.find("collision risk: 1 margin below the detection time"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  C        2000    7\n"), std::string::npos) << r.out;
+  const auto json = run_cli("genius plan --rate 153.6s --device A@0=4 --device B@0=5 --device C@2000=6 --json");
+  EXPECT_NE(json.out.find("\"margins_below_detection\":1,\"idle_restart_margins_below_detection\":1,"
+                          "\"smallest_margin_us\":0.51,\"smallest_margin_at_idle_restart\":true,"),
+            std::string::npos)
+      << json.out;
 }
 
 TEST(GeniusPlanCli, ABusTooLongForTheRateMovesTo153k6Extended) {
