@@ -274,6 +274,21 @@ genius_plan_result plan_genius_bus(const std::vector<genius_plan_device>& device
     candidates.push_back(widen(devices, along, ones, result.checked ? start[along[0]] : 0, rate, options));
     if (out_and_back.size() == n)
       candidates.push_back(widen(devices, out_and_back, ones, result.checked ? start[out_and_back[0]] : 0, rate, options));
+    // SBAs given: also every plan that moves one device to a free SBA (where one keeps every margin, the fewest
+    // changes).
+    std::uint32_t taken = 0;
+    for (const std::uint8_t sba : start) taken |= 1u << sba;
+    for (std::size_t i = 0; i < n && result.checked; ++i) {
+      for (unsigned free_sba = 0; free_sba < 32; ++free_sba) {
+        if ((taken >> free_sba) & 1u) continue;
+        std::vector<std::uint8_t> moved = start;
+        moved[i] = static_cast<std::uint8_t>(free_sba);
+        candidate c;
+        c.assignment = assess_genius_assignment(devices, moved, rate, options);
+        c.feasible = c.assignment.too_small == 0 && c.assignment.fits_rate;
+        if (c.feasible) candidates.push_back(std::move(c));
+      }
+    }
     const candidate* best = nullptr;
     for (const candidate& c : candidates) {
       if (!c.feasible) continue;
@@ -311,19 +326,30 @@ genius_plan_result plan_genius_bus(const std::vector<genius_plan_device>& device
                                                                            : " (a longer bit time and skip time)")});
     }
     if (!same_cyclic_order(result.plan.sba, start)) {
-      result.remedies.push_back({"resequence", "SBAs in the order of the devices along the bus, so that no turn has "
-                                               "to reach back past a device that has just sent"});
+      std::size_t moved = 0;
+      for (std::size_t i = 0; i < n; ++i) moved = result.plan.sba[i] != start[i] ? i : moved;
+      result.remedies.push_back(
+          {"resequence", changed_sbas(result.plan.sba, start) == 1
+                             ? devices[moved].name + " from SBA " + std::to_string(start[moved]) + " to SBA " +
+                                   std::to_string(result.plan.sba[moved]) + ": one change that keeps every margin"
+                             : "SBAs in the order of the devices along the bus, so that no turn has to reach back past "
+                               "a device that has just sent"});
     }
     // Skipped SBAs: gaps wider than the SBAs started with (the gap that wraps back to the first device is
-    // where the unused SBAs go anyway).
+    // where the unused SBAs go anyway) that the pair needs: one skip time is less than the detection time and
+    // the start bit's way there and back (the idle restart after the second's own Stop, the smallest of the
+    // pair's margins).
     const std::vector<std::size_t> order = order_of(result.plan.sba);
     const genius::bus_timing timing = timing_of(rate, options);
     for (std::size_t k = 0; k + 1 < n; ++k) {
       const std::size_t a = order[k], b = order[k + 1];
       const unsigned gap = (result.plan.sba[b] + 32u - result.plan.sba[a]) % 32u;
       const unsigned before = (start[b] + 32u - start[a]) % 32u;
-      if (gap <= 1 || (same_cyclic_order(result.plan.sba, start) && gap <= before)) continue;
       const double away = genius::propagation_us(timing, devices[a].position_ft, devices[b].position_ft);
+      if (gap <= 1 || (same_cyclic_order(result.plan.sba, start) && gap <= before) ||
+          !(timing.skip_us - 2 * away < timing.detection_us)) {
+        continue;
+      }
       std::string unused;
       for (unsigned u = 1; u < gap; ++u) {
         if (!unused.empty()) unused += ", ";
@@ -333,11 +359,9 @@ genius_plan_result plan_genius_bus(const std::vector<genius_plan_device>& device
           {"skip an SBA", "SBA " + unused + " left unused: " + devices[b].name + "'s turn comes " + std::to_string(gap) +
                               " skip times after " + devices[a].name + "'s, so that " + devices[b].name +
                               " detects " + devices[a].name + "'s start bit (" + us_text(away) +
-                              " us away) before its own turn" +
-                              (timing.skip_us - 2 * away < timing.detection_us
-                                   ? ", also at an idle restart that follows " + devices[b].name +
-                                         "'s own Stop (the start bit's way there and back: " + us_text(2 * away) + " us)"
-                                   : std::string())});
+                              " us away) before its own turn, also at an idle restart that follows " +
+                              devices[b].name + "'s own Stop (the start bit's way there and back: " +
+                              us_text(2 * away) + " us)"});
     }
     return result;
   }

@@ -228,6 +228,22 @@ TEST(GeniusPlanCli, AMarginOfTheIdleRestartIsChecked) {
       << json.out;
 }
 
+// GE's example layout with SBAs 4, 5, 6 given: moving SBA 5's device alone keeps every margin (two changes were
+// proposed before the planner tried moves of one device).
+TEST(GeniusPlanCli, SbasGivenAreFixedWithOneChangeWhereOneDoes) {
+  const auto r = run_cli("genius plan --rate 153.6s --device SBA4@0=4 --device SBA5@2000=5 --device SBA6@0=6 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"plan\":{\"rate\":\"153.6s\",\"devices\":[{\"name\":\"SBA4\",\"feet\":0,\"sba\":4},"
+                       "{\"name\":\"SBA5\",\"feet\":2000,\"sba\":0},{\"name\":\"SBA6\",\"feet\":0,\"sba\":6}],"
+                       "\"margins_below_detection\":0,"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("{\"remedy\":\"resequence\",\"why\":\"SBA5 from SBA 5 to SBA 0: one change that keeps every "
+                       "margin\"}"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(GeniusPlanCli, ABusTooLongForTheRateMovesTo153k6Extended) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@3000 --device C@100 --json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
