@@ -166,14 +166,19 @@ TEST(ReadBoundedFile, AnEndlessPipeIsCutAtTheBound) {
   EXPECT_TRUE(text.empty());
 }
 
+// A writer that opens the FIFO at `path` (waiting for its reader), writes `text` and closes it at once.
+std::thread fifo_writer(const std::string& path, const std::string& text) {
+  return std::thread([path, text] {
+    const int fd = ::open(path.c_str(), O_WRONLY);
+    (void)!::write(fd, text.data(), text.size());
+    ::close(fd);
+  });
+}
+
 TEST(ReadBoundedFile, ANamedFifoIsReadToItsEnd) {
   const std::string path = temp_path("fifo");
   ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-  std::thread writer([&] {
-    const int fd = ::open(path.c_str(), O_WRONLY);
-    (void)!::write(fd, "12 34\n", 6);
-    ::close(fd);
-  });
+  std::thread writer = fifo_writer(path, "12 34\n");
   std::string text;
   const file_result r = read_bounded_file(path, 100, text);
   writer.join();
@@ -190,11 +195,7 @@ TEST(ReadBoundedFile, AFifoWhoseWriterIsGoneAtOnceIsReadWhole) {
   const std::string path = temp_path("quick-fifo");
   for (int round = 0; round < 300; ++round) {
     ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-    std::thread writer([&] {
-      const int fd = ::open(path.c_str(), O_WRONLY);
-      (void)!::write(fd, "56 78\n", 6);
-      ::close(fd);
-    });
+    std::thread writer = fifo_writer(path, "56 78\n");
     std::string text;
     std::future<file_result> reading =
         std::async(std::launch::async, [&] { return read_bounded_file(path, 100, text); });
