@@ -93,8 +93,10 @@ struct source {
   int device = -1;   // the transmitting device's index; -1 for noise
   double position_ft = 0;
   std::vector<std::int64_t> prop;  // to each receiver
+  std::int64_t farthest = 0;       // the largest of them
   std::int64_t start = 0;
   std::vector<std::uint16_t> words;  // 11-bit wire words, back to back from `start`
+  std::vector<std::uint8_t> ends;    // per word: 1 for an End of block or a Stop (they may end what is heard)
   std::vector<std::pair<std::int64_t, std::int64_t>> zeros;  // noise: 0 during [a, b)
   std::int64_t cut = never;  // quiet (1) from here on: power off
   std::int64_t lo = 0;       // the source may be 0 only in [lo, hi) of its own time
@@ -164,6 +166,8 @@ struct station_state {
   int turn_slot = -1;
   // loss accounting (check_losses)
   genius_device_report report;
+  // its device's counters after the last End of block or Stop it received (device_word)
+  genius::device_counters seen{};
 };
 
 enum class event_kind : std::uint8_t {
@@ -272,7 +276,7 @@ struct genius_bus::state {
   bool done = false;
   std::unique_ptr<genius::transmission_parser<8192, 64>> parser;  // reads what each transmission carried
   std::vector<std::size_t> followers;
-  std::vector<record> got_scratch, expected_scratch;
+  std::vector<record> expected_scratch;
   std::vector<std::int64_t> loss_checks;  // sources to check (check_losses)
   std::vector<unsigned> loss_attempts;
   std::vector<bool> loss_done;
@@ -289,6 +293,7 @@ struct genius_bus::state {
     s.prop.resize(receivers.size());
     for (std::size_t r = 0; r < receivers.size(); ++r)
       s.prop[r] = std::llround(std::fabs(s.position_ft - receivers[r].position_ft) * ps_per_ft);
+    s.farthest = s.prop.empty() ? 0 : *std::max_element(s.prop.begin(), s.prop.end());
     if (s.device < 0) {
       s.lo = s.zeros.empty() ? 0 : s.zeros.front().first;
       s.hi = s.zeros.empty() ? 0 : std::min(s.cut, s.zeros.back().second);
@@ -499,11 +504,23 @@ struct genius_bus::state {
     std::int64_t first = s.device < 0 ? (s.zeros.empty() ? never : s.zeros.front().first) : s.start;
     if (s.device >= 0 && !s.words.empty()) first = s.start + (static_cast<std::int64_t>(s.words.size()) - 1) * character;
     if (first == never) return;
+    // A run's first character, when every other source fell quiet everywhere on the line before a receiver
+    // went idle: it is the line's next falling edge there, and the receiver may follow the run from it (what
+    // `look` would find, without looking at each source again for each receiver).
+    std::int64_t others_quiet = never;
+    if (s.device >= 0 && s.words.size() == 1 && cuts.empty()) {
+      others_quiet = 0;
+      for (const source* sp : active) {
+        if (sp->id != id) others_quiet = std::max(others_quiet, sp->zero_end + sp->farthest);
+      }
+    }
     for (std::size_t r = 0; r < receivers.size(); ++r) {
       receiver& rc = receivers[r];
       if (rc.receiving || rc.follow >= 0) continue;
       if (rc.device >= 0 && !stations[static_cast<std::size_t>(rc.device)].powered) continue;
-      if (first + s.prop[r] + detection < rc.scheduled) look(r, id);
+      if (first + s.prop[r] + detection >= rc.scheduled) continue;
+      if (others_quiet <= rc.idle_since && rc.idle_since < s.start + s.prop[r] && follow_from(r, s, 0, true)) continue;
+      look(r, id);
     }
   }
 
@@ -559,6 +576,7 @@ struct genius_bus::state {
       st.plain = std::make_unique<sim_device>(st.spec.sba, timing);
       st.dev = st.plain.get();
     }
+    st.seen = st.dev->counters();
     refresh_turn_data(st);
   }
 
@@ -622,7 +640,12 @@ struct genius_bus::state {
     s.hi = std::min(s.cut, s.start + static_cast<std::int64_t>(s.words.size()) * character);
     s.zero_end = s.hi;  // until the Stop (below)
     const genius::character c = genius::from_uart_word(static_cast<std::uint16_t>(wire >> 1));
-    if (c.control && genius::read_control(c.byte).kind == genius::control_kind::stop) {
+    const genius::control_kind kind = c.control ? genius::read_control(c.byte).kind : genius::control_kind::unknown;
+    s.ends.push_back((wire & genius::stop_bit_mask) == 0 || kind == genius::control_kind::stop ||
+                             kind == genius::control_kind::end_of_block
+                         ? 1
+                         : 0);
+    if (kind == genius::control_kind::stop) {
       s.stop_start = char_start;
       s.zero_end = s.hi - bit;  // nothing follows a Stop: after its stop bit the run is quiet
       note_stop(id);
@@ -850,15 +873,16 @@ struct genius_bus::state {
     // Only an End of block or a Stop can fail a CRC-6 check or end a transmission heard: the counters are
     // compared around those alone (a data character is most of the words).
     const bool checked = framed && c.control && (kind == genius::control_kind::stop || kind == genius::control_kind::end_of_block);
-    const genius::device_counters before = checked ? st.dev->counters() : genius::device_counters{};
+    // (Nothing else changes those two counters: `seen` holds them as they were after the last such word.)
     const genius::link_request request =
         framed ? st.dev->receive(static_cast<std::uint16_t>(wire >> 1)) : st.dev->framing_error();
     if (checked) {
       const genius::device_counters after = st.dev->counters();
-      if (after.crc_errors != before.crc_errors) note_event(rc.who, false);
-      if (after.transmissions_heard != before.transmissions_heard) {
+      if (after.crc_errors != st.seen.crc_errors) note_event(rc.who, false);
+      if (after.transmissions_heard != st.seen.transmissions_heard) {
         if (source* s = origin_of(i, rc)) s->heard_by |= 1u << i;
       }
+      st.seen = after;
     }
     if (stop && !was_sending) heard_stop(i, rc, request, end);
     if (was_sending && !st.dev->sending()) refresh_turn_data(st);  // its transmission is over (whole or cut)
@@ -926,7 +950,7 @@ struct genius_bus::state {
   // Follower `r` takes source `s`'s characters from `k` on, if nothing else can be heard: no other source
   // from the moment it went idle on, no cut, its device listening, and the device's timer not due before
   // character k's start bit (that start bit cancels it: a timer due earlier must expire the exact way).
-  bool follow_from(std::size_t r, const source& s, std::size_t k) {
+  bool follow_from(std::size_t r, const source& s, std::size_t k, bool others_quiet = false) {
     receiver& rc = receivers[r];
     if (!config.follow || !cuts.empty() || !s.open || s.device < 0) return false;
     if (rc.device >= 0) {
@@ -934,8 +958,10 @@ struct genius_bus::state {
       if (!st.powered || st.dev->sending()) return false;
       if (st.timer_due <= s.start + static_cast<std::int64_t>(k) * character + s.prop[r] + detection) return false;
     }
-    for (const source* sp : active) {
-      if (sp->id != s.id && sp->zero_end + sp->prop[r] > rc.idle_since) return false;
+    if (!others_quiet) {
+      for (const source* sp : active) {
+        if (sp->id != s.id && sp->zero_end + sp->prop[r] > rc.idle_since) return false;
+      }
     }
     rc.follow = s.id;
     ++sources[static_cast<std::size_t>(s.id - source_base)].followed;
@@ -979,17 +1005,21 @@ struct genius_bus::state {
     const std::size_t first = rc.next;
     const bool monitor = static_cast<bool>(rc.on_word);
     const auto i = static_cast<std::size_t>(device);
-    // A data character (framed, control bit 0) to a device that is listening and has no turn on record takes
-    // the device's two calls alone (device_start_bit and device_word would do nothing more). Only the full
-    // way (a control character) can change either condition.
+    // A character that is neither an End of block nor a Stop (a device's words are framed) to a device that
+    // is listening and has no turn on record takes the device's two calls alone: device_start_bit and
+    // device_word would do nothing more (no CRC-6 check, no end of a transmission, no turn to record; a device
+    // that listens does not begin to send on a character). Only the full way can change either condition.
     const auto plain = [&]() { return dev != nullptr && stations[i].turn_stop < 0 && !dev->sending(); };
     bool fast = plain();
-    for (; rc.next < last; ++rc.next) {
-      const std::int64_t edge = start_here + static_cast<std::int64_t>(rc.next) * character;
-      const std::uint16_t wire = s.words[rc.next];
+    const std::uint16_t* const words = s.words.data();
+    const std::uint8_t* const ends = s.ends.data();
+    std::size_t next = rc.next;
+    for (; next < last; ++next) {
+      const std::int64_t edge = start_here + static_cast<std::int64_t>(next) * character;
+      const std::uint16_t wire = words[next];
       if (monitor) rc.on_word(us_of_ps(edge), wire);
       if (dev == nullptr) continue;
-      if (fast && (wire & (genius::stop_bit_mask | 2u)) == genius::stop_bit_mask) {
+      if (fast && ends[next] == 0) {
         take(dev->start_bit(), edge + detection);
         take(dev->receive(static_cast<std::uint16_t>(wire >> 1)), edge + character);
         continue;
@@ -1000,6 +1030,7 @@ struct genius_bus::state {
       take(device_word(i, rc, wire, edge + character), edge + character);
       fast = plain();
     }
+    rc.next = next;
     if (rc.next > first) {
       const std::int64_t edge = start_here + static_cast<std::int64_t>(rc.next - 1) * character;
       rc.edge = edge;
@@ -1093,15 +1124,44 @@ struct genius_bus::state {
     } else {
       st.turn_stop = -1;
     }
-    // Deliveries: what the program side reads now, against what the sender put on the line.
-    std::vector<record>& got = got_scratch;
+    // Deliveries: what the program side reads now, against what the sender put on the line (the records it
+    // must deliver worked out at the first delivery: most Stops deliver something).
+    std::vector<record>& expected = expected_scratch;
+    std::size_t expected_count = 0;
     std::size_t count = 0;
     const auto take = [&](const genius::delivery_result& d, byte_view data) {
-      if (count == got.size()) got.emplace_back();
-      record& rec = got[count++];
-      rec.kind = d.kind;
-      rec.sender = d.sender;
-      rec.data.assign(data.begin(), data.end());
+      if (count == 0 && origin != nullptr) expected_count = origin->content.for_device(st.spec.sba, expected);
+      const std::size_t k = count++;
+      ++result.deliveries;
+      ++st.report.deliveries_checked;
+      const bool right_data = k < expected_count && data.size() == expected[k].data.size() &&
+                              std::equal(data.begin(), data.end(), expected[k].data.begin());
+      if (right_data && d.kind == expected[k].kind && d.sender == expected[k].sender) return;
+      ++result.wrong_deliveries;
+      ++st.report.wrong_deliveries;
+      if (!right_data) {
+        ++result.wrong_data;
+        ++st.report.wrong_data;
+        note_event(rc.who, true);
+      }
+      if (on_trace) {
+        const auto hex = [](genius::delivery_kind kind, std::uint8_t sender, byte_view bytes) {
+          std::string text = std::string(genius::to_string(kind)) + " from " + std::to_string(sender) + ":";
+          char byte[4];
+          for (const std::uint8_t b : bytes) {
+            std::snprintf(byte, sizeof byte, " %02x", b);
+            text += byte;
+          }
+          return text;
+        };
+        const std::string sent =
+            k < expected_count
+                ? "; sent " + hex(expected[k].kind, expected[k].sender,
+                                  byte_view(expected[k].data.data(), expected[k].data.size()))
+                : "; nothing sent";
+        trace("SBA " + std::to_string(st.spec.sba) + ": a delivery its sender did not send (" +
+              hex(d.kind, d.sender, data) + sent + ")");
+      }
     };
     if (st.controller) {
       (void)st.controller->collect(take);
@@ -1111,35 +1171,6 @@ struct genius_bus::state {
         const genius::delivery_result d = st.dev->read(byte_buffer(data, sizeof data));
         if (!d) break;
         take(d, byte_view(data, d.length));
-      }
-    }
-    if (count == 0) return;
-    std::vector<record>& expected = expected_scratch;
-    const std::size_t expected_count =
-        origin != nullptr ? origin->content.for_device(st.spec.sba, expected) : 0;
-    for (std::size_t k = 0; k < count; ++k) {
-      ++result.deliveries;
-      ++st.report.deliveries_checked;
-      if (k < expected_count && got[k] == expected[k]) continue;
-      ++result.wrong_deliveries;
-      ++st.report.wrong_deliveries;
-      if (k >= expected_count || got[k].data != expected[k].data) {
-        ++result.wrong_data;
-        ++st.report.wrong_data;
-        note_event(rc.who, true);
-      }
-      if (on_trace) {
-        const auto hex = [](const record& x) {
-          std::string text = std::string(genius::to_string(x.kind)) + " from " + std::to_string(x.sender) + ":";
-          char byte[4];
-          for (const std::uint8_t b : x.data) {
-            std::snprintf(byte, sizeof byte, " %02x", b);
-            text += byte;
-          }
-          return text;
-        };
-        trace("SBA " + std::to_string(st.spec.sba) + ": a delivery its sender did not send (" + hex(got[k]) +
-              (k < expected_count ? "; sent " + hex(expected[k]) : "; nothing sent") + ")");
       }
     }
   }
