@@ -282,6 +282,10 @@ struct genius_bus::state {
   std::vector<bool> loss_done;
   std::size_t oldest_check = 0;  // every check before it is done: sources from its on are kept
   std::int64_t faults_end = 0;
+  std::vector<std::int64_t> fault_starts;  // every fault's start, in order
+  std::size_t pending_stops = 0;           // stations with a `stop` fault yet to take effect
+  bool reading_ahead = false;              // read_back_ahead is under way
+  std::int64_t limit = never;              // run(): no event after this time is processed
   std::vector<std::uint8_t> scratch;
 
   // ---- sources ----
@@ -454,6 +458,9 @@ struct genius_bus::state {
     if (rel >= 0 && !continuing) return never;
     const std::int64_t k = rel < 0 ? 0 : rel / character + 1;
     const std::int64_t next = s.start + k * character;
+    // Continuing only in step with the run (the character it took began with the run's own start bit): out of
+    // step, the rest of the character under way may hold falling edges before the next one begins.
+    if (rel >= 0 && rc.edge != next - character + s.prop[r]) return never;
     if (k < static_cast<std::int64_t>(s.words.size()) && next < s.hi && next + s.prop[r] >= rc.idle_since &&
         alone(r, s.id, rc.idle_since, next + s.prop[r] + 1))
       return next + s.prop[r];
@@ -632,6 +639,7 @@ struct genius_bus::state {
         faults_end = std::max(faults_end, now + character + character / 2 + st.off_for);
         schedule(now + character + character / 2, event_kind::power_off, static_cast<std::uint32_t>(i));
         st.stop_after_us = -1;
+        --pending_stops;
       }
     }
     source& s = src(id);
@@ -653,7 +661,9 @@ struct genius_bus::state {
         if (receivers[r].follow == id) schedule_catch_up(r);
       }
     }
-    schedule(char_start + character, event_kind::tx_end, static_cast<std::uint32_t>(i));
+    // (Reading back ahead, only the last character's end is an event: the ends before it would find the run
+    // going on.)
+    if (!reading_ahead) schedule(char_start + character, event_kind::tx_end, static_cast<std::uint32_t>(i));
     notify(id);
     if (config.check_losses && s.listeners.empty()) {
       for (const station_state& other : stations) {
@@ -932,9 +942,69 @@ struct genius_bus::state {
       const auto i = static_cast<std::size_t>(rc.device);
       apply(i, device_word(i, rc, wire, rc.edge + character), rc.edge + character);
     }
+    if (known && rc.device >= 0 && read_back_ahead(r)) return;
     rc.receiving = false;
     if (known && follow_from(r, src(rc.who), k + 1)) return;
     look(r);
+  }
+
+  // A sender that has read back a character of its own reads back the next ones ahead, each with the calls and
+  // at the simulated times an event per start bit and per word would give (the clock set to each), while
+  // nothing else can be heard or begin: no other signal anywhere on the line, no fault under way or to come,
+  // and every other device powered follows this run (it hears these characters in step, so its timer cannot
+  // expire before the run's Stop: only a timer starts a transmission). The followers take the characters as
+  // before (a run's words are read by time). Then it goes on as after any character read back. False:
+  // nothing read ahead.
+  bool read_back_ahead(std::size_t r) {
+    receiver& rc = receivers[r];
+    const auto i = static_cast<std::size_t>(rc.device);
+    station_state& st = stations[i];
+    if (!config.follow || on_trace || !cuts.empty() || now < faults_end || pending_stops != 0) return false;
+    if (st.tx_source < 0 || st.tx_source != rc.who || !st.dev->sending()) return false;
+    const std::int64_t id = st.tx_source;
+    std::size_t k = static_cast<std::size_t>((rc.edge - src(id).prop[r] - src(id).start) / character) + 1;
+    if (k >= src(id).words.size()) return false;
+    for (std::size_t j = 0; j < stations.size(); ++j) {
+      if (j != i && stations[j].powered && receivers[j].follow != id) return false;
+    }
+    const auto next_fault = std::upper_bound(fault_starts.begin(), fault_starts.end(), now);
+    const std::int64_t fault_at = next_fault != fault_starts.end() ? *next_fault : never;
+    // (Quiet everywhere: a device still hearing another signal may yet arm a timer due earlier.)
+    for (const source* sp : active) {
+      if (sp->id != id && sp->zero_end + sp->farthest > now) return false;
+    }
+    const std::int64_t real_now = now;
+    bool ahead = false;
+    rc.receiving = true;  // its own characters: no news to it (notify)
+    reading_ahead = true;
+    const std::size_t words_before = src(id).words.size();
+    while (k < src(id).words.size() && st.dev->sending()) {
+      const source& s = src(id);
+      const std::int64_t edge = s.start + static_cast<std::int64_t>(k) * character + s.prop[r];
+      // (Not past the run's bound: a character is read back there only if its events come by then.)
+      if (edge + character >= fault_at || edge + detection + 10 * bit > limit) break;
+      now = edge + detection;  // the start bit confirmed
+      rc.edge = edge;
+      apply(i, device_start_bit(i, edge, id, now), now);
+      now = edge + detection + 10 * bit;  // the word
+      rc.idle_since = now;
+      if (rc.on_word) rc.on_word(us_of_ps(edge), src(id).words[k]);
+      apply(i, device_word(i, rc, src(id).words[k], edge + character), edge + character);
+      ahead = true;
+      ++k;
+    }
+    reading_ahead = false;
+    const source& run = src(id);
+    if (run.words.size() > words_before) {  // the end of the last character appended
+      schedule(run.start + static_cast<std::int64_t>(run.words.size()) * character, event_kind::tx_end,
+               static_cast<std::uint32_t>(i));
+    }
+    if (ahead) {
+      rc.receiving = false;
+      if (!follow_from(r, src(id), k)) look(r);
+    }
+    now = real_now;
+    return ahead;
   }
 
   // ---- following: a listener takes a clean run of one transmission's characters in one go ----
@@ -1284,6 +1354,7 @@ struct genius_bus::state {
         faults_end = std::max(faults_end, now);  // until it takes effect (append)
         for (station_state& st : stations) {
           if (st.spec.sba == f.sba) {
+            if (st.stop_after_us < 0) ++pending_stops;
             st.stop_after_us = us_of_ps(now);
             st.stop_for_us = f.duration_us;
           }
@@ -1382,12 +1453,15 @@ genius_bus_result genius_bus::run() {
   std::int64_t scan_bound = 64 * s.skip + 8 * s.character;
   for (const station_state& st : s.stations)
     scan_bound += (st.spec.input_bytes + st.spec.output_bytes + 70) * s.character + 2 * s.max_prop;
-  std::int64_t limit = static_cast<std::int64_t>(s.config.scans + 4) * scan_bound;
+  std::int64_t& limit = s.limit;
+  limit = static_cast<std::int64_t>(s.config.scans + 4) * scan_bound;
   for (std::size_t k = 0; k < s.config.faults.size(); ++k) {
     const genius_fault& f = s.config.faults[k];
     limit = std::max(limit, ps_of_us(f.at_us + f.duration_us) + static_cast<std::int64_t>(s.config.scans + 4) * scan_bound);
     s.schedule(ps_of_us(f.at_us), event_kind::fault, static_cast<std::uint32_t>(k));
+    s.fault_starts.push_back(ps_of_us(f.at_us));
   }
+  std::sort(s.fault_starts.begin(), s.fault_starts.end());
   if (s.config.max_us > 0) limit = ps_of_us(s.config.max_us);
   for (std::size_t i = 0; i < s.stations.size(); ++i) s.apply(i, s.stations[i].dev->power_on(), 0);
   for (std::size_t r = 0; r < s.receivers.size(); ++r) s.look(r);
@@ -1475,11 +1549,10 @@ genius_bus_result genius_bus::run() {
     }
   }
   // Followers take what they would have received by then, as an event per word would have given them.
-  const std::int64_t last = s.now;
+  // The clock stops at the bound, unless nothing at all was left to happen.
   s.now = s.events.empty() ? s.now : limit;
   s.config.follow = false;
   s.unfollow_all();
-  s.now = last;
   s.result.end_us = us_of_ps(s.now);
   s.result.faults_end_us = us_of_ps(s.faults_end);
   s.result.complete = s.done;
