@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <limits>
 #include <queue>
 #include <random>
@@ -96,7 +95,7 @@ struct source {
   std::int64_t farthest = 0;       // the largest of them
   std::int64_t start = 0;
   std::vector<std::uint16_t> words;  // 11-bit wire words, back to back from `start`
-  std::vector<std::uint8_t> ends;    // per word: 1 for an End of block or a Stop (they may end what is heard)
+  std::vector<std::uint8_t> stops;   // per word: 1 for a Stop (or a word not framed)
   std::vector<std::pair<std::int64_t, std::int64_t>> zeros;  // noise: 0 during [a, b)
   std::int64_t cut = never;  // quiet (1) from here on: power off
   std::int64_t lo = 0;       // the source may be 0 only in [lo, hi) of its own time
@@ -166,7 +165,7 @@ struct station_state {
   int turn_slot = -1;
   // loss accounting (check_losses)
   genius_device_report report;
-  // its device's counters after the last End of block or Stop it received (device_word)
+  // its device's counters after the last transmission it was receiving ended (ended())
   genius::device_counters seen{};
 };
 
@@ -257,9 +256,9 @@ struct genius_bus::state {
   genius_bus_config config;
   std::vector<station_state> stations;
   std::vector<receiver> receivers;  // stations first, then monitors
-  std::deque<source> sources;
+  std::vector<std::unique_ptr<source>> sources;
   std::int64_t source_base = 0;     // id of sources.front()
-  std::vector<source*> active;  // sources that may still be heard (a deque's elements do not move)
+  std::vector<source*> active;  // sources that may still be heard
   std::vector<cut_window> cuts;
   std::vector<cut_window> cut_history;  // every cut (check_losses)
   std::priority_queue<event, std::vector<event>, std::greater<event>> events;
@@ -289,7 +288,7 @@ struct genius_bus::state {
   std::vector<std::uint8_t> scratch;
 
   // ---- sources ----
-  source& src(std::int64_t id) { return sources[static_cast<std::size_t>(id - source_base)]; }
+  source& src(std::int64_t id) { return *sources[static_cast<std::size_t>(id - source_base)]; }
   // Turns and transmissions are recorded while the scans counted so far are within config.record_scans.
   bool recording() const { return config.record_turns && result.scan_ends_us.size() <= config.record_scans; }
 
@@ -306,10 +305,10 @@ struct genius_bus::state {
       s.hi = std::min(s.cut, s.start + static_cast<std::int64_t>(s.words.size()) * character);
     }
     s.zero_end = s.hi;
-    sources.push_back(std::move(s));
+    sources.push_back(std::make_unique<source>(std::move(s)));
     const std::int64_t id = source_base + static_cast<std::int64_t>(sources.size()) - 1;
-    sources.back().id = id;
-    active.push_back(&sources.back());
+    sources.back()->id = id;
+    active.push_back(sources.back().get());
     return id;
   }
 
@@ -452,7 +451,7 @@ struct genius_bus::state {
   std::int64_t run_edge(std::size_t r, std::int64_t id, bool continuing) const {
     if (id < source_base || id - source_base >= static_cast<std::int64_t>(sources.size())) return never;
     const receiver& rc = receivers[r];
-    const source& s = sources[static_cast<std::size_t>(id - source_base)];
+    const source& s = *sources[static_cast<std::size_t>(id - source_base)];
     if (s.device < 0) return never;
     const std::int64_t rel = rc.idle_since - s.prop[r] - s.start;
     if (rel >= 0 && !continuing) return never;
@@ -536,14 +535,16 @@ struct genius_bus::state {
     active.erase(std::remove_if(active.begin(), active.end(),
                                 [&](const source* s) { return !s->open && source_end(*s, character) < horizon; }),
                  active.end());
-    while (sources.size() > 1) {
-      const source& f = sources.front();
+    std::size_t drop = 0;
+    for (; sources.size() - drop > 1; ++drop) {
+      const source& f = *sources[drop];
+      const std::int64_t id = source_base + static_cast<std::int64_t>(drop);
       if (f.open || source_end(f, character) >= horizon) break;
-      if (std::find(recent.begin(), recent.end(), source_base) != recent.end()) break;
-      if (oldest_check < loss_checks.size() && source_base >= loss_checks[oldest_check]) break;
-      sources.pop_front();
-      ++source_base;
+      if (std::find(recent.begin(), recent.end(), id) != recent.end()) break;
+      if (oldest_check < loss_checks.size() && id >= loss_checks[oldest_check]) break;
     }
+    sources.erase(sources.begin(), sources.begin() + static_cast<std::ptrdiff_t>(drop));
+    source_base += static_cast<std::int64_t>(drop);
     cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [&](const cut_window& c) { return c.to < horizon; }),
                cuts.end());
   }
@@ -649,10 +650,7 @@ struct genius_bus::state {
     s.zero_end = s.hi;  // until the Stop (below)
     const genius::character c = genius::from_uart_word(static_cast<std::uint16_t>(wire >> 1));
     const genius::control_kind kind = c.control ? genius::read_control(c.byte).kind : genius::control_kind::unknown;
-    s.ends.push_back((wire & genius::stop_bit_mask) == 0 || kind == genius::control_kind::stop ||
-                             kind == genius::control_kind::end_of_block
-                         ? 1
-                         : 0);
+    s.stops.push_back((wire & genius::stop_bit_mask) == 0 || kind == genius::control_kind::stop ? 1 : 0);
     if (kind == genius::control_kind::stop) {
       s.stop_start = char_start;
       s.zero_end = s.hi - bit;  // nothing follows a Stop: after its stop bit the run is quiet
@@ -880,23 +878,27 @@ struct genius_bus::state {
     const genius::control_kind kind = c.control ? genius::read_control(c.byte).kind : genius::control_kind::unknown;
     const bool stop = framed && kind == genius::control_kind::stop;
     const bool was_sending = st.dev->sending();
-    // Only an End of block or a Stop can fail a CRC-6 check or end a transmission heard: the counters are
-    // compared around those alone (a data character is most of the words).
-    const bool checked = framed && c.control && (kind == genius::control_kind::stop || kind == genius::control_kind::end_of_block);
-    // (Nothing else changes those two counters: `seen` holds them as they were after the last such word.)
+    const bool was_open = st.dev->in_transmission();
     const genius::link_request request =
         framed ? st.dev->receive(static_cast<std::uint16_t>(wire >> 1)) : st.dev->framing_error();
-    if (checked) {
-      const genius::device_counters after = st.dev->counters();
-      if (after.crc_errors != st.seen.crc_errors) note_event(rc.who, false);
-      if (after.transmissions_heard != st.seen.transmissions_heard) {
-        if (source* s = origin_of(i, rc)) s->heard_by |= 1u << i;
-      }
-      st.seen = after;
-    }
+    if (was_open && !st.dev->in_transmission()) ended(i, rc);
     if (stop && !was_sending) heard_stop(i, rc, request, end);
     if (was_sending && !st.dev->sending()) refresh_turn_data(st);  // its transmission is over (whole or cut)
     return request;
+  }
+
+  // The transmission device `i` was receiving ended at the word just received (rc.who's): a CRC-6 check
+  // failed (a corruption, counted once for all the devices that check it), or it was heard whole. Only such an
+  // end changes those two counters (the other ends are errors, or silence): `seen` holds them as they were
+  // after the last one.
+  void ended(std::size_t i, const receiver& rc) {
+    station_state& st = stations[i];
+    const genius::device_counters after = st.dev->counters();
+    if (after.crc_errors != st.seen.crc_errors) note_event(rc.who, false);
+    if (after.transmissions_heard != st.seen.transmissions_heard) {
+      if (source* s = origin_of(i, rc)) s->heard_by |= 1u << i;
+    }
+    st.seen = after;
   }
 
   void start_check(std::size_t r) {
@@ -1034,7 +1036,7 @@ struct genius_bus::state {
       }
     }
     rc.follow = s.id;
-    ++sources[static_cast<std::size_t>(s.id - source_base)].followed;
+    ++src(s.id).followed;
     rc.next = k;
     ++rc.generation;
     rc.scheduled = never;
@@ -1075,23 +1077,29 @@ struct genius_bus::state {
     const std::size_t first = rc.next;
     const bool monitor = static_cast<bool>(rc.on_word);
     const auto i = static_cast<std::size_t>(device);
-    // A character that is neither an End of block nor a Stop (a device's words are framed) to a device that
-    // is listening and has no turn on record takes the device's two calls alone: device_start_bit and
-    // device_word would do nothing more (no CRC-6 check, no end of a transmission, no turn to record; a device
+    // A character but a Stop (a device's words are framed) to a device that is listening and has no turn on
+    // record takes the device's two calls alone, and ended() if it ended what the device was receiving:
+    // device_start_bit and device_word would do nothing more (no Stop's turn or deliveries to record; a device
     // that listens does not begin to send on a character). Only the full way can change either condition.
     const auto plain = [&]() { return dev != nullptr && stations[i].turn_stop < 0 && !dev->sending(); };
     bool fast = plain();
     const std::uint16_t* const words = s.words.data();
-    const std::uint8_t* const ends = s.ends.data();
+    const std::uint8_t* const stops = s.stops.data();
     std::size_t next = rc.next;
     for (; next < last; ++next) {
       const std::int64_t edge = start_here + static_cast<std::int64_t>(next) * character;
       const std::uint16_t wire = words[next];
       if (monitor) rc.on_word(us_of_ps(edge), wire);
       if (dev == nullptr) continue;
-      if (fast && ends[next] == 0) {
+      if (fast && stops[next] == 0) {
         take(dev->start_bit(), edge + detection);
+        const bool was_open = dev->in_transmission();
         take(dev->receive(static_cast<std::uint16_t>(wire >> 1)), edge + character);
+        if (was_open && !dev->in_transmission()) {
+          rc.edge = edge;
+          rc.who = s.id;
+          ended(i, rc);
+        }
         continue;
       }
       rc.edge = edge;
