@@ -95,7 +95,7 @@ struct source {
   std::int64_t farthest = 0;       // the largest of them
   std::int64_t start = 0;
   std::vector<std::uint16_t> words;  // 11-bit wire words, back to back from `start`
-  std::vector<std::uint8_t> stops;   // per word: 1 for a Stop (or a word not framed)
+  std::vector<std::uint8_t> stops;   // per word: stop, unframed or other (below)
   std::vector<std::pair<std::int64_t, std::int64_t>> zeros;  // noise: 0 during [a, b)
   std::int64_t cut = never;  // quiet (1) from here on: power off
   std::int64_t lo = 0;       // the source may be 0 only in [lo, hi) of its own time
@@ -123,6 +123,10 @@ struct source {
   std::uint32_t heard_by = 0;  // stations that heard it whole (bit per station index)
   std::uint32_t checked = 0;   // stations whose loss check is done
 };
+
+// source::stops: what a word is, for a follower (anything else: 0).
+constexpr std::uint8_t stop_word = 1;      // a Stop
+constexpr std::uint8_t unframed_word = 2;  // not framed (a framing error, the full way)
 
 struct cut_window {
   double position_ft;
@@ -650,7 +654,7 @@ struct genius_bus::state {
     s.zero_end = s.hi;  // until the Stop (below)
     const genius::character c = genius::from_uart_word(static_cast<std::uint16_t>(wire >> 1));
     const genius::control_kind kind = c.control ? genius::read_control(c.byte).kind : genius::control_kind::unknown;
-    s.stops.push_back((wire & genius::stop_bit_mask) == 0 || kind == genius::control_kind::stop ? 1 : 0);
+    s.stops.push_back((wire & genius::stop_bit_mask) == 0 ? unframed_word : kind == genius::control_kind::stop ? stop_word : 0);
     if (kind == genius::control_kind::stop) {
       s.stop_start = char_start;
       s.zero_end = s.hi - bit;  // nothing follows a Stop: after its stop bit the run is quiet
@@ -1077,28 +1081,37 @@ struct genius_bus::state {
     const std::size_t first = rc.next;
     const bool monitor = static_cast<bool>(rc.on_word);
     const auto i = static_cast<std::size_t>(device);
-    // A character but a Stop (a device's words are framed) to a device that is listening and has no turn on
-    // record takes the device's two calls alone, and ended() if it ended what the device was receiving:
-    // device_start_bit and device_word would do nothing more (no Stop's turn or deliveries to record; a device
-    // that listens does not begin to send on a character). Only the full way can change either condition.
+    // A character (a device's words are framed) to a device that is listening and has no turn on record takes
+    // the device's two calls, ended() if it ended what the device was receiving, and heard_stop() for a Stop:
+    // device_start_bit and device_word would do nothing more (a device that listens does not begin to send on
+    // a character). Only a Stop can change either condition.
     const auto plain = [&]() { return dev != nullptr && stations[i].turn_stop < 0 && !dev->sending(); };
     bool fast = plain();
     const std::uint16_t* const words = s.words.data();
     const std::uint8_t* const stops = s.stops.data();
     std::size_t next = rc.next;
+    if (dev == nullptr) {  // a monitor
+      for (; monitor && next < last; ++next) rc.on_word(us_of_ps(start_here + static_cast<std::int64_t>(next) * character), words[next]);
+      next = std::max(next, last);
+    }
     for (; next < last; ++next) {
       const std::int64_t edge = start_here + static_cast<std::int64_t>(next) * character;
       const std::uint16_t wire = words[next];
-      if (monitor) rc.on_word(us_of_ps(edge), wire);
-      if (dev == nullptr) continue;
-      if (fast && stops[next] == 0) {
+      if (fast && stops[next] != unframed_word) {
         take(dev->start_bit(), edge + detection);
         const bool was_open = dev->in_transmission();
-        take(dev->receive(static_cast<std::uint16_t>(wire >> 1)), edge + character);
+        const genius::link_request q = dev->receive(static_cast<std::uint16_t>(wire >> 1));
+        take(q, edge + character);
         if (was_open && !dev->in_transmission()) {
           rc.edge = edge;
           rc.who = s.id;
           ended(i, rc);
+        }
+        if (stops[next] == stop_word) {  // device_word's Stop heard, the rest of it being nothing here
+          rc.edge = edge;
+          rc.who = s.id;
+          heard_stop(i, rc, q, edge + character);
+          fast = plain();
         }
         continue;
       }
@@ -1122,6 +1135,18 @@ struct genius_bus::state {
         st.timer_entry = std::max(due, now);
         schedule(st.timer_entry, event_kind::timer, static_cast<std::uint32_t>(device));
       }
+    }
+  }
+
+  // Follower `r`'s catch-up at the Stop's delivery (`now`): it takes the run's characters, and listens again.
+  void caught_up(std::size_t r) {
+    receiver& rc = receivers[r];
+    catch_up(r, now);
+    if (rc.next >= src(rc.follow).words.size()) {
+      --src(rc.follow).followed;
+      rc.follow = -1;
+      followers.erase(std::find(followers.begin(), followers.end(), r));
+      look(r);
     }
   }
 
@@ -1520,13 +1545,7 @@ genius_bus_result genius_bus::run() {
       case event_kind::catch_up: {
         receiver& rc = s.receivers[e.who];
         if (e.generation != rc.generation || rc.follow < 0) break;
-        s.catch_up(e.who, s.now);
-        if (rc.next >= s.src(rc.follow).words.size()) {
-          --s.src(rc.follow).followed;
-          rc.follow = -1;
-          s.followers.erase(std::find(s.followers.begin(), s.followers.end(), e.who));
-          s.look(e.who);
-        }
+        s.caught_up(e.who);
         break;
       }
       case event_kind::timer: {
