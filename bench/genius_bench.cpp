@@ -1,8 +1,6 @@
-// Simulator speed: a Genius bus of real device nodes (src/sim/genius_bus.hpp) at 153.6 kbit/s, a bus
-// controller sending every device its outputs as blocks once a scan, every device broadcasting its inputs at
-// its turn, new data every turn; the stations spread over 2000 ft, so that every start bit and character
-// reaches each device at its own time. Reported: simulated bit times per second (items: bus time / one bit
-// time), and device-bit steps per second (stations x bit times).
+// Simulator speed: a Genius bus of real device nodes (src/sim/genius_bus.hpp), laid out as genius_layout.hpp
+// says. Reported: simulated bit times per second (items: bus time / one bit time), and device-bit steps per
+// second (stations x bit times).
 #include <benchmark/benchmark.h>
 
 #include <cstddef>
@@ -10,30 +8,14 @@
 #include <vector>
 
 #include "genius_bus.hpp"
+#include "genius_layout.hpp"
 
 namespace {
 
-std::vector<trionet::host::genius_station> layout(std::size_t devices) {
-  std::vector<trionet::host::genius_station> stations;
-  stations.push_back({31, 0.0, 0, 0});  // the bus controller: it only sends outputs (blocks)
-  for (std::size_t i = 0; i < devices; ++i) {
-    trionet::host::genius_station st;
-    st.sba = static_cast<std::uint8_t>(i);
-    st.position_ft = 2000.0 * static_cast<double>(i + 1) / static_cast<double>(devices);
-    st.input_bytes = static_cast<std::uint16_t>(2 + i % 7);
-    st.output_bytes = static_cast<std::uint16_t>(1 + i % 4);
-    stations.push_back(st);
-  }
-  return stations;
-}
-
 void BM_genius_simulator(benchmark::State& state) {
   const std::size_t devices = static_cast<std::size_t>(state.range(0));
-  const auto stations = layout(devices);
-  trionet::host::genius_bus_config config;
-  config.controller = 31;
-  config.scans = 50;
-  config.record_turns = false;
+  const auto stations = trionet::bench::genius_layout(devices);
+  const trionet::host::genius_bus_config config = trionet::bench::genius_config(50);
   if (!trionet::host::check_genius_bus(stations, config).empty()) {
     state.SkipWithError("the layout is refused");
     return;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "boost_crc.hpp"
+#include "genius_layout.hpp"
 #include "simulated_ring.hpp"
 #include "trionet/can/frame.hpp"
 #include "trionet/can/node.hpp"
@@ -200,6 +201,12 @@ extern "C" {
 [[gnu::noinline]] void trionet_measured_simulator(tb::simulated_ring& r, std::uint64_t byte_times) noexcept {
   TRIONET_OPAQUE();
   r.run(byte_times);
+}
+
+[[gnu::noinline]] void trionet_measured_genius_bus(trionet::host::genius_bus& bus,
+                                                  trionet::host::genius_bus_result& result) {
+  TRIONET_OPAQUE();
+  result = bus.run();
 }
 
 }  // extern "C"
@@ -396,6 +403,18 @@ std::uint64_t simulator(std::size_t repeats) {
   return repeats * byte_times * tb::simulated_ring::nodes;
 }
 
+// The Genius bus simulator (genius_layout.hpp, 30 devices and the controller) for 10 scans per repeat: per
+// simulated bit time.
+std::uint64_t genius_bus_30_devices(std::size_t repeats) {
+  const auto stations = tb::genius_layout(30);
+  trionet::host::genius_bus bus(stations, tb::genius_config(static_cast<std::uint32_t>(10 * repeats)));
+  trionet::host::genius_bus_result result;
+  trionet_measured_genius_bus(bus, result);
+  if (!result.complete || result.collisions != 0 || result.wrong_deliveries != 0)
+    fail("the simulated Genius bus did not complete its scans cleanly");
+  return static_cast<std::uint64_t>(result.end_us * 1e6 / static_cast<double>(bus.bit_ps()));
+}
+
 constexpr std::size_t crc_short = 12;
 constexpr std::size_t crc_short_count = 256;
 constexpr std::size_t crc_long = 4096;
@@ -444,6 +463,7 @@ const workload workloads[] = {
     {"can_decode", "frame", can_decode},
     {"can_node_receive", "frame", can_node_receive},
     {"simulator_4_nodes", "node-byte step", simulator},
+    {"genius_bus_30_devices", "bit time", genius_bus_30_devices},
 };
 
 }  // namespace

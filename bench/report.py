@@ -247,7 +247,8 @@ def main():
         rows.append((f"Simulator: Genius bus of {devices} devices and a bus controller, 153.6 kbaud, new data every turn "
                      "(`BM_genius_simulator`)",
                      f"{fmt(rate, 1)} M bit times/s ({fmt(g['device_bit_steps'] / 1e6, 0)} M device-bit steps/s)",
-                     "-", ">= 10 M bit times/s", verdict))
+                     f"{fmt(ipu('genius_bus_30_devices'))} /bit time" if devices == 30 else "-",
+                     ">= 10 M bit times/s", verdict))
         console.append((f"Genius simulator, {devices} devices + controller", f"{fmt(rate, 1)} M bit times/s (median)",
                         ">= 10 M", verdict))
 
