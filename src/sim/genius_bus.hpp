@@ -79,8 +79,9 @@ struct genius_bus_config {
   /// With record_turns: the turns and transmissions are kept for this many scans from the start only (the scan
   /// times are kept for every scan), so that a long run's memory does not grow with its turns.
   std::uint32_t record_scans = 0xFFFFFFFFU;
-  /// A listener alone with one transmission takes its characters in a batch (the same calls at the same
-  /// simulated times; genius_bus.cpp, "following"). Off: an event per start bit and per word, always.
+  /// A listener alone with one transmission takes its characters in a batch, and a sender that every other
+  /// device follows reads its own back ahead (the same calls at the same simulated times; genius_bus.cpp,
+  /// "following" and read_back_ahead). Off: an event per start bit and per word, always.
   bool follow = true;
   /// Check every whole transmission against every device that listened while it passed (powered throughout,
   /// not cut off from the sender): it heard it, or counted an error (genius_bus_result::losses_*).
@@ -159,7 +160,7 @@ struct genius_bus_result {
   std::uint64_t losses_checked = 0;    ///< check_losses: (transmission, listener) pairs checked
   std::uint64_t losses_uncounted = 0;  ///< of which the listener neither heard it nor counted an error
   std::vector<std::string> loss_details;  ///< the first few uncounted losses, described
-  double end_us = 0;          ///< simulated time at the end
+  double end_us = 0;          ///< simulated time at the end (the time bound, if the run stopped there)
   std::uint64_t events = 0;   ///< simulation events processed
   bool complete = false;      ///< all `scans` scans completed (else the time bound ended the run)
 };
