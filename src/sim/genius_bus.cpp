@@ -39,7 +39,6 @@ struct record {
   genius::delivery_kind kind;
   std::uint8_t sender;
   std::vector<std::uint8_t> data;
-  bool operator==(const record& o) const { return kind == o.kind && sender == o.sender && data == o.data; }
 };
 
 // What a whole transmission carried, as the library's reference parser reads its words.
