@@ -53,6 +53,20 @@ struct carried {
     std::vector<std::uint8_t> data;
   };
   std::vector<part> parts;
+  std::uint32_t blocks_for = 0;  // bit d: a block for SBA d
+
+  // The records device `d` must deliver (as `for_device` gives them): for a device no block or directed data is
+  // for, the records every such device delivers, worked out once (most devices of a scan are such devices);
+  // else worked out into `scratch`.
+  const std::vector<record>& expected_by(std::uint8_t d, std::vector<record>& scratch, std::size_t& count) {
+    if (((blocks_for >> (d & 31u)) & 1u) != 0 || (!broadcast && destination == d) || sender == d) {
+      count = for_device(d, scratch);
+      return scratch;
+    }
+    if (common_count < 0) common_count = static_cast<int>(for_device(d, common));
+    count = static_cast<std::size_t>(common_count);
+    return common;
+  }
 
   // The records device `d` must deliver for it (as device.hpp groups them), into `out` (reused); how many.
   std::size_t for_device(std::uint8_t d, std::vector<record>& out) const {
@@ -84,6 +98,10 @@ struct carried {
     }
     return count;
   }
+
+ private:
+  std::vector<record> common;  // expected_by's records of a device no block or directed data is for
+  int common_count = -1;       // how many (-1: not worked out yet)
 };
 
 // A signal on the line: a device's run of back-to-back characters, or a noise burst.
@@ -755,7 +773,10 @@ struct genius_bus::state {
         content.broadcast = t.broadcast;
         content.destination = t.destination;
         for (const genius::segment& seg : t.segments)
+        {
           content.parts.push_back({seg.block, seg.destination, std::vector<std::uint8_t>(seg.data.begin(), seg.data.end())});
+          if (seg.block) content.blocks_for |= std::uint32_t{1} << (seg.destination & 31u);
+        }
       }
     }
     s.content = std::move(content);
@@ -1228,11 +1249,13 @@ struct genius_bus::state {
     }
     // Deliveries: what the program side reads now, against what the sender put on the line (the records it
     // must deliver worked out at the first delivery: most Stops deliver something).
-    std::vector<record>& expected = expected_scratch;
+    const std::vector<record>* expected_records = &expected_scratch;
     std::size_t expected_count = 0;
     std::size_t count = 0;
     const auto take = [&](const genius::delivery_result& d, byte_view data) {
-      if (count == 0 && origin != nullptr) expected_count = origin->content.for_device(st.spec.sba, expected);
+      if (count == 0 && origin != nullptr)
+        expected_records = &origin->content.expected_by(st.spec.sba, expected_scratch, expected_count);
+      const std::vector<record>& expected = *expected_records;
       const std::size_t k = count++;
       ++result.deliveries;
       ++st.report.deliveries_checked;
