@@ -141,6 +141,53 @@ struct source {
   std::uint32_t checked = 0;   // stations whose loss check is done
 };
 
+// The receivers following a run, in the order they began to: a list through the receivers' indices, so that
+// one leaves it in a step (a catch-up at every Stop takes each follower out).
+class follower_list {
+ public:
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  bool empty() const { return count_ == 0; }
+  std::size_t size() const { return count_; }
+  std::size_t front() const { return head_; }
+  std::size_t back() const { return tail_; }
+  std::size_t next(std::size_t r) const { return links_[r].next; }
+  void push_back(std::size_t r) {
+    if (r >= links_.size()) links_.resize(r + 1);
+    links_[r] = {tail_, none, true};
+    (tail_ == none ? head_ : links_[tail_].next) = r;
+    tail_ = r;
+    ++count_;
+  }
+  void erase(std::size_t r) {
+    link& l = links_[r];
+    (l.prev == none ? head_ : links_[l.prev].next) = l.next;
+    (l.next == none ? tail_ : links_[l.next].prev) = l.prev;
+    l = {none, none, false};
+    --count_;
+  }
+  // Calls `f(r)` for each receiver from the last to the first while `more()`; `f` may take `r` out of the list
+  // and put it back at its end (it is not visited again).
+  template <class More, class F>
+  void each_backwards(More more, F f) {
+    for (std::size_t r = tail_; r != none && more();) {
+      const std::size_t before = links_[r].prev;
+      f(r);
+      r = before;
+    }
+  }
+
+ private:
+  struct link {
+    std::size_t prev = none;
+    std::size_t next = none;
+    bool in = false;
+  };
+  std::vector<link> links_;
+  std::size_t head_ = none;
+  std::size_t tail_ = none;
+  std::size_t count_ = 0;
+};
+
 // source::stops: what a word is, for a follower (anything else: 0).
 constexpr std::uint8_t stop_word = 1;      // a Stop
 constexpr std::uint8_t unframed_word = 2;  // not framed (a framing error, the full way)
@@ -295,7 +342,7 @@ struct genius_bus::state {
   std::vector<std::int64_t> recent;  // finished transmissions that a later one may overlap
   bool done = false;
   std::unique_ptr<genius::transmission_parser<8192, 64>> parser;  // reads what each transmission carried
-  std::vector<std::size_t> followers;
+  follower_list followers;
   std::vector<record> expected_scratch;
   std::vector<std::int64_t> loss_checks;  // sources to check (check_losses)
   std::vector<unsigned> loss_attempts;
@@ -522,9 +569,10 @@ struct genius_bus::state {
   // A new signal that reaches receiver `r` at `arrival` or later: look again if it may come first.
   void notify(std::int64_t id) {
     const source& s = src(id);
-    for (std::size_t f = followers.size(); s.followed != followers.size() && f-- > 0;) {
-      if (f < followers.size() && receivers[followers[f]].follow != id) unfollow(followers[f]);
-    }
+    followers.each_backwards([&] { return s.followed != followers.size(); },
+                             [&](std::size_t r) {
+                               if (receivers[r].follow != id) unfollow(r);
+                             });
     // Every other receiver follows it, and the sender's own is reading back a character: no one to tell.
     if (s.device >= 0 && s.followed + 1 == receivers.size() && receivers[static_cast<std::size_t>(s.device)].receiving)
       return;
@@ -676,7 +724,7 @@ struct genius_bus::state {
       s.stop_start = char_start;
       s.zero_end = s.hi - bit;  // nothing follows a Stop: after its stop bit the run is quiet
       note_stop(id);
-      for (const std::size_t r : followers) {
+      for (std::size_t r = followers.front(); r != follower_list::none; r = followers.next(r)) {
         if (receivers[r].follow == id) schedule_catch_up(r);
       }
     }
@@ -794,9 +842,10 @@ struct genius_bus::state {
     if (!s.open) return;
     s.open = false;
     if (s.cut == never) s.zero_end = s.hi - bit;  // whole characters: the last bit is a stop bit
-    for (std::size_t f = followers.size(); f-- > 0;) {
-      if (f < followers.size() && receivers[followers[f]].follow == id) unfollow(followers[f]);
-    }
+    followers.each_backwards([] { return true; },
+                             [&](std::size_t r) {
+                               if (receivers[r].follow == id) unfollow(r);
+                             });
     s.end = source_end(s, character);
     const station_state& st = stations[static_cast<std::size_t>(s.device)];
     s.whole = !s.words.empty() && s.stop_start != never &&
@@ -1165,7 +1214,7 @@ struct genius_bus::state {
     if (rc.next >= src(rc.follow).words.size()) {
       --src(rc.follow).followed;
       rc.follow = -1;
-      followers.erase(std::find(followers.begin(), followers.end(), r));
+      followers.erase(r);
       look(r);
     }
   }
@@ -1177,7 +1226,7 @@ struct genius_bus::state {
     source& s = src(rc.follow);
     --s.followed;
     rc.follow = -1;
-    followers.erase(std::find(followers.begin(), followers.end(), r));
+    followers.erase(r);
     if (rc.next < s.words.size()) {
       const std::int64_t edge = s.start + static_cast<std::int64_t>(rc.next) * character + s.prop[r];
       if (edge - s.prop[r] < s.hi && edge + detection <= now) {
