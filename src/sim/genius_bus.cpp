@@ -218,11 +218,9 @@ struct station_state {
   std::unique_ptr<sim_controller> controller;
   sim_device* dev = nullptr;
   bool powered = true;
-  // The device's timer: when it expires (never: not armed). One heap entry at most, at `timer_entry`: an
-  // entry that finds the timer moved later is put back at the new time (a gap timer moves on at every
-  // character), so a re-armed timer costs no heap operation.
+  // The device's timer: when it expires (never: not armed). The devices' timers share one heap entry
+  // (state::timers_entry), so a timer re-armed or cancelled costs no heap operation.
   std::int64_t timer_due = never;
-  std::int64_t timer_entry = never;
   std::int64_t tx_source = -1;  // its open source
   std::uint64_t turn_number = 0;
   double stop_after_us = -1;  // a pending `stop` fault
@@ -245,7 +243,7 @@ enum class event_kind : std::uint8_t {
   start_check,   // `who`: receiver
   deliver,       // `who`: receiver
   catch_up,      // `who`: a following receiver
-  timer,         // `who`: station
+  timer,         // the devices' timers (state::timers_entry)
   tx_end,        // `who`: station
   loss_check,    // `generation`: index into the loss checks
 };
@@ -659,14 +657,38 @@ struct genius_bus::state {
 
   // ---- the link driver of each device ----
 
+  // The devices' timers: one heap entry, at `timers_entry`, no later than the earliest timer due of a powered
+  // device that is not following a run (a follower's timer cannot expire before its next start bit: see
+  // follow_from; catching up arms it again). An entry found earlier than `timers_entry` was overtaken.
+  std::int64_t timers_entry = never;
+  void timer_armed(std::int64_t due) {
+    if (due >= timers_entry) return;
+    timers_entry = due;
+    schedule(due, event_kind::timer, 0);
+  }
+  // The timers' entry at `now`: every timer due by now expires, in station order; then the entry moves on to
+  // the earliest timer left.
+  void timers_due() {
+    timers_entry = never;
+    for (std::size_t i = 0; i < stations.size(); ++i) {
+      station_state& st = stations[i];
+      if (st.timer_due > now || !st.powered || receivers[i].follow >= 0) continue;
+      st.timer_due = never;
+      timer(i);
+    }
+    std::int64_t next = never;
+    for (std::size_t i = 0; i < stations.size(); ++i) {
+      const station_state& st = stations[i];
+      if (st.powered && receivers[i].follow < 0) next = std::min(next, st.timer_due);
+    }
+    if (next != never) timer_armed(std::max(next, now));
+  }
+
   void apply(std::size_t i, genius::link_request request, std::int64_t base) {
     station_state& st = stations[i];
     if (request.timer == genius::timer_action::arm) {
       st.timer_due = base + static_cast<std::int64_t>(request.ticks) * tick;
-      if (st.timer_due < st.timer_entry) {
-        st.timer_entry = st.timer_due;
-        schedule(st.timer_due, event_kind::timer, static_cast<std::uint32_t>(i));
-      }
+      timer_armed(st.timer_due);
     } else if (request.timer == genius::timer_action::cancel) {
       st.timer_due = never;
     }
@@ -1200,10 +1222,7 @@ struct genius_bus::state {
     if (device >= 0) {
       station_state& st = stations[static_cast<std::size_t>(device)];
       st.timer_due = due;
-      if (due != never && due < st.timer_entry) {
-        st.timer_entry = std::max(due, now);
-        schedule(st.timer_entry, event_kind::timer, static_cast<std::uint32_t>(device));
-      }
+      if (due != never) timer_armed(std::max(due, now));
     }
   }
 
@@ -1619,21 +1638,9 @@ genius_bus_result genius_bus::run() {
         s.caught_up(e.who);
         break;
       }
-      case event_kind::timer: {
-        station_state& st = s.stations[e.who];
-        if (e.time() != st.timer_entry) break;  // an older entry, overtaken by an earlier one
-        st.timer_entry = never;
-        // A follower's timer cannot expire before its next start bit (see follow_from); catching up sets it.
-        if (st.timer_due == never || !st.powered || s.receivers[e.who].follow >= 0) break;
-        if (st.timer_due > s.now) {  // re-armed later: one entry, at the new time
-          st.timer_entry = st.timer_due;
-          s.schedule(st.timer_due, event_kind::timer, e.who);
-          break;
-        }
-        st.timer_due = never;
-        s.timer(e.who);
+      case event_kind::timer:
+        if (e.time() == s.timers_entry) s.timers_due();  // (else an older entry, overtaken by an earlier one)
         break;
-      }
       case event_kind::tx_end:
         s.tx_end(e.who);
         break;
