@@ -358,10 +358,22 @@ struct genius_bus::state {
   // Turns and transmissions are recorded while the scans counted so far are within config.record_scans.
   bool recording() const { return config.record_turns && result.scan_ends_us.size() <= config.record_scans; }
 
+  // A device's propagation times to each receiver, worked out at its first transmission (positions do not move).
+  std::vector<std::vector<std::int64_t>> device_prop;
   std::int64_t add_source(source s) {
-    s.prop.resize(receivers.size());
-    for (std::size_t r = 0; r < receivers.size(); ++r)
-      s.prop[r] = std::llround(std::fabs(s.position_ft - receivers[r].position_ft) * ps_per_ft);
+    std::vector<std::int64_t>* known = nullptr;
+    if (s.device >= 0) {
+      if (device_prop.size() <= static_cast<std::size_t>(s.device)) device_prop.resize(static_cast<std::size_t>(s.device) + 1);
+      known = &device_prop[static_cast<std::size_t>(s.device)];
+    }
+    if (known != nullptr && known->size() == receivers.size()) {
+      s.prop = *known;
+    } else {
+      s.prop.resize(receivers.size());
+      for (std::size_t r = 0; r < receivers.size(); ++r)
+        s.prop[r] = std::llround(std::fabs(s.position_ft - receivers[r].position_ft) * ps_per_ft);
+      if (known != nullptr) *known = s.prop;
+    }
     s.farthest = s.prop.empty() ? 0 : *std::max_element(s.prop.begin(), s.prop.end());
     if (s.device < 0) {
       s.lo = s.zeros.empty() ? 0 : s.zeros.front().first;
