@@ -323,6 +323,7 @@ struct genius_bus::state {
   std::vector<station_state> stations;
   std::vector<receiver> receivers;  // stations first, then monitors
   std::vector<std::unique_ptr<source>> sources;
+  std::vector<std::unique_ptr<source>> spare_sources;  // pruned, for new sources to reuse their buffers
   std::int64_t source_base = 0;     // id of sources.front()
   std::vector<source*> active;  // sources that may still be heard
   std::vector<cut_window> cuts;
@@ -360,14 +361,35 @@ struct genius_bus::state {
 
   // A device's propagation times to each receiver, worked out at its first transmission (positions do not move).
   std::vector<std::vector<std::int64_t>> device_prop;
-  std::int64_t add_source(source s) {
+  // `s` in a source object: a pruned one where there is one, whose buffers (words, stops, propagation times)
+  // keep their capacity, so that a transmission's characters are appended without allocating.
+  std::unique_ptr<source> new_source(source&& s) {
+    if (spare_sources.empty()) return std::make_unique<source>(std::move(s));
+    std::unique_ptr<source> p = std::move(spare_sources.back());
+    spare_sources.pop_back();
+    std::vector<std::uint16_t> words = std::move(p->words);
+    std::vector<std::uint8_t> stops = std::move(p->stops);
+    std::vector<std::int64_t> prop = std::move(p->prop);
+    *p = std::move(s);
+    words.assign(p->words.begin(), p->words.end());
+    stops.assign(p->stops.begin(), p->stops.end());
+    prop.assign(p->prop.begin(), p->prop.end());
+    p->words.swap(words);
+    p->stops.swap(stops);
+    p->prop.swap(prop);
+    return p;
+  }
+
+  std::int64_t add_source(source from) {
+    std::unique_ptr<source> made = new_source(std::move(from));
+    source& s = *made;
     std::vector<std::int64_t>* known = nullptr;
     if (s.device >= 0) {
       if (device_prop.size() <= static_cast<std::size_t>(s.device)) device_prop.resize(static_cast<std::size_t>(s.device) + 1);
       known = &device_prop[static_cast<std::size_t>(s.device)];
     }
     if (known != nullptr && known->size() == receivers.size()) {
-      s.prop = *known;
+      s.prop.assign(known->begin(), known->end());
     } else {
       s.prop.resize(receivers.size());
       for (std::size_t r = 0; r < receivers.size(); ++r)
@@ -383,7 +405,7 @@ struct genius_bus::state {
       s.hi = std::min(s.cut, s.start + static_cast<std::int64_t>(s.words.size()) * character);
     }
     s.zero_end = s.hi;
-    sources.push_back(std::make_unique<source>(std::move(s)));
+    sources.push_back(std::move(made));
     const std::int64_t id = source_base + static_cast<std::int64_t>(sources.size()) - 1;
     sources.back()->id = id;
     active.push_back(sources.back().get());
@@ -622,6 +644,7 @@ struct genius_bus::state {
       if (std::find(recent.begin(), recent.end(), id) != recent.end()) break;
       if (oldest_check < loss_checks.size() && id >= loss_checks[oldest_check]) break;
     }
+    for (std::size_t k = 0; k < drop && spare_sources.size() < 64; ++k) spare_sources.push_back(std::move(sources[k]));
     sources.erase(sources.begin(), sources.begin() + static_cast<std::ptrdiff_t>(drop));
     source_base += static_cast<std::int64_t>(drop);
     cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [&](const cut_window& c) { return c.to < horizon; }),
