@@ -153,7 +153,7 @@ class follower_list {
   std::size_t next(std::size_t r) const { return links_[r].next; }
   void push_back(std::size_t r) {
     if (r >= links_.size()) links_.resize(r + 1);
-    links_[r] = {tail_, none, true};
+    links_[r] = {tail_, none};
     (tail_ == none ? head_ : links_[tail_].next) = r;
     tail_ = r;
     ++count_;
@@ -162,7 +162,7 @@ class follower_list {
     link& l = links_[r];
     (l.prev == none ? head_ : links_[l.prev].next) = l.next;
     (l.next == none ? tail_ : links_[l.next].prev) = l.prev;
-    l = {none, none, false};
+    l = {none, none};
     --count_;
   }
   // Calls `f(r)` for each receiver from the last to the first while `more()`; `f` may take `r` out of the list
@@ -180,7 +180,6 @@ class follower_list {
   struct link {
     std::size_t prev = none;
     std::size_t next = none;
-    bool in = false;
   };
   std::vector<link> links_;
   std::size_t head_ = none;
@@ -694,7 +693,7 @@ struct genius_bus::state {
 
   // The devices' timers: one heap entry, at `timers_entry`, no later than the earliest timer due of a powered
   // device that is not following a run (a follower's timer cannot expire before its next start bit: see
-  // follow_from; catching up arms it again). An entry found earlier than `timers_entry` was overtaken.
+  // follow_from; catching up arms it again). An entry at another time than `timers_entry` was overtaken.
   std::int64_t timers_entry = never;
   void timer_armed(std::int64_t due) {
     if (due >= timers_entry) return;
