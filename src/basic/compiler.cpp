@@ -695,6 +695,9 @@ class compiler {
           return fail(compile_status::syntax_error, where,
                       "a label must start its line ('" + shown(target.raw) + ":' follows another statement)");
         }
+        if (target.text == "END" && is_word("IF")) {
+          return fail(compile_status::syntax_error, where, "Trio BASIC ends a block IF with ENDIF, one word");
+        }
         s.kind = statement_kind::assign_variable;
         s.slot = slot_of(target.raw);
       }
@@ -1621,6 +1624,8 @@ compile_result compile(std::string_view name, std::string_view text) {
                      std::to_string(max_program_text) + " are read";
     return result;
   }
+  // A UTF-8 byte order mark, as Windows editors write one, is not program text.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   std::vector<token> tokens;
   lex_error error;
   if (!lexer(text).run(tokens, error)) {

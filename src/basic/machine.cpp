@@ -27,6 +27,7 @@ constexpr axis_parameter_info parameter_table[axis_parameter_count] = {
     {"MSPEED", true, 0},
     {"MTYPE", true, 0},
     {"NTYPE", true, 0},
+    {"OFFPOS", false, 0},
     {"OV_GAIN", false, 0},
     {"P_GAIN", false, 1},
     {"REMAIN", true, 0},
@@ -234,8 +235,9 @@ double machine::axis_value(std::size_t axis, axis_parameter p) const {
   const axis_state& a = axes_[axis];
   switch (p) {
     case axis_parameter::dpos:
-    case axis_parameter::mpos:
       return a.position / units(axis);
+    case axis_parameter::mpos:  // an encoder counts whole edges
+      return std::round(a.position) / units(axis);
     case axis_parameter::endmove: {
       if (a.queue[0] < 0) return a.position / units(axis);
       const move_state& m = moves_[static_cast<std::size_t>(a.queue[0])];
@@ -274,6 +276,7 @@ machine::set_status machine::set_axis_value(std::size_t axis, axis_parameter p, 
   axis_state& a = axes_[axis];
   a.parameters[static_cast<std::size_t>(p)] = value;
   a.used = true;
+  if (p == axis_parameter::offpos && value != 0) offsets_pending_ = true;
   if (p == axis_parameter::speed || p == axis_parameter::accel || p == axis_parameter::decel ||
       p == axis_parameter::creep) {
     const int index = a.queue[0];
@@ -345,17 +348,37 @@ motion_status machine::datum(std::size_t axis, int mode) {
 
 motion_status machine::defpos(const std::vector<std::size_t>& axes, const std::vector<double>& values) {
   if (!valid(axes) || axes.size() != values.size()) return motion_status::bad_axis;
-  for (std::size_t axis : axes) {
-    if (axes_[axis].queue[0] >= 0) return motion_status::busy;
-  }
+  // The manual's controller turns DEFPOS into OFFPOS, applied at the next servo tick.
   for (std::size_t i = 0; i < axes.size(); ++i) {
-    axes_[axes[i]].position = values[i] * units(axes[i]);
-    axes_[axes[i]].used = true;
+    axis_state& a = axes_[axes[i]];
+    a.parameters[static_cast<std::size_t>(axis_parameter::offpos)] = values[i] - a.position / units(axes[i]);
+    a.used = true;
   }
+  offsets_pending_ = true;
   std::string text = axes_text(axes) + ": DEFPOS(";
   for (std::size_t i = 0; i < values.size(); ++i) text += (i ? "," : "") + format_value(values[i]);
   event(text + ")");
   return motion_status::ok;
+}
+
+// OFFPOS: each axis's position (and the origin of the move it runs, so that the move goes on for the rest of its
+// distance) shifts by the offset left, which then reads 0.
+void machine::apply_offsets() {
+  offsets_pending_ = false;
+  for (std::size_t axis = 0; axis < axes_.size(); ++axis) {
+    axis_state& a = axes_[axis];
+    double& offset = a.parameters[static_cast<std::size_t>(axis_parameter::offpos)];
+    if (offset == 0) continue;
+    const double shift = offset * units(axis);
+    offset = 0;
+    a.position += shift;
+    const int index = a.queue[0];
+    if (index < 0) continue;
+    move_state& m = moves_[static_cast<std::size_t>(index)];
+    if (!m.running) continue;
+    const auto k = static_cast<std::size_t>(std::find(m.axes.begin(), m.axes.end(), axis) - m.axes.begin());
+    m.origin[k] += shift;
+  }
 }
 
 void machine::cancel(std::size_t axis, bool buffered) {
@@ -544,6 +567,7 @@ void machine::advance(int index, double dt) {
 
 void machine::servo_tick() {
   ++ticks_;
+  if (offsets_pending_) apply_offsets();
   if (moves_in_use_ == 0) return;
   start_ready_moves();  // moves commanded since the last tick
   const double dt = config_.servo_period_us * 1e-6;

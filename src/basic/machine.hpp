@@ -7,7 +7,9 @@
 //                  that reaches its end, or stops after CANCEL or RAPIDSTOP, ends and the next one starts
 //
 // Positions are kept in encoder edges (user units x UNITS) as a real controller keeps them; DPOS and MPOS are
-// read in user units. A simulated axis follows its demand exactly: MPOS is DPOS and FE is 0.
+// read in user units. A simulated axis follows its demand exactly: MPOS is DPOS to the nearest whole encoder
+// edge (what an encoder counts) and FE is 0. DEFPOS and OFFPOS change a position at the next servo tick, during
+// a move too (the move goes on for the rest of its distance).
 #pragma once
 
 #include <array>
@@ -37,6 +39,7 @@ enum class axis_parameter : std::uint8_t {
   mspeed,
   mtype,
   ntype,
+  offpos,
   ov_gain,
   p_gain,
   remain,
@@ -49,7 +52,7 @@ enum class axis_parameter : std::uint8_t {
   vff_gain,
   vp_speed,
 };
-inline constexpr std::size_t axis_parameter_count = 28;
+inline constexpr std::size_t axis_parameter_count = 29;
 
 struct axis_parameter_info {
   const char* name;
@@ -82,7 +85,7 @@ struct machine_event {
 
 enum class motion_status : std::uint8_t {
   ok,
-  busy,      ///< the axes' move buffers are full (or DEFPOS waits for them to stop): try again later
+  busy,      ///< the axes' move buffers are full: try again later
   bad_axis,  ///< an axis number the controller does not have, or the same axis twice
 };
 
@@ -91,7 +94,8 @@ class machine {
   explicit machine(const machine_config& config = {});
 
   // ---- the clock ----
-  /// One servo period passes: moves start, advance and end.
+  /// One servo period passes: the offsets DEFPOS and OFFPOS left are applied, then moves start, advance and
+  /// end.
   void servo_tick();
   std::uint64_t ticks() const noexcept { return ticks_; }
   double servo_period_us() const noexcept { return config_.servo_period_us; }
@@ -102,7 +106,8 @@ class machine {
   double axis_value(std::size_t axis, axis_parameter p) const;
   enum class set_status : std::uint8_t { ok, read_only, out_of_range };
   /// Sets a writable parameter. A change of SPEED, ACCEL, DECEL or CREEP applies at once to the move the axis
-  /// is the base of. UNITS must be above 0.
+  /// is the base of. UNITS must be above 0. OFFPOS shifts the position by `value` at the next servo tick (it
+  /// reads the offset still to apply, 0 once applied).
   set_status set_axis_value(std::size_t axis, axis_parameter p, double value);
   /// MOVE (relative distances) or MOVEABS (end positions) on `axes`, one value each, in user units; the first
   /// axis's SPEED, ACCEL and DECEL shape the path. `busy` while any of the axes has a move running and one
@@ -113,7 +118,8 @@ class machine {
   /// DATUM(mode) simplified: mode 0 does nothing (no motion errors to clear); 1..6 move to 0 at CREEP and
   /// define that as the datum.
   motion_status datum(std::size_t axis, int mode);
-  /// DEFPOS: the axes' positions become `values` once they are at rest (`busy` until then).
+  /// DEFPOS: the axes' positions become `values` at the next servo tick, as the manual's controller does it
+  /// (OFFPOS becomes each value less DPOS now); a running move goes on for the rest of its distance.
   motion_status defpos(const std::vector<std::size_t>& axes, const std::vector<double>& values);
   /// CANCEL: the running move decelerates at DECEL and ends (the buffered one then starts);
   /// CANCEL(1): the buffered move is dropped.
@@ -122,8 +128,9 @@ class machine {
   void rapidstop();
   bool idle(std::size_t axis) const { return axes_[axis].queue[0] < 0; }
   bool loaded(std::size_t axis) const { return axes_[axis].queue[1] < 0; }
-  /// True while any move is running or waiting in a buffer.
-  bool any_motion() const noexcept { return moves_in_use_ != 0; }
+  /// True while any move is running or waiting in a buffer, or an offset (DEFPOS, OFFPOS) waits for the next
+  /// servo tick: while the positions may change.
+  bool any_motion() const noexcept { return moves_in_use_ != 0 || offsets_pending_; }
   /// True for an axis a program has commanded or set up, or that is away from 0 (what a report shows).
   bool used(std::size_t axis) const { return axes_[axis].used; }
 
@@ -198,6 +205,7 @@ class machine {
   void finish(int index, const char* how);
   void stop_at_limit(int index, std::size_t axis, double limit, const char* name);
   void wrap(std::size_t axis, move_state& m, std::size_t k);
+  void apply_offsets();
   double covered(const move_state& m) const;
   double remain(std::size_t axis) const;
   void event(std::string text);
@@ -208,6 +216,7 @@ class machine {
   std::vector<axis_state> axes_;
   std::vector<move_state> moves_;
   std::size_t moves_in_use_ = 0;
+  bool offsets_pending_ = false;  // some axis's OFFPOS is not 0
   std::vector<bool> inputs_;
   std::vector<bool> outputs_;
   std::vector<double> table_;

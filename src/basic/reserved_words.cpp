@@ -208,7 +208,7 @@ constexpr reserved_word table[] = {
     {"NOT", word_kind::mathematical, true, nullptr},
     {"NTYPE", word_kind::axis_parameter, true, nullptr},
     {"OFF", word_kind::constant, true, nullptr},
-    {"OFFPOS", word_kind::axis_parameter, false, nullptr},
+    {"OFFPOS", word_kind::axis_parameter, true, nullptr},
     {"ON", word_kind::constant, true, nullptr},
     {"OP", word_kind::io_command, true, nullptr},
     {"OPEN", word_kind::io_command, false, nullptr},

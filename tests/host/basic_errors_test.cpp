@@ -86,6 +86,11 @@ TEST(BasicCompileErrors, TextTheLexerCannotRead) {
   expect_compile_error("x=1 | 2\n", compile_status::syntax_error,
                        "test.bas:1:5: unexpected character '|' (Trio BASIC writes OR)");
   expect_compile_error("x=\xc3\xa9\n", compile_status::syntax_error, "test.bas:1:3: unexpected character byte 0xc3");
+  // A UTF-8 byte order mark is skipped at the start only: columns count from after it.
+  expect_compile_error("\xEF\xBB\xBFx=|\n", compile_status::syntax_error,
+                       "test.bas:1:3: unexpected character '|' (Trio BASIC writes OR)");
+  expect_compile_error("x=1\n\xEF\xBB\xBFy=2\n", compile_status::syntax_error,
+                       "test.bas:2:1: unexpected character byte 0xef");
   expect_compile_error("PRINT \"\xc3\xa9\"\n", compile_status::syntax_error,
                        "test.bas:1:8: byte 0xc3 in a string: the ring carries characters 0..127");
   expect_compile_error("x=$\n", compile_status::syntax_error,
@@ -139,6 +144,8 @@ TEST(BasicCompileErrors, LabelsAndBlocks) {
   expect_compile_error("ELSE\n", compile_status::unmatched_block, "test.bas:1:1: ELSE without IF");
   expect_compile_error("x=1\n  REPEAT\nx=2\n", compile_status::unmatched_block, "test.bas:2:3: REPEAT has no UNTIL");
   expect_compile_error("IF x THEN\nx=2\n", compile_status::unmatched_block, "test.bas:1:1: IF has no ENDIF");
+  expect_compile_error("IF x THEN\n  x=2\nEND IF\n", compile_status::syntax_error,
+                       "test.bas:3:1: Trio BASIC ends a block IF with ENDIF, one word");
   expect_compile_error("REPEAT\nWHILE x\nUNTIL x\n", compile_status::unmatched_block,
                        "test.bas:3:1: expected WEND to close the WHILE at line 2, found UNTIL");
   expect_compile_error("FOR i=1 TO 2\nNEXT j\n", compile_status::unmatched_block,

@@ -108,6 +108,13 @@ TEST(BasicText, LabelsCommentsAndSeveralStatementsOnALine) {
   EXPECT_EQ(r.task->line(), 8u);  // CR LF and a lone CR each end a line
 }
 
+TEST(BasicText, AUtf8ByteOrderMarkAtTheStartIsNotProgramText) {
+  running r("\xEF\xBB\xBF" "a=1\r\nb=a+1\r\n");
+  EXPECT_EQ(r.go(), task_state::ended);
+  EXPECT_EQ(r.var("a"), 1);
+  EXPECT_EQ(r.var("b"), 2);
+}
+
 TEST(BasicText, NamesAndKeywordsIgnoreCase) {
   running r("Length=2: LENGTH=LENGTH+1\nif length=3 then Goto Done\nlength=0\ndone: x=Vr(0)");
   EXPECT_EQ(r.go(), task_state::ended);

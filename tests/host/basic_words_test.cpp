@@ -116,7 +116,7 @@ TEST(BasicWords, EveryWordTheCompilerKnowsIsInTheTableAsModelled) {
                          "GET",    "GLOBAL", "GOSUB", "GOTO",    "HALT",     "HEX",     "IDLE",    "IF",
                          "IN",     "INT",   "KEY",    "LN",      "LOADED",   "MOD",     "MOTION_ERROR",
                          "MOVE",   "MOVEABS", "MPOS", "MTYPE",   "NETSTAT",  "NEXT",    "NOT",     "NTYPE",
-                         "OFF",    "ON",    "OP",     "OR",      "PI",       "PRINT",   "RAPIDSTOP", "READ_OP",
+                         "OFF",    "OFFPOS", "ON",    "OP",     "OR",      "PI",       "PRINT",   "RAPIDSTOP", "READ_OP",
                          "REMAIN", "REPEAT", "RETURN", "REVERSE", "SEND",    "SERVO",   "SERVO_PERIOD",
                          "SGN",    "SIN",   "SPEED",  "SQR",     "STEP",     "STOP",    "SYSTEM_ERROR",
                          "TABLE",  "TAN",   "THEN",   "TICKS",   "TO",       "TRUE",    "UNITS",   "UNTIL",
