@@ -1,5 +1,9 @@
 // `trionet`: encode, decode, simulate and analyse Trio fibre-ring, TN20-17 CAN and Genius bus traffic
 // (docs/cli.md). The parts and their command tables are in <part>_cli.cpp; cli.cpp dispatches.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <string>
@@ -76,7 +80,23 @@ int run(const std::vector<std::string>& words) {
 
 }  // namespace
 
+namespace {
+
+// A standard stream the tool was started without (`>&-`) is held by /dev/null opened the other way, so that
+// using it fails as on a closed descriptor (EBADF) and no file the command opens takes its number: a capture
+// file opened as descriptor 1 would otherwise receive the tool's output.
+void hold_closed_standard_streams() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int held = open("/dev/null", fd == 0 ? O_WRONLY : O_RDONLY);
+    if (held > fd) close(held);  // cannot happen: 0..fd-1 are open, so open() takes fd
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  hold_closed_standard_streams();
   // A closed output is an error a command reports (EPIPE from write), not a silent death by SIGPIPE.
   std::signal(SIGPIPE, SIG_IGN);
   return trionet::cli::finish_output(run(std::vector<std::string>(argv + 1, argv + argc)));

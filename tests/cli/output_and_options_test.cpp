@@ -70,6 +70,33 @@ TEST(Output, AFullDiskIsOneMessageAndExit1) {
   }
 }
 
+// A standard stream closed at start (`>&-`, `2>&-`) is never taken by a file the command opens: the capture stays
+// a capture, a closed standard output still fails the run.
+TEST(Output, AClosedStandardStreamNeverLandsInAFileTheCommandWrites) {
+  const std::string capture = temp_path("closed.pcapng");
+  const cli_result closed_out = run_cli_redirected("ring simulate example1 --byte-times 3000 --pcap " + capture + " >&-");
+  EXPECT_EQ(closed_out.exit_code, 1);
+  EXPECT_EQ(closed_out.err, "trionet: cannot write standard output: Bad file descriptor\n");
+  const cli_result read_back = run_cli("ring decode --pcap " + capture);
+  EXPECT_EQ(read_back.exit_code, 0) << read_back.err;
+  EXPECT_EQ(read_back.out.find("capture_error"), std::string::npos) << read_back.out;
+  EXPECT_NE(read_back.out.find("\"record\":35,"), std::string::npos) << read_back.out;
+  const cli_result closed_err =
+      run_cli_redirected("ring simulate example1 --byte-times 3000 --pcap " + capture + " 2>&- >/dev/null");
+  EXPECT_EQ(closed_err.exit_code, 0);
+  const cli_result read_again = run_cli("ring decode --pcap " + capture);
+  EXPECT_EQ(read_again.exit_code, 0) << read_again.err;
+  EXPECT_EQ(read_again.out.find("capture_error"), std::string::npos) << read_again.out;
+  EXPECT_NE(read_again.out.find("\"record\":35,"), std::string::npos) << read_again.out;
+  const std::string genius = temp_path("closed-genius.pcapng");
+  EXPECT_EQ(run_cli_redirected("genius decode c:24 11 22 c:4a --write-pcap " + genius + " >&-").exit_code, 1);
+  const cli_result genius_back = run_cli("genius decode --pcap " + genius);
+  EXPECT_EQ(genius_back.exit_code, 0) << genius_back.err;
+  EXPECT_NE(genius_back.out.find("1 transmission, 0 errors"), std::string::npos) << genius_back.out;
+  std::remove(capture.c_str());
+  std::remove(genius.c_str());
+}
+
 TEST(Output, JsonNumbersArePlainDecimalsNeverExponents) {
   // The smallest step of a Q32.32 value, a tenth of a thousandth, and values past 10^5 (to_chars' shortest
   // form would write 2.3283064365386963e-10, 1e-04 and 1e+05).
