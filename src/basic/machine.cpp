@@ -468,9 +468,15 @@ void machine::start(int index) {
     }
   }
   m.endless = m.type == move_type::forward || m.type == move_type::reverse;
+  // The path's length, scaled by the largest distance so that no square overflows (MOVE(1e155) is a long move,
+  // not one of infinite length in no direction).
+  double largest = 0;
+  for (double d : distance) largest = std::max(largest, std::fabs(d));
   double length = 0;
-  for (double d : distance) length += d * d;
-  length = std::sqrt(length);
+  if (largest > 0 && std::isfinite(largest)) {
+    for (double d : distance) length += (d / largest) * (d / largest);
+    length = largest * std::sqrt(length);
+  }
   if (length > 0) {
     for (std::size_t k = 0; k < n; ++k) m.component[k] = distance[k] / length;
   }

@@ -26,12 +26,20 @@ bool to_int(double v, int& out) {
 }
 
 // The integer part for AND, OR, XOR, NOT and MOD (saturating; NaN is 0).
-std::int64_t integer_of(double v) {
-  if (!(v == v)) return 0;
-  if (v >= 9.2e18) return std::numeric_limits<std::int64_t>::max();
-  if (v <= -9.2e18) return std::numeric_limits<std::int64_t>::min();
-  return static_cast<std::int64_t>(v);
+// The whole numbers a bitwise operation, MOD or OP(bits) takes: those a double holds exactly, -2^53..2^53.
+constexpr double whole_limit = 9007199254740992.0;
+
+bool whole(double v) { return std::fabs(v) <= whole_limit; }
+
+// A value beyond whole_limit as an error message shows it: 6 significant digits (1e+300, not 301 digits).
+std::string large_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
 }
+
+// The integer part toward zero of a value within whole_limit (callers check it first).
+std::int64_t integer_of(double v) { return static_cast<std::int64_t>(v); }
 
 bool same_bits(double a, double b) {
   std::uint64_t x = 0;
@@ -230,6 +238,10 @@ bool task::eval(std::uint32_t id, double& out) {
   const expr_instr* const end = code_->code.data() + e.end;
   double* sp = stack_.data();
   machine& hw = io_->hardware();
+  // A bitwise operation or MOD on a value beyond the whole numbers a double holds is refused, not clamped.
+  const auto beyond_whole = [&](const char* op, double v) {
+    return fail(std::string(op) + " of " + large_text(v) + ": outside the whole numbers it takes (-2^53..2^53)");
+  };
   for (; ip != end; ++ip) {
     switch (ip->op) {
       case expr_op::constant:
@@ -306,6 +318,7 @@ bool task::eval(std::uint32_t id, double& out) {
         sp[-1] = -sp[-1];
         break;
       case expr_op::logical_not:
+        if (!whole(sp[-1])) return beyond_whole("NOT", sp[-1]);
         sp[-1] = static_cast<double>(~integer_of(sp[-1]));
         break;
       case expr_op::absolute:
@@ -380,6 +393,7 @@ bool task::eval(std::uint32_t id, double& out) {
         --sp;
         break;
       case expr_op::modulo: {
+        if (!whole(sp[-2]) || !whole(sp[-1])) return beyond_whole("MOD", whole(sp[-2]) ? sp[-1] : sp[-2]);
         const std::int64_t a = integer_of(sp[-2]);
         const std::int64_t b = integer_of(sp[-1]);
         if (b == 0) return fail("MOD by zero");
@@ -412,14 +426,17 @@ bool task::eval(std::uint32_t id, double& out) {
         --sp;
         break;
       case expr_op::bit_and:
+        if (!whole(sp[-2]) || !whole(sp[-1])) return beyond_whole("AND", whole(sp[-2]) ? sp[-1] : sp[-2]);
         sp[-2] = static_cast<double>(integer_of(sp[-2]) & integer_of(sp[-1]));
         --sp;
         break;
       case expr_op::bit_or:
+        if (!whole(sp[-2]) || !whole(sp[-1])) return beyond_whole("OR", whole(sp[-2]) ? sp[-1] : sp[-2]);
         sp[-2] = static_cast<double>(integer_of(sp[-2]) | integer_of(sp[-1]));
         --sp;
         break;
       case expr_op::bit_xor:
+        if (!whole(sp[-2]) || !whole(sp[-1])) return beyond_whole("XOR", whole(sp[-2]) ? sp[-1] : sp[-2]);
         sp[-2] = static_cast<double>(integer_of(sp[-2]) ^ integer_of(sp[-1]));
         --sp;
         break;
@@ -750,6 +767,10 @@ std::uint32_t task::run(std::uint32_t budget) {
       case statement_kind::output: {
         if (!eval(s.expr[0], v)) goto out;
         if (s.flag) {  // OP(bits): outputs 8 up, one bit each
+          if (!whole(v)) {
+            fail("OP(" + large_text(v) + "): outside the whole numbers it takes (-2^53..2^53)");
+            goto out;
+          }
           const std::int64_t bits = integer_of(v);
           for (std::size_t n = 8; n < hw.io_count() && n < 8 + in_bits; ++n) {
             const bool on = ((bits >> (n - 8)) & 1) != 0;

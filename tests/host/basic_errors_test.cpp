@@ -189,6 +189,11 @@ TEST(BasicRuntimeErrors, StopTheProgramWithItsLine) {
   expect_runtime_error("SEND(10,2,5)\n", 1, "SEND(10,2,5): keypad offset out of range (BASIC addresses 10..24)");
   expect_runtime_error("x=1/0\n", 1, "division by zero");
   expect_runtime_error("x=1 MOD 0\n", 1, "MOD by zero");
+  // Values beyond the whole numbers a double holds are refused by the integer operations, not clamped.
+  expect_runtime_error("a=1e300 AND 3\n", 1, "AND of 1e+300: outside the whole numbers it takes (-2^53..2^53)");
+  expect_runtime_error("b=NOT -1e300\n", 1, "NOT of -1e+300: outside the whole numbers it takes (-2^53..2^53)");
+  expect_runtime_error("c=7 MOD 1e17\n", 1, "MOD of 1e+17: outside the whole numbers it takes (-2^53..2^53)");
+  expect_runtime_error("x=1\nOP(2^60)\n", 2, "OP(1.15292e+18): outside the whole numbers it takes (-2^53..2^53)");
   expect_runtime_error("NETSTAT=3\n", 1, "NETSTAT can only be cleared: NETSTAT=0");
   expect_runtime_error("WA(-1)\n", 1, "WA(-1): the time must be 0 ms or more");
 }

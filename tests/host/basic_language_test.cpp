@@ -208,6 +208,25 @@ TEST(BasicExpressions, AxisParametersBelongToTheBaseAxisOrTheAxisNamed) {
   EXPECT_EQ(r.task->variable_count(), 3u);  // SPEED and ACCEL are not variables
 }
 
+TEST(BasicMotion, AVeryLongMoveRunsToItsLimitAndDoesNotStall) {
+  // The path length of MOVE(1e155) squared overflows a double: the move used to get no direction and stall.
+  running r("FS_LIMIT=100\nSPEED=1000\nACCEL=100000\nDECEL=100000\nMOVE(1e155)");
+  EXPECT_EQ(r.go(), task_state::ended);
+  basic::machine& hw = r.io.hardware_state;
+  for (int tick = 0; tick < 50; ++tick) hw.servo_tick();
+  EXPECT_GT(hw.axis_value(0, basic::axis_parameter::dpos), 30);
+  for (int tick = 0; tick < 200 && hw.any_motion(); ++tick) hw.servo_tick();
+  EXPECT_FALSE(hw.any_motion());
+  EXPECT_EQ(hw.axis_value(0, basic::axis_parameter::dpos), 100);  // stopped at FS_LIMIT
+  // Two axes, one distance near the largest double: the path is as long as it.
+  running two("FS_LIMIT=100\nSPEED=1000\nACCEL=100000\nDECEL=100000\nBASE(0,1)\nMOVE(1e300,-3e299)");
+  EXPECT_EQ(two.go(), task_state::ended);
+  basic::machine& hw2 = two.io.hardware_state;
+  for (int tick = 0; tick < 50; ++tick) hw2.servo_tick();
+  EXPECT_GT(hw2.axis_value(0, basic::axis_parameter::dpos), 30);
+  EXPECT_LT(hw2.axis_value(1, basic::axis_parameter::dpos), -9);
+}
+
 TEST(BasicExpressions, NetstatReadsAndNetstatZeroClears) {
   running r("a=NETSTAT\nNETSTAT=0\nb=NETSTAT");
   r.io.netstat_value = 8;
