@@ -131,15 +131,16 @@ void key_script::add_line(const std::string& line) {
   for (const std::string& word : live::words_of(line)) words_.push_back(word);
 }
 
-bool key_script::next(std::uint64_t now_ns, std::string& word, std::string& bad_wait) {
+bool key_script::next(std::uint64_t now_ns, std::string& word, bool& bad_wait) {
+  bad_wait = false;
   while (!words_.empty() && resume_at_ <= now_ns) {
     word = words_.front();
     words_.pop_front();
     if (word.compare(0, 5, "wait=") != 0) return true;
     long long ms = 0;
     if (!parse_integer(word.substr(5), 0, 3600000, ms)) {
-      bad_wait = word;
-      continue;
+      bad_wait = true;
+      return true;
     }
     resume_at_ = now_ns + static_cast<std::uint64_t>(ms) * 1000000u;
   }

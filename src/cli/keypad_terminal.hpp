@@ -62,9 +62,9 @@ class key_script {
  public:
   /// Appends the words of one input line.
   void add_line(const std::string& line);
-  /// The next word due at `now_ns` (wait=MS words are taken here, a bad one reported as `bad_wait`);
-  /// false if none is due.
-  bool next(std::uint64_t now_ns, std::string& word, std::string& bad_wait);
+  /// The next word due at `now_ns`; false if none is due. Good wait=MS words are taken here; a bad one is
+  /// returned in its place with `bad_wait` true (each one, in order), for the caller to report.
+  bool next(std::uint64_t now_ns, std::string& word, bool& bad_wait);
   /// Milliseconds until a word is due: 0 if one is due now, -1 if none is queued.
   [[nodiscard]] int due_in_ms(std::uint64_t now_ns) const;
   /// True when no word is queued and no wait is running.

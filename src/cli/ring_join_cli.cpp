@@ -623,19 +623,18 @@ class keypad_role {
   }
   void act() {
     std::string word;
-    std::string bad_wait;
+    bool bad_wait = false;
     while (!quit_ && script_.next(live::now_ns(), word, bad_wait)) {
-      if (word == "quit") {
+      if (bad_wait) {
+        event(log_->text(), "error")
+            .time(live::now_ns())
+            .text("word", word)
+            .text("reason", "wait=MS takes 0..3600000");
+      } else if (word == "quit") {
         quit_ = true;
       } else {
         press(word);
       }
-    }
-    if (!bad_wait.empty()) {
-      event(log_->text(), "error")
-          .time(live::now_ns())
-          .text("word", bad_wait)
-          .text("reason", "wait=MS takes 0..3600000");
     }
     show();
   }

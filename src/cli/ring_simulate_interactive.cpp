@@ -138,9 +138,14 @@ int ring_simulate_interactive(host::ring_network& net, double bit_rate, std::uin
       }
     }
     std::string word;
-    std::string bad_wait;
-    while (!quit && script.next(live::now_ns(), word, bad_wait)) script_word(word);
-    if (!bad_wait.empty()) complain(bad_wait + ": wait=MS takes 0..3600000");
+    bool bad_wait = false;
+    while (!quit && script.next(live::now_ns(), word, bad_wait)) {
+      if (bad_wait) {
+        complain(word + ": wait=MS takes 0..3600000");
+      } else {
+        script_word(word);
+      }
+    }
     // Key words from a file or pipe: the run ends when they are done.
     if (!interactive && input.ended() && script.done(live::now_ns())) quit = true;
   }

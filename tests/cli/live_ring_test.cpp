@@ -332,6 +332,27 @@ TEST(LiveRing, JoinAsKeypadShowsTheDisplayAndSendsKeys) {
   EXPECT_NE(out.find("\"keys_sent\":5,\"keys_lost\":1"), std::string::npos) << out;
 }
 
+// Every bad wait=MS word of a key script is reported, in its place among the other words.
+TEST(LiveRing, JoinAsKeypadReportsEveryBadWaitInOrder) {
+  pty_pair pty;
+  ASSERT_TRUE(pty.ok());
+  tool_process keypad({"ring", "join", pty.slave_path, "--as", "keypad", "--json"});
+  keypad.write("wait=-1 wait=zz 1 wait=qq\nquit\n");
+  EXPECT_EQ(keypad.wait(patience_ms), 0);
+  const std::string out = trionet::test::without_times(keypad.output());
+  const std::size_t first = out.find("\"word\":\"wait=-1\",\"reason\":\"wait=MS takes 0..3600000\"");
+  const std::size_t second = out.find("\"word\":\"wait=zz\",\"reason\":\"wait=MS takes 0..3600000\"");
+  const std::size_t key = out.find("\"key\":\"digit_1\"");
+  const std::size_t third = out.find("\"word\":\"wait=qq\",\"reason\":\"wait=MS takes 0..3600000\"");
+  ASSERT_NE(first, std::string::npos) << out;
+  ASSERT_NE(second, std::string::npos) << out;
+  ASSERT_NE(key, std::string::npos) << out;
+  ASSERT_NE(third, std::string::npos) << out;
+  EXPECT_LT(first, second);
+  EXPECT_LT(second, key);
+  EXPECT_LT(key, third);
+}
+
 // The keypad on a real terminal (tmux): the display drawn in place, keys from the keyboard.
 TEST(LiveRing, KeypadEmulatorInATerminal) {
   if (std::system("tmux -V >/dev/null 2>&1") != 0) GTEST_SKIP() << "tmux is not installed (Debian: apt-get install tmux)";
