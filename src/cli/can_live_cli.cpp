@@ -36,7 +36,8 @@ const char* const can_live_usage =
     "(`candump -L` lines or compact ID#DATA) and written to standard output as log lines\n"
     "\"(secs.micros) NAME ID#DATA\" (NAME from --interface-name, default can0, for canplayer); with `can node -`\n"
     "standard input carries both frames and commands, and the events go to standard error.\n"
-    "K is the number of controllers, 2..11 (default 5).\n";
+    "K is the number of controllers, 2..11 (default 5). IFACE and NAME are interface names as Linux has them:\n"
+    "1..15 bytes, no whitespace, control character, '/' or ':' (else exit status 2).\n";
 
 namespace {
 
@@ -61,6 +62,29 @@ const option_list& interface_name_option() {
   static const option_list options = {
       {"--interface-name", "NAME", "", "with -: the interface name written in the log lines (default can0)"}};
   return options;
+}
+
+// What is wrong with `name` as a network interface name, empty when nothing: Linux's rule (dev_valid_name:
+// 1..15 bytes, IFNAMSIZ 16 with its NUL; not . or ..; no '/', ':' or whitespace), and no control character,
+// so that a candump log line "(SECS.MICROS) NAME ID#DATA" holds it as one word that reads back.
+std::string interface_name_error(const std::string& name, const char* what) {
+  const std::string named = std::string(what) + " '" + host::printable(name) + "'";
+  if (name.empty()) return std::string(what) + " is empty: an interface name has 1..15 bytes";
+  if (name.size() > 15) {
+    return named + " has " + std::to_string(name.size()) +
+           " bytes: a Linux interface name has at most 15 (IFNAMSIZ 16 with its NUL)";
+  }
+  if (name == "." || name == "..") return named + " is not an interface name (Linux refuses . and ..)";
+  for (const char c : name) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte <= 0x20 || byte == 0x7F || c == '/' || c == ':') {
+      return named + " holds " + (c == ' ' ? std::string("a space") : c == '/' || c == ':' ? std::string("'") + c + "'"
+                                                                                               : "a control character") +
+             ": an interface name has no whitespace, control character, '/' or ':' (Linux's rule; a candump line "
+             "holds it as one word)";
+    }
+  }
+  return "";
 }
 
 // Where frames come from and go to: a SocketCAN socket, or candump text on standard input and output.
@@ -220,6 +244,10 @@ int monitor_main(const words& given) {
   std::uint8_t nodes = 0;
   if (!parse_node_count(args, nodes, error)) return fail("can monitor: " + error);
   bus can_bus;
+  if (args.positionals[0] != "-") {
+    const std::string wrong = interface_name_error(args.positionals[0], "IFACE");
+    if (!wrong.empty()) return fail("can monitor: " + wrong);
+  }
   if (!can_bus.open(args.positionals[0], "can0", error)) return fail_io("can monitor: " + error);
   live::capture_file capture;
   std::uint32_t interface = 0;
@@ -273,6 +301,14 @@ int send_main(const words& given) {
   if (!can_message_frame(args, frame, error)) return fail("can send: " + error);
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
+  if (args.positionals[0] != "-") {
+    const std::string wrong = interface_name_error(args.positionals[0], "IFACE");
+    if (!wrong.empty()) return fail("can send: " + wrong);
+  }
+  if (args.has("--interface-name")) {
+    const std::string wrong = interface_name_error(name, "--interface-name");
+    if (!wrong.empty()) return fail("can send: " + wrong);
+  }
   if (!can_bus.open(args.positionals[0], name, error)) return fail_io("can send: " + error);
   const can::transmit_status sent = can_bus.send(frame, live::now_ns());
   if (can_bus.text() && output_failed()) return fail_output();
@@ -317,6 +353,14 @@ int node_main(const words& given) {
   const bool trace = args.flag("--trace");
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
+  if (args.positionals[0] != "-") {
+    const std::string wrong = interface_name_error(args.positionals[0], "IFACE");
+    if (!wrong.empty()) return fail("can node: " + wrong);
+  }
+  if (args.has("--interface-name")) {
+    const std::string wrong = interface_name_error(name, "--interface-name");
+    if (!wrong.empty()) return fail("can node: " + wrong);
+  }
   if (!can_bus.open(args.positionals[0], name, error)) return fail_io("can node: " + error);
   live::capture_file capture;
   std::uint32_t interface = 0;

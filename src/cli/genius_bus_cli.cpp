@@ -93,17 +93,37 @@ bool parse_fault(const std::string& text, genius_fault& f, std::string& error) {
   if (colon == std::string::npos || at == std::string::npos || plus == std::string::npos || !(colon < at)) return false;
   const std::string kind = text.substr(0, colon);
   const std::string where = text.substr(colon + 1, at - colon - 1);
-  if (!host::parse_real(text.substr(at + 1, plus - at - 1), 0, 1e9, f.at_us) ||
-      !host::parse_real(text.substr(plus + 1), 0, 1e9, f.duration_us)) {
+  // A number in range; one that is a number but out of range names its range, anything else the format.
+  const auto in_range = [&](const std::string& value, double low, double high, const char* what, const char* range,
+                            double& out) {
+    if (host::parse_real(value, low, high, out)) return true;
+    double any = 0;
+    if (host::parse_real(value, -1e300, 1e300, any)) {
+      error = "--fault '" + host::printable(text) + "': " + what + " must be " + range + ", got '" +
+              host::printable(value) + "'";
+    }
+    return false;
+  };
+  const bool located = kind == "noise" || kind == "cut";
+  if (!located && kind != "off" && kind != "stop") return false;
+  if (!in_range(text.substr(at + 1, plus - at - 1), 0, 1e9, "the start T", "0..1000000000 us", f.at_us) ||
+      !in_range(text.substr(plus + 1), 0, 1e9, "the duration D", "0..1000000000 us", f.duration_us)) {
     return false;
   }
   long long sba = 0;
-  if (kind == "noise" || kind == "cut") {
+  if (located) {
     f.kind = kind == "noise" ? genius_fault_kind::noise : genius_fault_kind::cut;
-    if (!host::parse_real(where, 0, max_feet, f.position_ft)) return false;
+    static_assert(max_feet == 1e6, "the range in the message");
+    if (!in_range(where, 0, max_feet, "the place FEET", "0..1000000 feet", f.position_ft)) return false;
   } else if (kind == "off" || kind == "stop") {
     f.kind = kind == "off" ? genius_fault_kind::power_off : genius_fault_kind::stop;
-    if (!parse_integer(where, 0, 31, sba)) return false;
+    if (!parse_integer(where, 0, 31, sba)) {
+      double any = 0;
+      if (host::parse_real(where, -1e300, 1e300, any)) {
+        error = "--fault '" + host::printable(text) + "': the SBA must be 0..31, got '" + host::printable(where) + "'";
+      }
+      return false;
+    }
     f.sba = static_cast<std::uint8_t>(sba);
   } else {
     return false;
@@ -209,7 +229,7 @@ int simulate_main(const words& all) {
   config.record_scans = 2;  // the first scan's turns and transmissions are shown: memory stays flat over --scans
   if (args.has("--seed")) {
     long long seed = 0;
-    if (!parse_integer(args.options["--seed"], 0, 9223372036854775807LL, seed)) return fail("--seed must be 0 or more");
+    if (!parse_integer(args.options["--seed"], 0, 9223372036854775807LL, seed)) return fail("--seed must be 0..9223372036854775807, got '" + host::printable(args.options["--seed"]) + "'");
     config.seed = static_cast<std::uint64_t>(seed);
   }
   if (args.has("--fault")) {

@@ -37,8 +37,9 @@ constexpr const char* header_usage =
     "Writes a C++17 header with the profile's constexpr policies (ring_crc, ring_layout, ring_decoder,\n"
     "motion_coordinator<>, keypad<>, keypad_codes, defkey, can_node_count, genius_crc) in namespace NS\n"
     "(default trionet_profile) for a firmware build: FILE's profile, else the one --profile names, else the\n"
-    "default. To standard output, or to OUT. Exit status 0, 1 when reading or writing failed, 2 for bad\n"
-    "arguments or a profile that is not valid.\n";
+    "default. To standard output, or to OUT. NS is identifiers joined by ::, none a C++ keyword or trionet\n"
+    "(the library's namespace). Exit status 0, 1 when reading or writing failed, 2 for bad arguments or a\n"
+    "profile that is not valid.\n";
 
 const option_list show_options = {
     {"FILE", nullptr, "@file", "the profile to print (else the one --profile names, else the default)"}};
@@ -69,9 +70,15 @@ int profile_argument(const arguments& args, learn::profile& out) {
     out = active_profile();
     return exit_ok;
   }
+  const std::string& file = args.positionals[0];
+  // An unknown option, as for every other command: a file whose name starts with '-' is given as ./NAME.
+  if (file.size() > 1 && file[0] == '-') {
+    return fail("unexpected argument '" + host::printable(file) + "' (not an option here; a file named so is ./" +
+                host::printable(file) + ")");
+  }
   std::string error;
   bool io = false;
-  if (!read_profile_file(args.positionals[0], out, error, io)) return io ? fail_io(error) : fail(error);
+  if (!read_profile_file(file, out, error, io)) return io ? fail_io(error) : fail(error);
   return exit_ok;
 }
 
@@ -85,6 +92,36 @@ int show_main(const words& all) {
   return write_profile_file(p, "-");
 }
 
+// Why `name` cannot be the header's namespace though its components are identifiers, empty when it can: a
+// C++17 keyword or alternative token as a component (g++ rejects the header), or trionet as one (the library's
+// own namespace: the header would define its policies there, or hide the trionet:: it names).
+std::string namespace_problem(const std::string& name) {
+  static const char* const keywords[] = {
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+      "char", "char16_t", "char32_t", "class", "compl", "const", "constexpr", "const_cast", "continue",
+      "decltype", "default", "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit", "export",
+      "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace",
+      "new", "noexcept", "not", "not_eq", "nullptr", "operator", "or", "or_eq", "private", "protected", "public",
+      "register", "reinterpret_cast", "return", "short", "signed", "sizeof", "static", "static_assert",
+      "static_cast", "struct", "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef",
+      "typeid", "typename", "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while",
+      "xor", "xor_eq"};
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t separator = name.find("::", at);
+    const std::string component = name.substr(at, separator == std::string::npos ? std::string::npos : separator - at);
+    for (const char* k : keywords) {
+      if (component == k) return "'" + component + "' is a C++ keyword";
+    }
+    if (component == "trionet") {
+      return at == 0 ? "it is or lies inside the library's own namespace trionet"
+                     : "a namespace named trionet would hide the library's trionet:: that the header names";
+    }
+    if (separator == std::string::npos) return "";
+    at = separator + 2;
+  }
+}
+
 int header_main(const words& all) {
   arguments args;
   std::string error;
@@ -94,6 +131,10 @@ int header_main(const words& all) {
   if (status != exit_ok) return status;
   const std::string name = args.has("--namespace") ? args.options.at("--namespace") : "trionet_profile";
   const learn::header_result header = learn::profile_header(p, name);
+  if (header) {
+    const std::string problem = namespace_problem(name);
+    if (!problem.empty()) return fail("--namespace '" + host::printable(name) + "' cannot be used: " + problem);
+  }
   if (!header)
     return fail("--namespace must be a C++ namespace name (identifiers joined by ::), got '" +
                 host::printable(name) + "'");

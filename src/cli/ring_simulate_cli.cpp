@@ -261,7 +261,7 @@ int ring_simulate_main(const words& all) {
   }
   if (args.has("--key-gap")) {
     if (!parse_integer(args.options.at("--key-gap"), 0, 1000000000LL, number))
-      return fail("--key-gap must be a whole number of byte-times, got '" + host::printable(args.options.at("--key-gap")) + "'");
+      return fail("--key-gap must be a whole number of byte-times 0..10^9, got '" + host::printable(args.options.at("--key-gap")) + "'");
     config.key_gap = static_cast<std::uint64_t>(number);
   }
 
@@ -380,8 +380,12 @@ int ring_simulate_main(const words& all) {
         return fail_io("cannot write " + host::printable(args.options.at("--pcap")) + ": " + host::to_string(link.status()));
       }
     }
+    errno = 0;
     capture_file.flush();
-    if (!capture_file) return fail_io("cannot write " + host::printable(args.options.at("--pcap")));
+    if (!capture_file) {
+      return fail_io("cannot write " + host::printable(args.options.at("--pcap")) + ": " +
+                     std::strerror(errno != 0 ? errno : EIO));
+    }
   }
   for (std::size_t i = 1; i <= net->size(); ++i) {
     if (net->report(i).state == "failed") return 1;

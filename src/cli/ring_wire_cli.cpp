@@ -4,6 +4,7 @@
 // lose and corrupt bytes (seeded), be cut for a while, and is decoded as its next node receives it (events,
 // a capture with one interface per link, counters).
 #include <fcntl.h>
+#include <arpa/inet.h>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -63,7 +64,8 @@ const char* const ring_wire_usage =
     "receives them (each with its link), and one counters event per link at the end, on SIGUSR1 and on\n"
     "`counters`.\n"
     "Exit status: 0 stopped by quit, Ctrl-C or SIGTERM; 1 an endpoint could not be opened, or it closed or\n"
-    "failed while the wire ran (the ring is broken); 2 bad arguments.\n";
+    "failed while the wire ran (the ring is broken); 2 bad arguments, a malformed endpoint among them (tcp:\n"
+    "without a host, a port outside 1..65535).\n";
 
 const option_list& ring_wire_options() {
   static const option_list options = {
@@ -258,6 +260,55 @@ class endpoint {
   std::string pty_path_;
   std::string symlink_;
 };
+
+// The endpoint's syntax, before anything is opened: empty when `spec` is well formed, else what is wrong
+// with it (a bad argument, exit 2; failing to open or connect a well-formed one is a runtime failure, 1).
+std::string endpoint_syntax_error(const std::string& spec) {
+  const std::string named = host::printable(spec);
+  if (spec.empty()) return "an endpoint is empty: expected PATH, unix:PATH, tcp:HOST:PORT or pty[:LINK]";
+  if (spec.compare(0, 5, "unix:") == 0) {
+    const std::size_t length = spec.size() - 5;
+    const std::size_t most = sizeof(sockaddr_un{}.sun_path) - 1;
+    if (length == 0 || length > most) {
+      return named + ": the socket path must be 1.." + std::to_string(most) + " characters";
+    }
+    return "";
+  }
+  if (spec.compare(0, 4, "tcp:") != 0) return "";
+  const std::string where = spec.substr(4);
+  const std::size_t colon = where.rfind(':');
+  if (colon == std::string::npos) return named + ": expected tcp:HOST:PORT (no port)";
+  std::string host_name = where.substr(0, colon);
+  const std::string port_text = where.substr(colon + 1);
+  if (host_name.empty()) return named + ": expected tcp:HOST:PORT (the host is empty)";
+  if (port_text.empty()) return named + ": expected tcp:HOST:PORT (the port is empty)";
+  long long port = 0;
+  if (!parse_integer(port_text, 1, 65535, port)) {
+    return named + ": the port must be a number 1..65535, got '" + host::printable(port_text) + "'";
+  }
+  if (host_name.front() == '[' || host_name.back() == ']') {
+    in6_addr address{};
+    if (host_name.size() < 3 || host_name.front() != '[' || host_name.back() != ']' ||
+        ::inet_pton(AF_INET6, host_name.substr(1, host_name.size() - 2).c_str(), &address) != 1) {
+      return named + ": the host '" + host::printable(host_name) + "' is not an IPv6 address in [ ]";
+    }
+    return "";
+  }
+  in6_addr address{};
+  if (host_name.find(':') != std::string::npos) {
+    if (::inet_pton(AF_INET6, host_name.c_str(), &address) == 1) return "";
+    return named + ": the host '" + host::printable(host_name) + "' is not a host name or address";
+  }
+  for (const char c : host_name) {
+    const bool fits = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                      c == '.' || c == '_';
+    if (!fits) {
+      return named + ": the host '" + host::printable(host_name) +
+             "' is not a host name or address (letters, digits, '-', '.' and '_' only)";
+    }
+  }
+  return "";
+}
 
 // ---- faults ----
 
@@ -751,6 +802,8 @@ int ring_wire_main(const words& given) {
   if (args.positionals.size() > 15) return fail("ring wire: a ring holds at most 15 nodes (docs/protocol.md 1.1)");
   for (const std::string& e : args.positionals) {
     if (e == "-") return fail("ring wire: an endpoint is read and written: - is not one");
+    const std::string wrong = endpoint_syntax_error(e);
+    if (!wrong.empty()) return fail("ring wire: " + wrong);
   }
   const int capacities = check_ring_capacities("ring wire", ring_capacity_use::decoder);
   if (capacities != exit_ok) return capacities;

@@ -624,7 +624,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
     if (w.compare(0, 5, "wait=") == 0) {
       std::uint64_t n = 0;
       if (!whole_number(w.substr(5), 1000000000000ull, n)) {
-        error = where + "wait=N takes a whole number of byte-times";
+        error = where + "wait=N takes a whole number of byte-times 0..10^12";
         return false;
       }
       steps.push_back({0, ring::key::digit_0, "", n});
@@ -637,7 +637,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
       std::uint64_t input = 0;
       const std::string level = equals == std::string::npos ? "" : w.substr(equals + 1);
       if (colon_at == std::string::npos || equals == std::string::npos || equals < colon_at ||
-          w.compare(colon_at + 1, 2, "in") != 0 || !whole_number(w.substr(4, colon_at - 4), 15, node) ||
+          w.compare(colon_at + 1, 2, "in") != 0 || !whole_number(w.substr(4, colon_at - 4), 1000000000000ull, node) ||
           !whole_number(w.substr(colon_at + 3, equals - colon_at - 3), 1000, input) ||
           (level != "on" && level != "off")) {
         error = where + "expected nodeN:inM=on or nodeN:inM=off (e.g. node1:in7=on)";
@@ -661,7 +661,7 @@ bool ring_network::set_keys(const std::string& script, std::string& error) {
     }
     const std::size_t colon = w.find(':');
     std::uint64_t keypad = 0;
-    if (colon == std::string::npos || !whole_number(w.substr(0, colon), 15, keypad)) {
+    if (colon == std::string::npos || !whole_number(w.substr(0, colon), 1000000000000ull, keypad)) {
       error = where + "expected KEYPAD:KEY (e.g. 1:up), nodeN:inM=on|off or wait=N";
       return false;
     }

@@ -175,6 +175,19 @@ TEST(GeniusSimulateCli, BadArgumentsExit2WithAMessage) {
   expect_usage_error("genius simulate --rate 153.6s --device 4@0 --skip-us 0", "--skip-us");
 }
 
+TEST(GeniusSimulateCli, AnOutOfRangeNumberIsNamedWithItsRange) {
+  const std::string run = "genius simulate --rate 153.6s --device 4@0 ";
+  expect_usage_error(run + "--seed 9223372036854775808",
+                     "--seed must be 0..9223372036854775807, got '9223372036854775808'");
+  expect_usage_error(run + "--fault cut:50@0+1000000001",
+                     "--fault 'cut:50@0+1000000001': the duration D must be 0..1000000000 us, got '1000000001'");
+  expect_usage_error(run + "--fault noise:1000001@0+1",
+                     "--fault 'noise:1000001@0+1': the place FEET must be 0..1000000 feet, got '1000001'");
+  expect_usage_error(run + "--fault off:4@2000000000+1", "the start T must be 0..1000000000 us");
+  expect_usage_error(run + "--fault stop:32@0+1", "the SBA must be 0..31, got '32'");
+  expect_usage_error(run + "--fault cut:x@0+1", "must be noise:FEET@T+D");
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -690,6 +690,40 @@ TEST(LearnCli, KeypadLearningRefusesKeysAlikeAndBadArguments) {
 namespace {
 
 // `ring join` takes the profile's keypad codes (as a keypad) and DEFKEY (as an MC).
+TEST(LearnCli, AnUnknownOptionOfProfileShowOrHeaderIsABadArgumentNotAFile) {
+  expect_usage_error("profile show -x", "unexpected argument '-x' (not an option here; a file named so is ./-x)");
+  expect_usage_error("profile header -x", "unexpected argument '-x'");
+  const auto missing = run_cli("profile show ./-x");  // a file of that name: looked for, and not there
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("./-x"), std::string::npos) << missing.err;
+}
+
+TEST(LearnCli, ProfileHeaderRefusesANamespaceTheHeaderCouldNotUse) {
+  expect_usage_error("profile header --namespace int", "--namespace 'int' cannot be used: 'int' is a C++ keyword");
+  expect_usage_error("profile header --namespace namespace", "'namespace' is a C++ keyword");
+  expect_usage_error("profile header --namespace plant::and", "'and' is a C++ keyword");
+  expect_usage_error("profile header --namespace not::x", "'not' is a C++ keyword");
+  expect_usage_error("profile header --namespace thread_local", "'thread_local' is a C++ keyword");
+  expect_usage_error("profile header --namespace trionet::ring",
+                     "it is or lies inside the library's own namespace trionet");
+  expect_usage_error("profile header --namespace trionet", "the library's own namespace trionet");
+  expect_usage_error("profile header --namespace plant::trionet", "would hide the library's trionet::");
+  const auto fine = run_cli("profile header --namespace plant::trionet_x::integer");
+  EXPECT_EQ(fine.exit_code, 0) << fine.err;
+  EXPECT_NE(fine.out.find("namespace plant::trionet_x::integer {"), std::string::npos);
+}
+
+TEST(LearnCli, MoreThan64MiBOfLearningInputIsStatusOneAsTheProfilePageSays) {
+  const auto r = trionet::test::run_cli_redirected("ring learn crc --raw </dev/zero");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("64 MiB"), std::string::npos) << r.err;
+  std::string page = slurp(std::string(TRIONET_SOURCE_DIR) + "/docs/profile.md");
+  std::replace(page.begin(), page.end(), '\n', ' ');
+  EXPECT_NE(page.find("1 when a file cannot be read or written, or for more than 64 MiB of input"), std::string::npos);
+  EXPECT_EQ(page.find("or more than 64 MiB of input (a few frames suffice; the input is held in memory); 1 when"),
+            std::string::npos);
+}
+
 TEST(LearnCli, JoinUsesTheProfilesKeypadCodesAndDefkey) {
   learn::profile p;
   p.keypad.codes.raw[static_cast<std::size_t>(ring::key::digit_1)] = 'b';

@@ -116,6 +116,26 @@ TEST(LiveCan, SendWritesACandumpLogLine) {
   trionet::test::expect_usage_error("can send - --from 1 --to 4 --vr 256 --value 2", "--vr must be");
 }
 
+TEST(LiveCan, AnInterfaceNameLinuxOrACandumpLineCannotHoldIsABadArgument) {
+  const std::string send = "can send - --from 1 --to 4 --vr 1 --value 2.345 --interface-name ";
+  trionet::test::expect_usage_error(send + "'a b'", "--interface-name 'a b' holds a space");
+  trionet::test::expect_usage_error(send + "'a\nb'", "holds a control character");
+  trionet::test::expect_usage_error(send + "''", "--interface-name is empty");
+  trionet::test::expect_usage_error(send + "a/b", "holds '/'");
+  trionet::test::expect_usage_error(send + "abcdefghijklmnop",
+                                    "has 16 bytes: a Linux interface name has at most 15 (IFNAMSIZ 16 with its NUL)");
+  trionet::test::expect_usage_error("can node - --node 2 --interface-name 'x y'", "holds a space");
+  trionet::test::expect_usage_error("can monitor ''", "can monitor: IFACE is empty");
+  trionet::test::expect_usage_error("can monitor abcdefghijklmnop", "IFACE 'abcdefghijklmnop' has 16 bytes");
+  trionet::test::expect_usage_error("can send 'vcan 0' --from 1 --to 4 --vr 1 --value 2", "holds a space");
+  // 15 bytes is a name Linux allows: written, and read back.
+  const auto r = run_cli(send + "abcdefghijklmno");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const trionet::host::candump_result line = trionet::host::parse_candump_line(r.out.substr(0, r.out.size() - 1));
+  ASSERT_TRUE(line) << r.out;
+  EXPECT_EQ(line.record.interface_name, "abcdefghijklmno");
+}
+
 TEST(LiveCan, NodeWritesWhatItReceivesAndSendsWhatItIsAsked) {
   const auto r = run_cli("can node - --node 4 --json",
                          "(1700000000.000001) can0 028#0100000000020D7A\n"

@@ -251,6 +251,21 @@ TEST(RingSimulateCli, UsageErrors) {
   expect_usage_error("ring simulate example1 --colour red", "unknown option --colour");
 }
 
+TEST(RingSimulateCli, MessagesNameTheLimitOrTheCause) {
+  expect_usage_error("ring simulate example1 --key-gap 1000000001",
+                     "--key-gap must be a whole number of byte-times 0..10^9, got '1000000001'");
+  expect_usage_error("ring simulate example1 --keys wait=1000000000001",
+                     "wait=N takes a whole number of byte-times 0..10^12");
+  // Node and keypad 16 are as absent as node 15: the same message, not a syntax error.
+  expect_usage_error("ring simulate example1 --keys node15:in3=on", "node 15 is not a Motion Coordinator of this ring");
+  expect_usage_error("ring simulate example1 --keys node16:in3=on", "node 16 is not a Motion Coordinator of this ring");
+  expect_usage_error("ring simulate example1 --keys 16:7", "there is no keypad 16");
+  expect_usage_error("ring simulate example1 --keys 15:7", "there is no keypad 15");
+  const auto full = run_cli("ring simulate example1 --pcap /dev/full");
+  EXPECT_EQ(full.exit_code, 1);
+  EXPECT_EQ(full.err, "trionet: cannot write /dev/full: No space left on device\n");
+}
+
 TEST(RingSimulateCli, HelpDescribesTheOptions) {
   const auto r = run_cli("ring simulate --help");
   EXPECT_EQ(r.exit_code, 0);

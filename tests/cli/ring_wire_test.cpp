@@ -294,6 +294,23 @@ TEST(RingWire, BadArgumentsAreUsageErrors) {
       "ring wire pty pty pty pty pty pty pty pty pty pty pty pty pty pty pty pty", "at most 15 nodes");
 }
 
+TEST(RingWire, AMalformedEndpointIsABadArgumentNamingItAndWhatIsWrong) {
+  trionet::test::expect_usage_error("ring wire tcp::80 pty", "tcp::80: expected tcp:HOST:PORT (the host is empty)");
+  trionet::test::expect_usage_error("ring wire tcp:127.0.0.1:99999 pty",
+                                    "tcp:127.0.0.1:99999: the port must be a number 1..65535, got '99999'");
+  trionet::test::expect_usage_error("ring wire pty tcp:localhost:0", "the port must be a number 1..65535");
+  trionet::test::expect_usage_error("ring wire pty tcp:localhost:", "(the port is empty)");
+  trionet::test::expect_usage_error("ring wire pty tcp:localhost", "tcp:localhost: expected tcp:HOST:PORT (no port)");
+  trionet::test::expect_usage_error("ring wire pty tcp:a/b:80", "the host 'a/b' is not a host name or address");
+  trionet::test::expect_usage_error("ring wire pty tcp:[::1:80", "is not an IPv6 address in [ ]");
+  trionet::test::expect_usage_error("ring wire pty unix:", "the socket path must be 1..107 characters");
+  trionet::test::expect_usage_error("ring wire pty unix:" + std::string(200, 'x'), "the socket path must be 1..");
+  // Well formed but not there: a runtime failure, status 1.
+  const auto refused = run_cli("ring wire tcp:127.0.0.1:1 pty --connect-ms 0");
+  EXPECT_EQ(refused.exit_code, 1) << refused.err;
+  EXPECT_NE(refused.err.find("cannot connect to tcp:127.0.0.1:1"), std::string::npos) << refused.err;
+}
+
 TEST(RingWire, DropOnOneLinkLosesItsBytesOnly) {
   wire_run w({"d1", "d2", "d3"}, {"--drop", "1:1"});
   w.ends[0].write_all(text_frame(1, "KEPT"));

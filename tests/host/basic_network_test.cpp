@@ -203,7 +203,7 @@ TEST(BasicNetworkKeys, ScriptErrorsNameTheWord) {
   EXPECT_FALSE(n.net().set_keys("1:x", error));
   EXPECT_EQ(error, "key script, word 1 '1:x': no key 'x' (keys: 0..9 up + down - clr y enter n . start stop)");
   EXPECT_FALSE(n.net().set_keys("wait=z", error));
-  EXPECT_EQ(error, "key script, word 1 'wait=z': wait=N takes a whole number of byte-times");
+  EXPECT_EQ(error, "key script, word 1 'wait=z': wait=N takes a whole number of byte-times 0..10^12");
   EXPECT_FALSE(n.net().set_keys("up", error));
   EXPECT_EQ(error, "key script, word 1 'up': expected KEYPAD:KEY (e.g. 1:up), nodeN:inM=on|off or wait=N");
   EXPECT_TRUE(n.net().set_keys(" 1:UP\t1:Y  1:+ 1:- 1:clr 1:enter 1:n 1:. 1:stop 1:0 wait=0 ", error)) << error;
