@@ -24,6 +24,7 @@
 #include "ring_cli.hpp"
 #include "ring_live.hpp"
 #include "trionet/host/posix_link.hpp"
+#include "trionet/host/q32_text.hpp"
 #include "trionet/ring.hpp"
 #include "trionet/vr.hpp"
 
@@ -398,10 +399,17 @@ class mc_role {
       return sent(command, r.status);
     }
     if (command == "send") {
-      if (w.size() != 4 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, ring::max_vr, number) ||
-          !parse_real(w[3], value))
+      if (w.size() != 4 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, ring::max_vr, number))
         return reply_error(command, "usage: send N VR VALUE (N 10..24, VR 0..16383)");
-      return sent(command, with_room([&] { return mc_->send_variable(n, static_cast<std::uint16_t>(number), value); }));
+      // VALUE read exactly to Q32.32, not through a double (q32_text.hpp).
+      const host::q32_text_result q = host::parse_q32(w[3]);
+      if (q.status == host::q32_text_status::too_long)
+        return reply_error(command, "VALUE has more than " + std::to_string(host::max_q32_text) + " characters");
+      if (q.status == host::q32_text_status::not_a_number)
+        return reply_error(command, "usage: send N VR VALUE (N 10..24, VR 0..16383)");
+      if (!q) return sent(command, ring::send_status::value_out_of_range);  // as send_variable says it
+      return sent(command,
+                  with_room([&] { return mc_->send_variable_q32(n, static_cast<std::uint16_t>(number), q.raw); }));
     }
     if (command == "offset" || command == "mode") {
       if (w.size() != 3 || !basic_address_word(w[1], n) || !parse_integer(w[2], 0, 127, number))

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "profile_cli.hpp"
+#include "trionet/host/q32_text.hpp"
 
 #include "trionet/ring.hpp"
 
@@ -71,15 +72,19 @@ bool message_of(const std::string& kind, const arguments& args, ring::message& m
       error = "--vr must be a VR number 0..16383, got '" + host::printable(vr_text) + "'";
       return false;
     }
-    double value = 0;
-    if (!parse_real(value_text, value)) {
+    // Read exactly, not through a double (53 bits against Q32.32's 64): see q32_text.hpp.
+    const host::q32_text_result q = host::parse_q32(value_text);
+    if (q.status == host::q32_text_status::too_long) {
+      error = "--value has " + std::to_string(value_text.size()) + " characters; a value has at most " +
+              std::to_string(host::max_q32_text);
+      return false;
+    }
+    if (q.status == host::q32_text_status::not_a_number) {
       error = "--value must be a real number, got '" + host::printable(value_text) + "'";
       return false;
     }
-    const trionet::q32_result q = trionet::q32_from_double(value);
     if (!q) {
-      error = "--value " + host::printable(value_text) +
-              " is outside the Q32.32 range [-2147483648, 2147483647.9999999998]";
+      error = "--value " + host::printable(value_text) + " is outside the Q32.32 range " + host::q32_range_text;
       return false;
     }
     m = ring::message::variable(hops, static_cast<std::uint16_t>(vr), q.raw);

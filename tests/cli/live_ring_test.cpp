@@ -256,6 +256,29 @@ TEST(LiveRing, JoinAsMcForwardsDeliversAndTakesCommands) {
   std::remove(pcap.c_str());
 }
 
+// send N VR VALUE reads VALUE exactly to Q32.32 (docs/protocol.md 1.3), not through a double: the documented
+// top of the range goes out, digits beyond a double's count, and a value outside the range is refused.
+TEST(LiveRing, JoinSendsTheExactQ32Value) {
+  pty_pair pty;
+  ASSERT_TRUE(pty.ok());
+  tool_process mc({"ring", "join", pty.slave_path, "--as", "mc", "--json"});
+  mc.write("send 10 1 2147483647.99999999977\nsend 10 2 123456789.123456789\nsend 10 3 -2147483648.0000000001\n"
+           "send 10 4 2147483647.9999999999\nsend 10 5 nan\nsend 10 6 0." +
+           std::string(1000, '1') + "\nbogus\n");
+  const std::string out = trionet::test::without_times(mc.read_lines_with("unknown command", 1, patience_ms));
+  EXPECT_EQ(tool_process::occurrences(out, "\"event\":\"queued\""), 3u) << out;
+  EXPECT_NE(out.find("\"command\":\"send\",\"reason\":\"value_out_of_range\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"command\":\"send\",\"reason\":\"usage: send N VR VALUE"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"command\":\"send\",\"reason\":\"VALUE has more than 1000 characters\""), std::string::npos)
+      << out;
+  const auto sent = pty.read_bytes(3 * 16, patience_ms);
+  EXPECT_EQ(sent, concat({frame_of(ring::message::variable(1, 1, INT64_MAX)),
+                          frame_of(ring::message::variable(1, 2, std::int64_t{0x075bcd151f9add37})),
+                          frame_of(ring::message::variable(1, 3, INT64_MIN))}));
+  mc.write("quit\n");
+  EXPECT_EQ(mc.wait(patience_ms), 0);
+}
+
 // A stream of messages through the MC with no loss: the counters on both sides agree.
 TEST(LiveRing, JoinAsMcForwardsAStreamWithoutLoss) {
   pty_pair pty;

@@ -92,6 +92,46 @@ TEST(RingCli, DecodeWholeValuesAtTheEdgesOfTheirShortForm) {
   }
 }
 
+// --value is read exactly to Q32.32 (docs/protocol.md 1.3), not through a double: the documented top of the
+// range is accepted, and digits beyond a double's 53 bits count.
+std::string encoded_raw(const std::string& value) {
+  const auto r = run_cli("ring decode $(" TRIONET_CLI_PATH " ring encode var --to 10 --vr 1 --value " + value + ")");
+  const std::size_t at = r.out.find("\"raw\":\"");
+  return at == std::string::npos ? "none: " + r.out : r.out.substr(at + 7, 18);
+}
+
+TEST(RingCli, EncodeVarValueIsExactToTheNearest2ToTheMinus32) {
+  EXPECT_EQ(encoded_raw("2147483647.99999999977"), "0x7fffffffffffffff");  // the bound of docs/protocol.md 1.3
+  EXPECT_EQ(encoded_raw("2147483647.9999999998"), "0x7fffffffffffffff");
+  EXPECT_EQ(encoded_raw("2147483647.9999999"), "0x7ffffffffffffe53");
+  EXPECT_EQ(encoded_raw("2147483647.5000001"), "0x7fffffff800001ad");
+  EXPECT_EQ(encoded_raw("123456789.123456789"), "0x075bcd151f9add37");
+  EXPECT_EQ(encoded_raw("-0.5"), "0xffffffff80000000");
+  EXPECT_EQ(encoded_raw("-2147483648"), "0x8000000000000000");
+  EXPECT_EQ(encoded_raw("-2147483648.0000000001"), "0x8000000000000000");
+  EXPECT_EQ(encoded_raw("0.000000000116415321826934814453125"), "0x0000000000000001");  // a tie: away from 0
+  EXPECT_EQ(encoded_raw("-0.000000000116415321826934814453125"), "0xffffffffffffffff");
+  EXPECT_EQ(encoded_raw("1e-10"), "0x0000000000000000");
+  EXPECT_EQ(encoded_raw("2.5E-4"), "0x000000000010624e");
+  EXPECT_EQ(encoded_raw("+1e3"), "0x000003e800000000");
+  EXPECT_EQ(encoded_raw("0." + std::string(60, '3')), "0x0000000055555555");
+  const auto golden = run_cli("ring encode var --to 10 --vr 200 --value 0.0000000000000000099e19");
+  EXPECT_EQ(golden.out, "8a 48 01 00 00 00 00 30 0c 00 00 00 00 7f 3e 88\n") << golden.err;
+}
+
+TEST(RingCli, EncodeVarValueOutsideTheRangeOrNotANumberIsRefused) {
+  const std::string range = "outside the Q32.32 range [-2147483648, 2147483647.99999999977]";
+  expect_usage_error("ring encode var --to 10 --vr 1 --value 2147483647.9999999999", range);
+  expect_usage_error("ring encode var --to 10 --vr 1 --value 2147483648", range);
+  expect_usage_error("ring encode var --to 10 --vr 1 --value -2147483648.0000000002", range);
+  expect_usage_error("ring encode var --to 10 --vr 1 --value 1e400", range);
+  for (const char* text : {"nan", "inf", "-inf", "0x10", "1e", "1.5x", "' 1'", "''", "."})
+    expect_usage_error(std::string("ring encode var --to 10 --vr 1 --value ") + text, "must be a real number");
+  expect_usage_error("ring encode var --to 10 --vr 1 --value 0." + std::string(999, '1'), "at most 1000");
+  const auto longest = run_cli("ring encode var --to 10 --vr 1 --value 0." + std::string(998, '0'));
+  EXPECT_EQ(longest.exit_code, 0) << longest.err;
+}
+
 TEST(RingCli, DecodeEmptyInputPrintsNothing) {
   const auto r = run_cli("ring decode", "");
   EXPECT_EQ(r.exit_code, 0);

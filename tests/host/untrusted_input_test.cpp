@@ -13,12 +13,14 @@
 #include <cstdio>
 #include <fstream>
 #include <future>
+#include <iterator>
 #include <string>
 #include <thread>
 
 #include "support/temp_files.hpp"
 #include "trionet/host/files.hpp"
 #include "trionet/host/progress.hpp"
+#include "trionet/host/q32_text.hpp"
 #include "trionet/host/text.hpp"
 
 namespace {
@@ -27,10 +29,138 @@ using trionet::test::temp_file;
 using trionet::test::temp_path;
 using trionet::host::file_result;
 using trionet::host::file_status;
+using trionet::host::parse_q32;
 using trionet::host::printable;
 using trionet::host::progress;
 using trionet::host::read_bounded_fd;
 using trionet::host::read_bounded_file;
+
+// ---- parse_q32: decimal text to Q32.32, exactly (docs/protocol.md 1.3) ----
+
+using trionet::host::q32_text_status;
+
+// The raw Q32.32 of `text`, or the status when there is none (as a negative number below any raw value
+// a test expects, so that a wrong status shows in the failure).
+std::int64_t q32_of(const std::string& text) {
+  const trionet::host::q32_text_result r = parse_q32(text);
+  EXPECT_EQ(r.status, q32_text_status::ok) << text;
+  return r.raw;
+}
+q32_text_status q32_status_of(const std::string& text) { return parse_q32(text).status; }
+
+constexpr std::int64_t q32_max = INT64_MAX;  // 2^31 - 2^-32
+constexpr std::int64_t q32_min = INT64_MIN;  // -2^31
+
+// The top of the range as docs/protocol.md 1.3 writes it, and as the tool's message wrote it, is in range:
+// a double holds neither (both read as 2^31).
+TEST(ParseQ32, TheDocumentedTopOfTheRangeIsAccepted) {
+  EXPECT_EQ(q32_of("2147483647.99999999977"), q32_max);
+  EXPECT_EQ(q32_of("2147483647.9999999998"), q32_max);
+  EXPECT_EQ(q32_of("2147483647.9999999"), std::int64_t{0x7ffffffffffffe53});
+  EXPECT_EQ(q32_of("2147483647.99999999976716935634613037109375"), q32_max);  // 2^31 - 2^-32 exactly
+  EXPECT_EQ(q32_of("-2147483648"), q32_min);
+}
+
+// The range a message prints is the one docs/protocol.md 1.3 gives, and both of its ends are in range.
+TEST(ParseQ32, TheRangeInMessagesIsTheDocumentedOneAndInRange) {
+  const std::string range = trionet::host::q32_range_text;  // "[-2147483648, 2147483647.99999999977]"
+  const std::size_t comma = range.find(", ");
+  ASSERT_NE(comma, std::string::npos);
+  const std::string bottom = range.substr(1, comma - 1);
+  const std::string top = range.substr(comma + 2, range.size() - comma - 3);
+  EXPECT_EQ(q32_of(bottom), q32_min);
+  EXPECT_EQ(q32_of(top), q32_max);
+  std::ifstream doc(std::string(TRIONET_SOURCE_DIR) + "/docs/protocol.md");
+  const std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(text.empty());
+  // The document writes the minus sign as U+2212.
+  EXPECT_NE(text.find("(\xe2\x88\x92" + bottom.substr(1) + " to " + top + ")"), std::string::npos) << range;
+}
+
+TEST(ParseQ32, ExactRoundingWhereADoubleLosesDigits) {
+  EXPECT_EQ(q32_of("2147483647.5000001"), std::int64_t{0x7fffffff800001ad});  // via a double: ...80000000
+  EXPECT_EQ(q32_of("123456789.123456789"), std::int64_t{0x075bcd151f9add37});  // via a double: ...1f9add40
+  EXPECT_EQ(q32_of("-123456789.123456789"), -std::int64_t{0x075bcd151f9add37});
+  EXPECT_EQ(q32_of("0.3"), std::int64_t{0x4ccccccd});  // docs/protocol.md's example
+  EXPECT_EQ(q32_of("99"), std::int64_t{99} << 32);
+}
+
+// Ties (an odd multiple of 2^-33) go away from zero; a hair below a tie goes toward zero.
+TEST(ParseQ32, TiesGoAwayFromZero) {
+  EXPECT_EQ(q32_of("0.000000000116415321826934814453125"), 1);  // 2^-33
+  EXPECT_EQ(q32_of("-0.000000000116415321826934814453125"), -1);
+  EXPECT_EQ(q32_of("0.000000000116415321826934814453124999"), 0);
+  EXPECT_EQ(q32_of("-0.000000000116415321826934814453124999"), 0);
+  EXPECT_EQ(q32_of("0.000000000349245965480804443359375"), 2);  // 3 * 2^-33
+  EXPECT_EQ(q32_of("1.000000000116415321826934814453125"), (std::int64_t{1} << 32) + 1);
+  EXPECT_EQ(q32_of("1e-10"), 0);   // below 2^-33
+  EXPECT_EQ(q32_of("-1e-10"), 0);  // no negative zero
+  EXPECT_EQ(q32_of("2e-10"), 1);
+}
+
+TEST(ParseQ32, NegativeValuesAndTheBottomOfTheRange) {
+  EXPECT_EQ(q32_of("-0.5"), -(std::int64_t{1} << 31));
+  EXPECT_EQ(q32_of("-2.5"), -(std::int64_t{5} << 31));
+  EXPECT_EQ(q32_of("-0"), 0);
+  EXPECT_EQ(q32_of("-2147483648.0000000001"), q32_min);  // rounds to -2^31, in range
+  EXPECT_EQ(q32_of("-2147483648.000000000116415321826934814453124"), q32_min);
+  EXPECT_EQ(q32_status_of("-2147483648.000000000116415321826934814453125"), q32_text_status::out_of_range);  // a tie
+  EXPECT_EQ(q32_status_of("-2147483648.0000000002"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_status_of("-2147483649"), q32_text_status::out_of_range);
+}
+
+TEST(ParseQ32, AboveTheTopIsOutOfRangeNeverWrapped) {
+  EXPECT_EQ(q32_of("2147483647.999999999883584678173065185546874"), q32_max);  // just below the tie
+  EXPECT_EQ(q32_status_of("2147483647.999999999883584678173065185546875"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_status_of("2147483647.9999999999"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_status_of("2147483648"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_status_of("4294967296"), q32_text_status::out_of_range);  // would wrap to 0
+  EXPECT_EQ(q32_status_of("18446744073709551616"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_status_of("1e400"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_status_of("-1e400"), q32_text_status::out_of_range);
+}
+
+TEST(ParseQ32, ExponentForms) {
+  EXPECT_EQ(q32_of("1e3"), std::int64_t{1000} << 32);
+  EXPECT_EQ(q32_of("1E+3"), std::int64_t{1000} << 32);
+  EXPECT_EQ(q32_of("2.5E-4"), std::int64_t{1073742});  // 0.00025 * 2^32 = 1073741.8
+  EXPECT_EQ(q32_of("+25e-5"), std::int64_t{1073742});
+  EXPECT_EQ(q32_of("0.0000025e2"), std::int64_t{1073742});
+  EXPECT_EQ(q32_of("21474836475e-1"), std::int64_t{0x7fffffff80000000});
+  EXPECT_EQ(q32_of("-2.147483648e9"), q32_min);
+  EXPECT_EQ(q32_of("1e-400"), 0);
+  EXPECT_EQ(q32_of("0e999999999999999999999"), 0);
+  EXPECT_EQ(q32_of("1e-999999999999999999999"), 0);
+  EXPECT_EQ(q32_status_of("1e999999999999999999999"), q32_text_status::out_of_range);
+  EXPECT_EQ(q32_of("100000000000000000000e-20"), std::int64_t{1} << 32);
+}
+
+TEST(ParseQ32, LongInputsAreExactAndBounded) {
+  EXPECT_EQ(q32_of("0." + std::string(60, '3')), std::int64_t{0x55555555});
+  EXPECT_EQ(q32_of("0." + std::string(60, '9')), std::int64_t{1} << 32);
+  EXPECT_EQ(q32_of("1." + std::string(60, '0') + "1"), std::int64_t{1} << 32);
+  EXPECT_EQ(q32_of(std::string(900, '0') + "7." + std::string(90, '0')), std::int64_t{7} << 32);
+  const std::string longest = "0." + std::string(trionet::host::max_q32_text - 3, '0') + "1";
+  ASSERT_EQ(longest.size(), trionet::host::max_q32_text);
+  EXPECT_EQ(q32_of(longest), 0);
+  EXPECT_EQ(q32_status_of(longest + "0"), q32_text_status::too_long);
+  EXPECT_EQ(q32_status_of(std::string(1 << 20, '9')), q32_text_status::too_long);
+}
+
+// The syntax is parse_real's, word for word: the same texts are numbers (here, all within a double's
+// range) and the same are not.
+TEST(ParseQ32, AcceptsWhatParseRealAccepts) {
+  const char* const texts[] = {"99",  "-2.345", "+1e3", ".5",   "-.5",  "1.",    "+-5",   "0",     "-0",    "2.5E-4",
+                               "1e+2", "1E-2", "",     ".",    "-",    "+",     "++5",   "-+5",   "--5",   "1e",
+                               "1e+",  "e5",   "1.2.3", "1,5",  " 1",   "1 ",    "0x10",  "0x1p3", "nan",   "NaN",
+                               "inf",  "-inf", "infinity", "1e5.5", "1e--2", "12abc", "1d3", "\xd9\xa3", "1_000", "1e3 "};
+  for (const char* text : texts) {
+    double ignored = 0;
+    const bool real = trionet::host::parse_real(text, -1.7976931348623157e308, 1.7976931348623157e308, ignored);
+    EXPECT_EQ(parse_q32(text).status != q32_text_status::not_a_number, real) << '"' << text << '"';
+  }
+  EXPECT_EQ(q32_of("+-5"), -(std::int64_t{5} << 32));  // from_chars takes the '-' after parse_real's '+'
+}
 
 // ---- printable ----
 
