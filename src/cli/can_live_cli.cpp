@@ -87,6 +87,16 @@ std::string interface_name_error(const std::string& name, const char* what) {
   return "";
 }
 
+// The first wrong name among the command's IFACE (unless it is -, candump text) and its --interface-name, or "".
+std::string interface_names_error(const arguments& args) {
+  if (args.positionals[0] != "-") {
+    std::string wrong = interface_name_error(args.positionals[0], "IFACE");
+    if (!wrong.empty()) return wrong;
+  }
+  if (args.has("--interface-name")) return interface_name_error(args.options.at("--interface-name"), "--interface-name");
+  return "";
+}
+
 // Where frames come from and go to: a SocketCAN socket, or candump text on standard input and output.
 class bus {
  public:
@@ -244,10 +254,7 @@ int monitor_main(const words& given) {
   std::uint8_t nodes = 0;
   if (!parse_node_count(args, nodes, error)) return fail("can monitor: " + error);
   bus can_bus;
-  if (args.positionals[0] != "-") {
-    const std::string wrong = interface_name_error(args.positionals[0], "IFACE");
-    if (!wrong.empty()) return fail("can monitor: " + wrong);
-  }
+  if (const std::string wrong = interface_names_error(args); !wrong.empty()) return fail("can monitor: " + wrong);
   if (!can_bus.open(args.positionals[0], "can0", error)) return fail_io("can monitor: " + error);
   live::capture_file capture;
   std::uint32_t interface = 0;
@@ -301,14 +308,7 @@ int send_main(const words& given) {
   if (!can_message_frame(args, frame, error)) return fail("can send: " + error);
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
-  if (args.positionals[0] != "-") {
-    const std::string wrong = interface_name_error(args.positionals[0], "IFACE");
-    if (!wrong.empty()) return fail("can send: " + wrong);
-  }
-  if (args.has("--interface-name")) {
-    const std::string wrong = interface_name_error(name, "--interface-name");
-    if (!wrong.empty()) return fail("can send: " + wrong);
-  }
+  if (const std::string wrong = interface_names_error(args); !wrong.empty()) return fail("can send: " + wrong);
   if (!can_bus.open(args.positionals[0], name, error)) return fail_io("can send: " + error);
   const can::transmit_status sent = can_bus.send(frame, live::now_ns());
   if (can_bus.text() && output_failed()) return fail_output();
@@ -353,14 +353,7 @@ int node_main(const words& given) {
   const bool trace = args.flag("--trace");
   const std::string name = args.has("--interface-name") ? args.options.at("--interface-name") : "can0";
   bus can_bus;
-  if (args.positionals[0] != "-") {
-    const std::string wrong = interface_name_error(args.positionals[0], "IFACE");
-    if (!wrong.empty()) return fail("can node: " + wrong);
-  }
-  if (args.has("--interface-name")) {
-    const std::string wrong = interface_name_error(name, "--interface-name");
-    if (!wrong.empty()) return fail("can node: " + wrong);
-  }
+  if (const std::string wrong = interface_names_error(args); !wrong.empty()) return fail("can node: " + wrong);
   if (!can_bus.open(args.positionals[0], name, error)) return fail_io("can node: " + error);
   live::capture_file capture;
   std::uint32_t interface = 0;
