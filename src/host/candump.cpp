@@ -273,12 +273,15 @@ candump_status parse_candump_frame(std::string_view text, candump_record& out) {
       const unsigned length = nibble(at(idx++));
       if (length <= 8) {
         out.length = static_cast<std::uint16_t>(length);
-        if (length == 8 && at(idx++) == '_') {
-          const unsigned dlc = nibble(at(idx));
+        if (length == 8 && at(idx) == '_') {
+          const unsigned dlc = nibble(at(++idx));
           if (dlc > 8 && dlc <= 15) out.len8_dlc = static_cast<std::uint8_t>(dlc);
+          ++idx;
         }
       }
     }
+    // can-utils stops reading here and ignores the rest of the word; a frame with more after it is refused.
+    if (idx < cs.size()) return candump_status::trailing;
     if ((out.can_id & can_error_flag) != 0 && digits == 8) out.type = candump_frame_type::error;
     fill_frame(out);
     return candump_status::ok;
@@ -322,10 +325,14 @@ candump_status parse_candump_frame(std::string_view text, candump_record& out) {
     out.data.push_back(byte);
   }
   out.length = static_cast<std::uint16_t>(length);
-  if (max_length == 8 && length == 8 && at(idx++) == '_') {
-    const unsigned dlc = nibble(at(idx));
+  if (max_length == 8 && length == 8 && at(idx) == '_') {
+    const unsigned dlc = nibble(at(++idx));
     if (dlc > 8 && dlc <= 15) out.len8_dlc = static_cast<std::uint8_t>(dlc);
+    ++idx;
   }
+  // More data than the frame holds (028#0100000000020D7A0102), or anything else after it: can-utils reads
+  // the frame and ignores the rest of the word; here that is a wrong line, not a plausible frame.
+  if (idx < cs.size()) return candump_status::trailing;
   // The error flag makes an error frame of a classic or CAN FD frame (`20000080##0`): can-utils prints both
   // as ERRORFRAME.
   if (out.type != candump_frame_type::xl && (out.can_id & can_error_flag) != 0 && digits == 8) {

@@ -82,16 +82,27 @@ TEST(CanCandumpGrammar, EverySnprintfCanframeExampleReadsBack) {
 TEST(CanCandumpGrammar, CanUtilsLeniencies) {
   expect_classic("123#11.", 0x123, 1);                        // a '.' at the end
   expect_classic("123#.11", 0x123, 1);                        // a '.' at the start
-  expect_classic("123#1122334455667788ZZ", 0x123, 8);         // anything after the 8th byte
   expect_classic("123#1122334455667788_3", 0x123, 8, 0);      // `_` with a DLC that is not 9..F
   expect_classic("123#R9", frame::remote_flag | 0x123, 0);    // a remote length above 8 is no length
-  expect_classic("123#rzz", frame::remote_flag | 0x123, 0);   // anything after a remote frame's R
   expect_classic("800#11", 0x800, 1);                         // 3 digits above 7FF
   EXPECT_FALSE(read("800#11").classic_frame()) << "read, but not a legal standard frame";
   expect_classic("12345#1122", 0x120345, 2);                  // 5 digits without an XL header
   expect_classic("C0000123#11", 0xC0000123U, 1);              // flag bits in the digits
   EXPECT_EQ(read("A0000000#").type, candump_frame_type::error);
   EXPECT_EQ(read(std::string("123#11\0zz", 9)).length, 1) << "the frame ends at a NUL, as a C string does";
+}
+
+// Where can-utils reads a frame and ignores the rest of the word, the line is refused: more bytes than a frame
+// holds would otherwise read as a plausible frame of the first eight.
+TEST(CanCandumpGrammar, MoreInTheFrameWordThanTheFrameIsRefused) {
+  for (const char* line : {"123#1122334455667788ZZ", "028#0100000000020D7A0102030405", "123#1122334455667788_9Z",
+                           "123#rzz", "123#R8_9x", "(1.5) can0 028#0100000000020D7A00 R"}) {
+    EXPECT_EQ(parse_candump_line(line).status, candump_status::trailing) << line;
+  }
+  expect_classic("123#1122334455667788_9", 0x123, 8, 9);  // the DLC after the 8th byte is the frame's
+  expect_classic("123#R8_9", frame::remote_flag | 0x123, 8, 9);
+  EXPECT_EQ(read("123##F" + std::string(128, 'A')).data.size(), 64u);  // CAN FD's 64 bytes
+  EXPECT_EQ(parse_candump_line("123##F" + std::string(130, 'A')).status, candump_status::trailing);
 }
 
 TEST(CanCandumpGrammar, LogLinesAsCandumpAsc2logAndPythonCanWriteThem) {
