@@ -58,6 +58,7 @@ class character_buffer {
 
  private:
   std::uint8_t data_[N < ring::variable_data_length ? ring::variable_data_length : N] = {};
+  static_assert(payload_at + ring::variable_data_length <= sizeof data_, "a variable transfer's data fits the store");
 };
 
 /// A Motion Coordinator's receive buffer as the decoder's character store: a single-producer, single-consumer
