@@ -199,7 +199,7 @@ class lexer {
     std::string text;
     while (i_ < s_.size() && s_[i_] != '"' && s_[i_] != '\n' && s_[i_] != '\r') {
       if (static_cast<unsigned char>(s_[i_]) > 127) {
-        error = {here(i_), shown_character(s_[i_]) + " in a string: the ring carries characters 0..127"};
+        error = {here(i_), shown_character(s_[i_]) + " in a string: a string holds characters 0..127, what the ring carries"};
         return false;
       }
       text += s_[i_++];

@@ -92,7 +92,7 @@ TEST(BasicCompileErrors, TextTheLexerCannotRead) {
   expect_compile_error("x=1\n\xEF\xBB\xBFy=2\n", compile_status::syntax_error,
                        "test.bas:2:1: unexpected character byte 0xef");
   expect_compile_error("PRINT \"\xc3\xa9\"\n", compile_status::syntax_error,
-                       "test.bas:1:8: byte 0xc3 in a string: the ring carries characters 0..127");
+                       "test.bas:1:8: byte 0xc3 in a string: a string holds characters 0..127, what the ring carries");
   expect_compile_error("x=$\n", compile_status::syntax_error,
                        "test.bas:1:3: expected hex digits after '$' (a hex number is written $1F)");
   // The number is echoed cut to 40 characters.

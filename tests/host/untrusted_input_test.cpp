@@ -159,7 +159,28 @@ TEST(ParseQ32, AcceptsWhatParseRealAccepts) {
     const bool real = trionet::host::parse_real(text, -1.7976931348623157e308, 1.7976931348623157e308, ignored);
     EXPECT_EQ(parse_q32(text).status != q32_text_status::not_a_number, real) << '"' << text << '"';
   }
-  EXPECT_EQ(q32_of("+-5"), -(std::int64_t{5} << 32));  // from_chars takes the '-' after parse_real's '+'
+  EXPECT_EQ(q32_status_of("+-5"), q32_text_status::not_a_number);  // one sign at most
+}
+
+// Regression: "+-5" was read as -5 (the '+' skipped, then from_chars took the '-'). One sign at most, for
+// the integer and real readers of every option.
+TEST(ParseNumbers, TwoSignsAreNotANumber) {
+  long long whole = 1;
+  double real = 1;
+  for (const char* text : {"+-5", "-+5", "++5", "--5", "+-0"}) {
+    EXPECT_FALSE(trionet::host::parse_integer(text, -100, 100, whole)) << text;
+    EXPECT_FALSE(trionet::host::parse_real(text, -100, 100, real)) << text;
+  }
+  EXPECT_EQ(whole, 1);
+  EXPECT_EQ(real, 1);
+  ASSERT_TRUE(trionet::host::parse_integer("+5", -100, 100, whole));
+  EXPECT_EQ(whole, 5);
+  ASSERT_TRUE(trionet::host::parse_integer("-5", -100, 100, whole));
+  EXPECT_EQ(whole, -5);
+  ASSERT_TRUE(trionet::host::parse_real("-5.5", -100, 100, real));
+  EXPECT_EQ(real, -5.5);
+  ASSERT_TRUE(trionet::host::parse_real("+5.5", -100, 100, real));
+  EXPECT_EQ(real, 5.5);
 }
 
 // ---- printable ----

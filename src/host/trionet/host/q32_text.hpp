@@ -36,7 +36,7 @@ constexpr const char* q32_range_text = "[-2147483648, 2147483647.99999999977]";
 
 /// Decimal text ("99", "-2.345", "+1e3", ".5", "2.5E-4") to Q32.32: rounded to the nearest 2^-32, ties away
 /// from zero, and out_of_range when the rounded value is outside [-2^31, 2^31 - 2^-32] (raw outside
-/// [-2^63, 2^63 - 1]), never wrapped. The syntax is parse_real's: an optional '+', an optional '-', digits
+/// [-2^63, 2^63 - 1]), never wrapped. The syntax is parse_real's: an optional '+' or '-', digits
 /// with an optional '.' (at least one digit), an optional exponent ('e' or 'E', an optional sign, digits);
 /// nothing else (no blanks, NaN, infinities or hex). Any number of digits up to max_q32_text characters in
 /// all, and any exponent: the result is exact (1e-400 is 0, 1e400 out of range).
@@ -44,8 +44,9 @@ inline q32_text_result parse_q32(std::string_view text) noexcept {
   if (text.size() > max_q32_text) return {q32_text_status::too_long, 0};
   const auto digit = [&](std::size_t i) { return i < text.size() && text[i] >= '0' && text[i] <= '9'; };
   std::size_t i = 0;
-  if (i < text.size() && text[i] == '+') ++i;
-  const bool negative = i < text.size() && text[i] == '-';
+  const bool positive = i < text.size() && text[i] == '+';
+  if (positive) ++i;
+  const bool negative = !positive && i < text.size() && text[i] == '-';
   if (negative) ++i;
   const std::size_t whole_begin = i;
   while (digit(i)) ++i;

@@ -55,11 +55,12 @@ bool parse_hex_bytes(std::string_view text, Bytes& out) {
   return true;
 }
 
-/// A whole decimal integer ("42", "+42", "-7") in [min, max]. False on anything else.
+/// A whole decimal integer ("42", "+42", "-7") in [min, max]. False on anything else ("+-7" too).
 inline bool parse_integer(std::string_view text, long long min, long long max, long long& out) noexcept {
   const char* first = text.data();
   const char* last = text.data() + text.size();
   if (first != last && *first == '+') ++first;
+  if (first != last && *first == '-' && first != text.data()) return false;  // "+-7": one sign at most
   long long value = 0;
   const auto [end, ec] = std::from_chars(first, last, value);
   if (ec != std::errc() || end != last || first == last || value < min || value > max) return false;
@@ -68,11 +69,12 @@ inline bool parse_integer(std::string_view text, long long min, long long max, l
 }
 
 /// A whole finite decimal real number ("99", "-2.345", "1e3") in [min, max]. False on anything else
-/// (NaN, infinities, hex floats, trailing text).
+/// (NaN, infinities, hex floats, trailing text, two signs such as "+-5").
 inline bool parse_real(std::string_view text, double min, double max, double& out) noexcept {
   const char* first = text.data();
   const char* last = text.data() + text.size();
   if (first != last && *first == '+') ++first;
+  if (first != last && *first == '-' && first != text.data()) return false;  // "+-5": one sign at most
   double value = 0;
   const auto [end, ec] = std::from_chars(first, last, value, std::chars_format::general);
   if (ec != std::errc() || end != last || first == last) return false;
