@@ -1053,7 +1053,9 @@ class compiler {
     statement s;
     s.kind = statement_kind::get;
     s.line = where.line;
-    if (!expect_symbol("#", "'#' and a channel after GET (GET #n,variable)") || !expression(s.expr[0]) ||
+    if (!expect_symbol("#", "'#' and a channel after GET (GET #n,variable; GET alone, the controller's own "
+                            "serial port, is not modelled)") ||
+        !expression(s.expr[0]) ||
         !expect_symbol(",", "',' after the channel of GET #")) {
       return false;
     }
@@ -1541,7 +1543,10 @@ class compiler {
     }
     if (word == "KEY") {
       next();
-      if (!expect_symbol("#", "'#' and a channel after KEY (KEY#n)")) return false;
+      if (!expect_symbol("#", "'#' and a channel after KEY (KEY#n; KEY alone, the controller's own serial port, "
+                              "is not modelled)")) {
+        return false;
+      }
       nesting guard(*this);
       if (!guard.ok() || !unary()) return false;
       push(expr_op::key);

@@ -323,8 +323,13 @@ bool machine::queue_move(int index) {
 
 motion_status machine::move(const std::vector<std::size_t>& axes, const std::vector<double>& values, move_type type) {
   if (!valid(axes) || axes.size() != values.size()) return motion_status::bad_axis;
+  // One move runs (MTYPE) and one waits (NTYPE): a move not started yet holds the waiting place, so a second
+  // move command waits for the first to start at the next servo tick.
   for (std::size_t axis : axes) {
-    if (axes_[axis].queue[1] >= 0) return motion_status::busy;
+    const axis_state& a = axes_[axis];
+    if (a.queue[1] >= 0 || (a.queue[0] >= 0 && !moves_[static_cast<std::size_t>(a.queue[0])].running)) {
+      return motion_status::busy;
+    }
   }
   const int index = allocate_move();
   if (index < 0) return motion_status::busy;

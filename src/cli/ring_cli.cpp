@@ -71,7 +71,7 @@ int encode_main(const words& all) {
 // decode
 
 // How an event says where it is.
-enum class where_kind : std::uint8_t { line, offset };
+enum class where_kind : std::uint8_t { line, position };
 
 // A decoder over a stream of bytes that knows where each byte came from, printing events to `out`.
 class ring_stream {
@@ -92,7 +92,7 @@ class ring_stream {
   }
 
  private:
-  const char* key() const { return kind_ == where_kind::line ? "line" : "offset"; }
+  const char* key() const { return kind_ == where_kind::line ? "line" : "position"; }
   struct printer {
     ring_stream* self;
     void operator()(const ring::decode_result& r, std::uint64_t at) const {
@@ -188,7 +188,7 @@ int decode_main(const words& all) {
   output out;
   if (raw) {
     if (!args.positionals.empty()) return fail("--raw reads standard input: no HEX arguments with it");
-    ring_stream bytes(out.text(), where_kind::offset);
+    ring_stream bytes(out.text(), where_kind::position);
     std::uint64_t offset = 0;
     const int status = stream_stdin(out, [&](std::string_view chunk) {
       const auto* first = reinterpret_cast<const std::uint8_t*>(chunk.data());

@@ -71,8 +71,9 @@ bool link_device::open(const std::string& name, const link_options& options, std
   // where a monitor listens) neither takes nor checks the lock.
   fd_ = ::open(name.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) {
-    error = "cannot open " + printable(name) + ": " + std::strerror(errno);
-    if (errno == EBUSY) error += " (another program has it in exclusive use)";
+    // (A program that is not root finds a port in exclusive mode here: the same words as below.)
+    error = errno == EBUSY ? printable(name) + " is in use: another program has it in exclusive mode"
+                           : "cannot open " + printable(name) + ": " + std::strerror(errno);
     return false;
   }
   int exclusive = 0;

@@ -164,15 +164,17 @@ TEST(RingCli, UnfinishedMessageAtTheEndIsReported) {
             "{\"event\":\"unfinished\",\"line\":2}\n");
 }
 
-TEST(RingCli, RawBytesWithOffsets) {
-  // Raw input is what a serial port gives: offset 0 a stray byte, 1.. an offset message, then "HI" cut short.
+TEST(RingCli, RawBytesWithPositions) {
+  // Raw input is what a serial port gives: byte 0 a stray byte, 1.. an offset message, then "HI" cut short.
+  // Regression: the byte's place was keyed "offset", as is a keypad offset message's offset: one object held
+  // the key twice, and a JSON reader kept only the second.
   const auto r = run_cli("ring decode --raw", std::string("\x01\x8b\x03\x88\x91\x48\x49", 7));
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.err, "");
   EXPECT_EQ(r.out,
-            "{\"event\":\"frame_error\",\"offset\":0,\"reason\":\"stray_data\"}\n"
-            "{\"event\":\"message\",\"offset\":1,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
-            "{\"event\":\"unfinished\",\"offset\":4}\n");
+            "{\"event\":\"frame_error\",\"position\":0,\"reason\":\"stray_data\"}\n"
+            "{\"event\":\"message\",\"position\":1,\"type\":\"offset\",\"hops\":1,\"offset\":3}\n"
+            "{\"event\":\"unfinished\",\"position\":4}\n");
   const auto golden = run_cli("ring decode --raw < /dev/null");
   EXPECT_EQ(golden.exit_code, 0);
   EXPECT_EQ(golden.out, "");

@@ -93,6 +93,11 @@ TEST(BasicCompileErrors, TextTheLexerCannotRead) {
                        "test.bas:2:1: unexpected character byte 0xef");
   expect_compile_error("PRINT \"\xc3\xa9\"\n", compile_status::syntax_error,
                        "test.bas:1:8: byte 0xc3 in a string: a string holds characters 0..127, what the ring carries");
+  // KEY and GET without a channel read the controller's own serial port: not modelled, and said so (the
+  // manual's OR example, IF KEY OR IN(0)=ON, read as a syntax error only).
+  expect_compile_error("IF KEY OR IN(0)=ON THEN STOP\n", compile_status::syntax_error,
+                       "test.bas:1:8: expected '#' and a channel after KEY (KEY#n; KEY alone, the controller's own "
+                       "serial port, is not modelled), found the mathematical function or operator OR");
   expect_compile_error("x=$\n", compile_status::syntax_error,
                        "test.bas:1:3: expected hex digits after '$' (a hex number is written $1F)");
   // The number is echoed cut to 40 characters.
