@@ -92,36 +92,6 @@ int show_main(const words& all) {
   return write_profile_file(p, "-");
 }
 
-// Why `name` cannot be the header's namespace though its components are identifiers, empty when it can: a
-// C++17 keyword or alternative token as a component (g++ rejects the header), or trionet as one (the library's
-// own namespace: the header would define its policies there, or hide the trionet:: it names).
-std::string namespace_problem(const std::string& name) {
-  static const char* const keywords[] = {
-      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-      "char", "char16_t", "char32_t", "class", "compl", "const", "constexpr", "const_cast", "continue",
-      "decltype", "default", "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit", "export",
-      "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace",
-      "new", "noexcept", "not", "not_eq", "nullptr", "operator", "or", "or_eq", "private", "protected", "public",
-      "register", "reinterpret_cast", "return", "short", "signed", "sizeof", "static", "static_assert",
-      "static_cast", "struct", "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef",
-      "typeid", "typename", "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while",
-      "xor", "xor_eq"};
-  std::size_t at = 0;
-  for (;;) {
-    const std::size_t separator = name.find("::", at);
-    const std::string component = name.substr(at, separator == std::string::npos ? std::string::npos : separator - at);
-    for (const char* k : keywords) {
-      if (component == k) return "'" + component + "' is a C++ keyword";
-    }
-    if (component == "trionet") {
-      return at == 0 ? "it is or lies inside the library's own namespace trionet"
-                     : "a namespace named trionet would hide the library's trionet:: that the header names";
-    }
-    if (separator == std::string::npos) return "";
-    at = separator + 2;
-  }
-}
-
 int header_main(const words& all) {
   arguments args;
   std::string error;
@@ -131,13 +101,7 @@ int header_main(const words& all) {
   if (status != exit_ok) return status;
   const std::string name = args.has("--namespace") ? args.options.at("--namespace") : "trionet_profile";
   const learn::header_result header = learn::profile_header(p, name);
-  if (header) {
-    const std::string problem = namespace_problem(name);
-    if (!problem.empty()) return fail("--namespace '" + host::printable(name) + "' cannot be used: " + problem);
-  }
-  if (!header)
-    return fail("--namespace must be a C++ namespace name (identifiers joined by ::), got '" +
-                host::printable(name) + "'");
+  if (!header) return fail("--namespace '" + host::printable(name) + "' cannot be used: " + header.reason);
   if (!args.has("-o")) {
     return write_stdout(header.text) ? exit_ok : fail_output();
   }

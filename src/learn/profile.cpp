@@ -473,6 +473,40 @@ std::string write_profile(const profile& p) {
   return out;
 }
 
+namespace {
+
+// Why `name` cannot be the header's namespace though its components are identifiers, empty when it can: a
+// C++17 keyword or alternative token as a component (g++ rejects the header), or trionet as one (the library's
+// own namespace: the header would define its policies there, or hide the trionet:: it names).
+std::string namespace_problem(const std::string& name) {
+  static const char* const keywords[] = {
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+      "char", "char16_t", "char32_t", "class", "compl", "const", "constexpr", "const_cast", "continue",
+      "decltype", "default", "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit", "export",
+      "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace",
+      "new", "noexcept", "not", "not_eq", "nullptr", "operator", "or", "or_eq", "private", "protected", "public",
+      "register", "reinterpret_cast", "return", "short", "signed", "sizeof", "static", "static_assert",
+      "static_cast", "struct", "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef",
+      "typeid", "typename", "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while",
+      "xor", "xor_eq"};
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t separator = name.find("::", at);
+    const std::string component = name.substr(at, separator == std::string::npos ? std::string::npos : separator - at);
+    for (const char* k : keywords) {
+      if (component == k) return "'" + component + "' is a C++ keyword";
+    }
+    if (component == "trionet") {
+      return at == 0 ? "it is or lies inside the library's own namespace trionet"
+                     : "a namespace named trionet would hide the library's trionet:: that the header names";
+    }
+    if (separator == std::string::npos) return "";
+    at = separator + 2;
+  }
+}
+
+}  // namespace
+
 header_result profile_header(const profile& p, std::string_view namespace_name) {
   header_result result;
   std::string_view rest = namespace_name;
@@ -480,12 +514,18 @@ header_result profile_header(const profile& p, std::string_view namespace_name) 
     const std::size_t separator = rest.find("::");
     if (!is_identifier(rest.substr(0, separator))) {
       result.status = header_status::bad_namespace;
+      result.reason = "it is not a C++ namespace name (identifiers joined by ::)";
       return result;
     }
     if (separator == std::string_view::npos) break;
     rest = rest.substr(separator + 2);
   }
   const std::string ns(namespace_name);
+  result.reason = namespace_problem(ns);
+  if (!result.reason.empty()) {
+    result.status = header_status::bad_namespace;
+    return result;
+  }
   const std::string ring_ns = "trionet::ring::";
   const auto order = [&](ring::group_order o) { return ring_ns + "group_order::" + to_string(o); };
   const ring::crc16_parameters& c = p.ring.crc;

@@ -157,11 +157,13 @@ constexpr const char* to_string(header_status status) noexcept {
 struct [[nodiscard]] header_result {
   header_status status = header_status::ok;
   std::string text;
+  std::string reason;  ///< bad_namespace: why the name cannot be the header's namespace ("'int' is a C++ keyword")
   explicit operator bool() const noexcept { return status == header_status::ok; }
 };
 
 /// A C++17 header with the profile as constexpr policies and constants in `namespace_name`, for a firmware
-/// build (docs/profile.md shows one). It includes only trionet headers.
+/// build (docs/profile.md shows one). It includes only trionet headers. `bad_namespace` (with its reason) for a
+/// name that is not identifiers joined by ::, has a C++ keyword as one of them, or is or names trionet.
 [[nodiscard]] header_result profile_header(const profile& p,
                                            std::string_view namespace_name = "trionet_profile");
 

@@ -577,7 +577,7 @@ TEST(LearnCli, ProfileShowAndHeader) {
   EXPECT_EQ(to_file.out, "");
   EXPECT_EQ(slurp(header), learn::profile_header(p).text);
   expect_usage_error("profile header " + path + " --namespace 7up",
-                     "--namespace must be a C++ namespace name");
+                     "cannot be used: it is not a C++ namespace name");
   expect_usage_error("profile show a.json b.json", "unexpected argument 'b.json'");
   expect_usage_error("profile", "profile needs a command: show or header");
   write_file(path, "{\"trionet_profile\": 2}");

@@ -299,6 +299,22 @@ TEST(LearnProfile, HeaderNamespaceMustBeACppName) {
   EXPECT_EQ(learn::profile_header(learn::profile{}, "a::").status, learn::header_status::bad_namespace);
   EXPECT_EQ(learn::profile_header(learn::profile{}, "").status, learn::header_status::bad_namespace);
   EXPECT_EQ(learn::profile_header(learn::profile{}, "a b").status, learn::header_status::bad_namespace);
+  EXPECT_EQ(learn::profile_header(learn::profile{}, "a b").reason,
+            "it is not a C++ namespace name (identifiers joined by ::)");
+}
+
+// Regression: the library wrote a header that does not compile for a keyword or trionet namespace (only the
+// tool refused them); every caller, the Python package too, now gets the refusal and its reason.
+TEST(LearnProfile, HeaderNamespaceMustNotBeAKeywordOrTrionet) {
+  const auto refused = [](const char* name) { return learn::profile_header(learn::profile{}, name); };
+  EXPECT_EQ(refused("int").status, learn::header_status::bad_namespace);
+  EXPECT_EQ(refused("int").reason, "'int' is a C++ keyword");
+  EXPECT_EQ(refused("plant::and").reason, "'and' is a C++ keyword");
+  EXPECT_EQ(refused("trionet::ring").status, learn::header_status::bad_namespace);
+  EXPECT_EQ(refused("plant::trionet").status, learn::header_status::bad_namespace);
+  EXPECT_EQ(refused("plant::trionet").text, "");
+  EXPECT_TRUE(learn::profile_header(learn::profile{}, "plant::trionet_x::integer"));
+  EXPECT_EQ(learn::profile_header(learn::profile{}, "plant").reason, "");
 }
 
 // The generated headers of the default and of a custom profile, compiled with the firmware's flags and run:
