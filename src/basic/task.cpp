@@ -82,7 +82,13 @@ task::task(const program& code, controller& io, const task_config& config)
       config_(config),
       vars_(code.slots, 0.0),
       stack_(static_cast<std::size_t>(code.stack_depth) + 1, 0.0),
-      ticks_base_(io.hardware().ticks()) {}
+      ticks_base_(io.hardware().ticks()) {
+  // A FOR loop's step reads "not running" (NaN) until its FOR runs and after the loop ends: a NEXT reached by a
+  // jump into the loop's body is an error, not a pass with bounds left by another time.
+  for (const statement& s : code.statements) {
+    if (s.kind == statement_kind::for_start) vars_[s.extra + 1] = std::numeric_limits<double>::quiet_NaN();
+  }
+}
 
 std::uint32_t task::line() const noexcept {
   if (state_ == task_state::ended || state_ == task_state::failed) return line_;
@@ -704,6 +710,7 @@ std::uint32_t task::run(std::uint32_t budget) {
         if (step >= 0 ? v <= last : v >= last) {
           ++pc_;
         } else {
+          vars_[s.extra + 1] = std::numeric_limits<double>::quiet_NaN();  // the loop is not running
           pc_ = s.target;
           jumped();
         }
@@ -712,12 +719,17 @@ std::uint32_t task::run(std::uint32_t budget) {
       case statement_kind::for_next: {
         const double last = vars_[s.extra];
         const double step = vars_[s.extra + 1];
+        if (std::isnan(step)) {
+          fail("NEXT " + code_->variable_names[s.slot] + " without its FOR running (a jump into the loop)");
+          goto out;
+        }
         double& variable = vars_[s.slot];
         store(variable, variable + step);
         if (step >= 0 ? variable <= last : variable >= last) {
           pc_ = s.target;
           jumped();
         } else {
+          vars_[s.extra + 1] = std::numeric_limits<double>::quiet_NaN();  // the loop has ended
           ++pc_;
         }
         break;

@@ -177,6 +177,14 @@ TEST(BasicCompileErrors, LimitsOnUntrustedText) {
 
 TEST(BasicRuntimeErrors, StopTheProgramWithItsLine) {
   expect_runtime_error("x=1\nRETURN\n", 2, "RETURN without GOSUB");
+  // Regression: a NEXT reached by a jump into the loop's body ran with the end and step of another time (or
+  // 0 and 0 before the FOR ever ran, a loop for ever).
+  expect_runtime_error("GOTO inside\nFOR i=1 TO 3\ninside:\nPRINT i\nNEXT i\n", 5,
+                       "NEXT i without its FOR running (a jump into the loop)");
+  expect_runtime_error("FOR i=1 TO 2\nNEXT i\nGOTO inside\nFOR i=1 TO 3\ninside:\nNEXT i\n", 6,
+                       "NEXT i without its FOR running (a jump into the loop)");
+  expect_runtime_error("FOR i=1 TO 2\ninside:\nNEXT i\nIF i<9 THEN GOTO inside\n", 3,
+                       "NEXT i without its FOR running (a jump into the loop)");
   expect_runtime_error("a: GOSUB a\n", 1, "GOSUB nested more than 64 deep");
   expect_runtime_error("\nPRINT #8,\"x\"\n", 2,
                        "PRINT #8: bad channel (#0 is the terminal, #1 and #2 the serial ports, #5 to #7 Motion "
