@@ -128,6 +128,53 @@ def test_a_node_in_its_own_thread_hands_vrs_to_an_iterator():
         assert b._notifier is None
 
 
+def run_with_timeout(body, seconds=10.0):
+    """Runs body() in a thread; fails (instead of hanging the suite) if it has not returned in time."""
+    outcome = []
+    thread = threading.Thread(target=lambda: outcome.append(body()), daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert not thread.is_alive(), "the call did not return (deadlock)"
+    return outcome[0]
+
+
+def test_a_write_policy_may_call_its_own_node():
+    # The node runs the policy while it holds its lock: a policy that sends, reads the counters or feeds the
+    # node again must not deadlock (as a ring MotionCoordinator's policy may call mc.send).
+    channel = f"trionet-{uuid.uuid4()}"
+    with virtual_bus(channel) as bus1, virtual_bus(channel) as bus4:
+        node1 = tcan.VrExchangeNode(bus1, 1)
+        seen = []
+
+        def echo_policy(vr, value):  # accept, and echo the value back to node 1
+            seen.append(node4.counters()["written"])
+            node4.send(1, vr, value)
+            return True
+
+        node4 = tcan.VrExchangeNode(bus4, 4, write_policy=echo_policy)
+        node1.send(4, 10, 2.5)
+        assert run_with_timeout(lambda: node4.poll(0.2)) == 1
+        assert node4.vr[10] == 2.5 and seen == [0]
+        assert node4.counters()["sent"] == 1 and node4.counters()["written"] == 1
+        assert run_with_timeout(lambda: node1.poll(0.2)) == 1
+        assert node1.vr[10] == 2.5
+
+        # A policy that feeds its node another frame (a bus that loops back, a log replayed from the policy).
+        inner = tcan.to_message(1, 4, 11, 7.0)
+        fed = []
+
+        def feeding_policy(vr, value):
+            if vr == 12:
+                fed.append(node4.receive(inner).status)
+            return True
+
+        node4.vr.policy = feeding_policy
+        result = run_with_timeout(lambda: node4.receive(tcan.to_message(1, 4, 12, 3.0)))
+        assert result.status is tcan.ReceiveStatus.ok and fed == [tcan.ReceiveStatus.ok]
+        assert (node4.vr[11], node4.vr[12]) == (7.0, 3.0)
+        assert [r.vr for r in node4.received(0)] == [10, 11, 12]
+
+
 def test_frames_not_for_a_node_are_counted_not_raised():
     channel = f"trionet-{uuid.uuid4()}"
     with virtual_bus(channel) as bus:

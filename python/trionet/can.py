@@ -212,7 +212,9 @@ class VrExchangeNode:
         self.on_vr = on_vr
         self.send_timeout = send_timeout
         self._queue: Deque[ReceivedVr] = collections.deque(maxlen=queue_limit)
-        self._lock = threading.Lock()
+        # Re-entrant: the node runs the write policy while it holds the lock, and a policy may call the node
+        # (send, counters, receive) from that thread; other threads wait as before.
+        self._lock = threading.RLock()
         self._arrived = threading.Condition(self._lock)
         self._notifier: Optional[Any] = None
         self._dropped_from_queue = 0
