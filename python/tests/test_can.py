@@ -197,6 +197,45 @@ def test_frames_not_for_a_node_are_counted_not_raised():
                 counters["out_of_range"]) == (3, 1, 1, 1, 1)
 
 
+def test_an_identifier_that_does_not_fit_is_never_masked_into_a_vr_write():
+    # 0x828 masked to 11 bits is 0x028 (node 1 to node 4): the tool says bad_identifier, the node foreign.
+    data = bytes.fromhex("0100000000020d7a")
+    message = can.Message(arbitration_id=0x828, data=data, is_extended_id=False)
+    assert tcan.from_message(message).status is tcan.DecodeStatus.bad_identifier
+    assert not tcan.from_message(message)
+    too_wide = can.Message(arbitration_id=0x20000028, data=data, is_extended_id=True)
+    assert tcan.from_message(too_wide).status is tcan.DecodeStatus.bad_identifier
+    for identifier in (2**40, -1):  # from a log or a bus written by hand: classified, not raised
+        odd = can.Message(arbitration_id=0x28, data=data, is_extended_id=False)
+        odd.arbitration_id = identifier
+        assert tcan.from_message(odd).status is tcan.DecodeStatus.bad_identifier
+    with virtual_bus(f"trionet-{uuid.uuid4()}") as bus:
+        node = tcan.VrExchangeNode(bus, 4)
+        assert node.receive(message).status is tcan.ReceiveStatus.foreign
+        odd = can.Message(arbitration_id=0x28, data=data, is_extended_id=False)
+        odd.arbitration_id = 2**40 + 0x28
+        assert node.receive(odd).status is tcan.ReceiveStatus.foreign
+        assert node.vr[1] == 0.0
+        assert (node.counters()["foreign"], node.counters()["written"]) == (2, 0)
+        assert node.receive(can.Message(arbitration_id=0x28, data=data, is_extended_id=False))
+        assert node.vr[1] == 2.345
+
+
+def test_a_dlc_above_the_data_given_is_bad_dlc_not_zero_filled():
+    # python-can makes Message(data=b"\x01", dlc=8) (check=False); the tool says bad_dlc of 028#01.
+    short = can.Message(arbitration_id=0x28, data=b"\x01", dlc=8, is_extended_id=False)
+    assert tcan.from_message(short).status is tcan.DecodeStatus.bad_dlc
+    negative = can.Message(arbitration_id=0x28, data=tcan.encode_vr(1, 1), is_extended_id=False)
+    negative.dlc = -1
+    assert tcan.from_message(negative).status is tcan.DecodeStatus.bad_dlc
+    with virtual_bus(f"trionet-{uuid.uuid4()}") as bus:
+        node = tcan.VrExchangeNode(bus, 4)
+        assert node.receive(short).status is tcan.ReceiveStatus.bad_dlc
+        assert node.receive(negative).status is tcan.ReceiveStatus.bad_dlc
+        assert (node.counters()["bad_dlc"], node.counters()["written"]) == (2, 0)
+        assert node.vr[1] == 0.0
+
+
 def test_misuse_of_a_node_raises():
     channel = f"trionet-{uuid.uuid4()}"
     with virtual_bus(channel) as bus:

@@ -13,7 +13,7 @@ import collections
 import threading
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, Iterator, Optional, Union
+from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, Iterator, Optional, Tuple, Union
 
 from . import _trionet
 from ._errors import StatusError, int_enum, number, small
@@ -29,8 +29,11 @@ SchemeStatus = int_enum("SchemeStatus", _e["SchemeStatus"], __name__,
                         "Why an identifier question has no answer (can::scheme_status).")
 EncodeStatus = int_enum("EncodeStatus", _e["EncodeStatus"], __name__,
                         "Why a VR message could not be encoded (can::encode_status).")
-DecodeStatus = int_enum("DecodeStatus", _e["DecodeStatus"], __name__,
-                        "Whether 8 data bytes are a VR message (can::decode_status).")
+DecodeStatus = int_enum("DecodeStatus", list(_e["DecodeStatus"]) + [("bad_identifier", len(_e["DecodeStatus"]))],
+                        __name__,
+                        "Whether 8 data bytes are a VR message (can::decode_status); ``bad_identifier`` (the "
+                        "package's own, as the tool's record kind) is a message whose identifier does not fit its "
+                        "format (a standard identifier above 0x7FF, an extended one above 0x1FFFFFFF).")
 ByteOrder = int_enum("ByteOrder", _e["ByteOrder"], __name__,
                      "The byte order of a message's integer part and fraction (can::byte_order).")
 SendStatus = int_enum("SendStatus", _e["SendStatus"], __name__, "What became of a send (can::send_status).")
@@ -147,14 +150,36 @@ def to_message(sender: int, receiver: int, vr: int, value: float, *, nodes: int 
                               data=encode_vr(vr, value, byte_order))
 
 
+def _identifier_fits(identifier: int, extended: bool) -> bool:
+    return 0 <= identifier <= (0x1FFFFFFF if extended else 0x7FF)
+
+
+def _frame_parts(message: "python_can.Message") -> Tuple[int, bool, bool, int, bytes]:
+    """(identifier, extended, remote, dlc, data) of a message as the binding takes them: the identifier in
+    0..2**32 - 1 (anything else does not fit its format either), the DLC in 0..15, at most 8 data bytes. A
+    DLC above the number of data bytes is not trusted (the binding reads the data the message has)."""
+    identifier = int(message.arbitration_id)
+    if not 0 <= identifier <= 0xFFFFFFFF:
+        identifier = 0xFFFFFFFF
+    data = bytes(message.data)
+    if message.is_fd and len(data) > 8:  # no CAN FD frame is a VR message
+        return identifier, bool(message.is_extended_id), bool(message.is_remote_frame), 15, data[:8]
+    dlc = min(max(int(message.dlc), 0), 15)
+    return identifier, bool(message.is_extended_id), bool(message.is_remote_frame), dlc, data[:8]
+
+
 def from_message(message: "python_can.Message", *, nodes: int = DEFAULT_NODE_COUNT,
                  byte_order: ByteOrder = ByteOrder.big_endian) -> DecodedVr:
-    """Reads a python-can message as a VR message of the exchange: a remote frame, a DLC other than 8 or an
-    extended identifier is ``bad_dlc`` or has no route; the identifier gives the route."""
+    """Reads a python-can message as a VR message of the exchange: a remote frame, a DLC other than 8 (or
+    more than the data bytes the message holds) is ``bad_dlc``; an identifier that does not fit its format
+    (standard above 0x7FF) is ``bad_identifier``; an extended identifier has no route; the identifier gives
+    the route."""
+    identifier, extended, remote, dlc, data = _frame_parts(message)
+    if not _identifier_fits(int(message.arbitration_id), extended):
+        return DecodedVr(DecodeStatus.bad_identifier)
     status, vr, negative, integer_part, fraction, value = _core.decode_vr_frame(
-        message.arbitration_id, bool(message.is_extended_id), bool(message.is_remote_frame), int(message.dlc),
-        bytes(message.data), int(ByteOrder(byte_order)))
-    route = None if message.is_extended_id else route_of(message.arbitration_id, nodes)
+        identifier, extended, remote, dlc, data, int(ByteOrder(byte_order)))
+    route = None if extended else route_of(identifier, nodes)
     return DecodedVr(DecodeStatus(status), vr, value, negative, integer_part, fraction, route)
 
 
@@ -242,18 +267,13 @@ class VrExchangeNode:
 
     def receive(self, message: "python_can.Message") -> ReceivedFrame:
         """Feeds one received message to the node: a frame on one of its identifiers writes VR(); anything
-        else is classified and counted. Error frames are ignored (not counted)."""
+        else is classified and counted (an identifier that does not fit its format is foreign, a DLC above
+        the data bytes the message holds is bad_dlc). Error frames are ignored (not counted)."""
         if message.is_error_frame:
             return ReceivedFrame(ReceiveStatus.foreign)
-        data = bytes(message.data)
-        if message.is_fd and len(data) > 8:  # no CAN FD frame is a VR message
-            data = data[:8]
-            dlc = 15
-        else:
-            dlc = int(message.dlc)
+        identifier, extended, remote, dlc, data = _frame_parts(message)
         with self._lock:
-            status, sender, channel, vr, value = self._node.receive(
-                int(message.arbitration_id), bool(message.is_extended_id), bool(message.is_remote_frame), dlc, data)
+            status, sender, channel, vr, value = self._node.receive(identifier, extended, remote, dlc, data)
             result = ReceivedFrame(ReceiveStatus(status), sender, channel, vr, value)
             if result.status == ReceiveStatus.ok:
                 received = ReceivedVr(sender, vr, value, channel)

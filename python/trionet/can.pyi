@@ -26,6 +26,7 @@ class DecodeStatus(enum.IntEnum):
     bad_dlc = 1
     bad_sign = 2
     bad_fraction = 3
+    bad_identifier = 4
 
 class ByteOrder(enum.IntEnum):
     big_endian = 0
