@@ -205,6 +205,7 @@ void bind_can(py::module_& m) {
       .def(py::init([](unsigned node_count, unsigned node, py::object send, std::shared_ptr<vr_values> vr,
                        unsigned order) {
         const can::address_result a = can::make_node_address(narrow(node_count), narrow(node));
+        if (!vr) throw py::type_error("a VrExchangeNode needs a VR table (VrValues), not None");
         if (!a) throw py::value_error(can::to_string(a.status));
         return std::make_unique<exchange_node>(a.address, std::move(send), std::move(vr), order_of(order));
       }))

@@ -120,3 +120,40 @@ def test_random_bytes_never_crash_a_node_or_the_decoder():
             assert event.event in ("message", "frame_error", "crc_error", "no_room")
             event.to_dict()
     assert decoder.position > 0
+
+
+NEW_WITHOUT_INIT = textwrap.dedent("""
+    import can
+    import trionet
+    from trionet import _trionet, basic, can as tcan, genius, ring
+
+    d = ring.Decoder.__new__(ring.Decoder)         # a working decoder with the default profile
+    assert [(e.event, e.vr) for e in d.feed(ring.encode_var(10, 1, 1))] == [("message", 1)]
+    v = ring.VrTable.__new__(ring.VrTable)         # a table of 1024 VRs
+    assert len(v) == 1024 and v[0] == 0.0 and v.policy is None
+    assert ring.MotionCoordinator(v).vr is v
+    for make in [lambda: _trionet.ring.MotionCoordinator(None),
+                 lambda: _trionet.can.VrExchangeNode(5, 1, print, None, 0)]:
+        try:
+            make()
+        except TypeError:
+            pass
+        else:
+            raise AssertionError("no TypeError")
+    # The package's other classes hold their C++ object in an attribute: an AttributeError, not a crash.
+    for cls, call in [(ring.MotionCoordinator, lambda o: o.receive(b"\\x88")), (ring.Keypad, lambda o: o.press(1)),
+                      (ring.Simulator, lambda o: o.run(1)), (tcan.VrExchangeNode, lambda o: o.send(1, 1, 1)),
+                      (genius.TransmissionParser, lambda o: o.push((1, True))), (trionet.Profile, lambda o: o.name)]:
+        try:
+            call(cls.__new__(cls))
+        except (AttributeError, TypeError):
+            pass
+    print("done")
+""")
+
+
+def test_instances_made_with_new_alone_raise_or_work_never_crash():
+    done = subprocess.run([sys.executable, "-c", NEW_WITHOUT_INIT], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout.strip() == "done"
+

@@ -206,12 +206,19 @@ class Decoder(_core.Decoder):  # type: ignore[misc]
     one event per byte fed.
     """
 
-    def __init__(self, profile: Optional[Profile] = None) -> None:
+    # The C++ decoder is made by __new__, not __init__: an instance made with Decoder.__new__(Decoder) alone is
+    # a working decoder, not an unconstructed C++ object (which pybind11 would let a method read: a crash).
+    def __new__(cls, profile: Optional[Profile] = None, *args: Any, **kwargs: Any) -> "Decoder":
         data = _data_of(profile)
         if data is not None and data.ring_max_characters != MAX_CHARACTERS:
             raise ValueError(f"profile ring.max_characters is {data.ring_max_characters}: the decoder is built for "
                              f"{MAX_CHARACTERS}")
-        super().__init__(data)
+        self: Decoder = _core.Decoder.__new__(cls)
+        _core.Decoder.__init__(self, data)
+        return self
+
+    def __init__(self, profile: Optional[Profile] = None) -> None:
+        pass  # made by __new__
 
 
 def decode(data: Any, *, profile: Optional[Profile] = None) -> List[Event]:
@@ -232,10 +239,18 @@ class VrTable(_core.VrValues):  # type: ignore[misc]
     call that fed the node.
     """
 
-    def __init__(self, size: int = 1024, policy: Optional[Callable[[int, float], bool]] = None) -> None:
+    # The C++ table is made by __new__, not __init__: VrTable.__new__(VrTable) alone gives a table of 1024 VRs,
+    # not an unconstructed C++ object (which pybind11 would let a method read: a crash).
+    def __new__(cls, size: int = 1024, *args: Any, **kwargs: Any) -> "VrTable":
+        if isinstance(size, bool) or not isinstance(size, int):
+            raise TypeError(f"a VR table's size is an int, not {type(size).__name__}")
         if not 1 <= size <= 16384:
             raise ValueError(f"a VR table holds 1..16384 variables, got {size}")
-        super().__init__(size)
+        self: VrTable = _core.VrValues.__new__(cls)
+        _core.VrValues.__init__(self, size)
+        return self
+
+    def __init__(self, size: int = 1024, policy: Optional[Callable[[int, float], bool]] = None) -> None:
         self.policy = policy
 
     def __getitem__(self, vr: int) -> float:
