@@ -157,3 +157,17 @@ def test_instances_made_with_new_alone_raise_or_work_never_crash():
     assert done.returncode == 0, done.stderr[-3000:]
     assert done.stdout.strip() == "done"
 
+
+def test_a_node_keeps_its_vr_table_and_says_so():
+    mc = ring.MotionCoordinator(4)
+    with pytest.raises(AttributeError):
+        mc.vr = ring.VrTable(4)
+    mc.receive(ring.encode_var(10, 1, 5))
+    assert mc.vr[1] == 5.0
+    can = pytest.importorskip("can")
+    with can.Bus(interface="virtual", channel="trionet-vr-table") as bus:
+        node = tcan.VrExchangeNode(bus, 4, vr=8)
+        with pytest.raises(AttributeError):
+            node.vr = ring.VrTable(8)
+        node.receive(tcan.to_message(1, 4, 1, 5.0))
+        assert node.vr[1] == 5.0

@@ -231,9 +231,9 @@ class VrExchangeNode:
         self.node = node
         self.nodes = nodes
         self.byte_order = ByteOrder(byte_order)
-        self.vr = vr if isinstance(vr, VrTable) else VrTable(vr)
+        self._vr = vr if isinstance(vr, VrTable) else VrTable(vr)
         if write_policy is not None:
-            self.vr.policy = write_policy
+            self._vr.policy = write_policy
         self.on_vr = on_vr
         self.send_timeout = send_timeout
         self._queue: Deque[ReceivedVr] = collections.deque(maxlen=queue_limit)
@@ -244,10 +244,16 @@ class VrExchangeNode:
         self._notifier: Optional[Any] = None
         self._dropped_from_queue = 0
         try:
-            self._node = _core.VrExchangeNode(small(nodes, 255), small(node, 255), self._transmit, self.vr,
+            self._node = _core.VrExchangeNode(small(nodes, 255), small(node, 255), self._transmit, self._vr,
                                               int(self.byte_order))
         except ValueError as error:
             raise StatusError(SchemeStatus[str(error)], f"node {node} of {nodes}") from None
+
+    @property
+    def vr(self) -> VrTable:
+        """The node's VR table, the one received frames write (read-only: the node keeps the table it was made
+        with)."""
+        return self._vr
 
     def _transmit(self, identifier: int, data: bytes) -> None:
         message = self._can.Message(arbitration_id=identifier, is_extended_id=False, data=data)

@@ -113,7 +113,8 @@ class VrExchangeNode:
     node: int
     nodes: int
     byte_order: ByteOrder
-    vr: VrTable
+    @property
+    def vr(self) -> VrTable: ...
     on_vr: Optional[Callable[[ReceivedVr], None]]
     send_timeout: Optional[float]
     def __init__(self, bus: python_can.BusABC, node: int, nodes: int = ..., *, byte_order: ByteOrder = ...,

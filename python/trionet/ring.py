@@ -340,10 +340,16 @@ class MotionCoordinator(RingNode):
 
     def __init__(self, vr: Union[int, VrTable] = 1024, *,
                  write_policy: Optional[Callable[[int, float], bool]] = None) -> None:
-        self.vr = vr if isinstance(vr, VrTable) else VrTable(vr)
+        self._vr = vr if isinstance(vr, VrTable) else VrTable(vr)
         if write_policy is not None:
-            self.vr.policy = write_policy
-        self._node = _core.MotionCoordinator(self.vr)
+            self._vr.policy = write_policy
+        self._node = _core.MotionCoordinator(self._vr)
+
+    @property
+    def vr(self) -> VrTable:
+        """The node's VR table, the one the ring writes (read-only: the node keeps the table it was made with;
+        write to it, or make a node with another table)."""
+        return self._vr
 
     def print(self, to: int, text: Text) -> int:
         """PRINT #to,text without waiting: as many whole character messages as the transmit queue has room
