@@ -49,6 +49,14 @@ HUGE = 10**30
     (lambda: basic.simulate(["mc", "mc"], keys=None), TypeError),
     (lambda: basic.simulate([basic.Program("\x00\xff" * 1000), "mc"]), ValueError),
     (lambda: trionet.Profile.from_json("[" * 100000), trionet.ProfileError),
+    # An int or a list where text or bytes belong is a TypeError (bytes(5) would be five NUL bytes).
+    (lambda: ring.encode_print(11, 5), TypeError),
+    (lambda: ring.encode_print(11, [72, 73]), TypeError),
+    (lambda: ring.encode_print(11, 10**12), TypeError),
+    (lambda: ring.Message.characters(2, 5), TypeError),
+    (lambda: genius.encode_transmission(genius.Transmission(1, (genius.Segment(3),))), TypeError),
+    (lambda: learn.learn_genius_crc([(5, 1)]), TypeError),
+    (lambda: learn.learn_ring_crc([14]), TypeError),
 ])
 def test_bad_input_raises_the_documented_exception(call, exception):
     with pytest.raises(exception):

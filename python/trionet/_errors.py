@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 from collections.abc import Iterable
-from typing import Optional, Tuple
+from typing import Any, Optional, Tuple
 
 
 class TrionetError(Exception):
@@ -35,6 +35,20 @@ def number(value: float) -> float:
     if isinstance(value, (str, bytes, bytearray)):
         raise TypeError(f"expected a number, not {type(value).__name__}")
     return float(value)
+
+
+def data_bytes(value: Any, what: str = "data") -> Any:
+    """``value`` if it is a bytes-like object (bytes, bytearray, memoryview, mmap, array; read as it is); a
+    TypeError naming ``what`` for anything else: ``bytes(5)`` would be five NUL bytes and ``bytes([72, 73])``
+    a list read as bytes."""
+    if isinstance(value, (bytes, bytearray)):
+        return value
+    try:
+        memoryview(value).release()
+    except TypeError:
+        raise TypeError(f"{what} must be a bytes-like object (bytes, bytearray, memoryview), not "
+                        f"{type(value).__name__}") from None
+    return value
 
 
 def int_enum(name: str, members: Iterable[Tuple[str, int]], module: str, doc: str) -> type:

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _trionet
-from ._errors import StatusError, int_enum, number, small
+from ._errors import StatusError, data_bytes, int_enum, number, small
 from ._profile import Profile, _data_of
 
 _core = _trionet.genius
@@ -107,7 +107,8 @@ def encode_transmission(transmission: Transmission, *, profile: Optional[Profile
         if not 0 <= value <= 255:
             raise StatusError(EncodeStatus.sender_out_of_range if what == "sender" else EncodeStatus.destination_out_of_range,
                               f"{what} SBA {value}")
-    segments = [(s.block, s.destination if 0 <= s.destination <= 255 else 255, bytes(s.data)) for s in t.segments]
+    segments = [(s.block, s.destination if 0 <= s.destination <= 255 else 255,
+                 bytes(data_bytes(s.data, "a segment's data"))) for s in t.segments]
     status, characters = _core.encode_transmission(t.sender, t.destination is None, t.destination or 0, segments,
                                                    _data_of(profile))
     if characters is None:

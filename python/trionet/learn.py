@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _trionet
-from ._errors import int_enum
+from ._errors import data_bytes, int_enum
 from ._profile import Profile, _data_of
 from .genius import Character
 
@@ -74,7 +74,7 @@ def variable_transfers(stream: Any) -> Tuple[List[bytes], int]:
 def _frames(frames: Union[bytes, bytearray, memoryview, Sequence[Any]]) -> List[bytes]:
     if isinstance(frames, (bytes, bytearray, memoryview)):
         return variable_transfers(frames)[0]
-    out = [bytes(f) for f in frames]
+    out = [bytes(data_bytes(f, "a frame")) for f in frames]
     for f in out:
         if len(f) != 14:
             raise ValueError(f"a direct variable transfer's data is 14 bytes, got {len(f)}")
@@ -153,7 +153,8 @@ def genius_crc_samples(characters: Iterable[Union[Character, Tuple[int, bool]]],
 def learn_genius_crc(samples: Sequence[Union[Crc6Sample, Tuple[bytes, int]]], *, even_polynomials: bool = False,
                      max_classes: int = 256) -> CrcLearnResult:
     """Every CRC-6 that fits the samples (`trionet genius learn crc`); 4 or 5 samples usually decide it."""
-    pairs = [(bytes(s.data), int(s.crc)) if isinstance(s, Crc6Sample) else (bytes(s[0]), int(s[1])) for s in samples]
+    pairs = [(bytes(data_bytes(s.data, "a sample's data")), int(s.crc)) if isinstance(s, Crc6Sample)
+             else (bytes(data_bytes(s[0], "a sample's data")), int(s[1])) for s in samples]
     for _, c in pairs:
         if not 0 <= c <= 255:
             raise ValueError(f"a CRC-6 is 0..63, got {c}")

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 from . import _trionet
-from ._errors import StatusError, int_enum, number, small
+from ._errors import StatusError, data_bytes, int_enum, number, small
 from ._profile import Profile, _data_of
 
 _core = _trionet.ring
@@ -53,14 +53,15 @@ Text = Union[str, bytes, bytearray, memoryview]
 
 
 def _text_bytes(text: Text) -> Any:
-    """Characters as bytes: a str must be ASCII (the ring carries 7-bit characters), buffers pass as they are."""
+    """Characters as bytes: a str must be ASCII (the ring carries 7-bit characters), bytes-like objects pass as
+    they are; TypeError for anything else (an int or a list is not text)."""
     if isinstance(text, str):
         try:
             return text.encode("ascii")
         except UnicodeEncodeError as error:
             raise StatusError(EncodeStatus.character_out_of_range,
                               f"{text[error.start]!r} at {error.start} is not a 7-bit character") from None
-    return text
+    return data_bytes(text, "text")
 
 
 # ---- addresses and Q32.32 -------------------------------------------------------------------------------
