@@ -57,6 +57,13 @@ HUGE = 10**30
     (lambda: genius.encode_transmission(genius.Transmission(1, (genius.Segment(3),))), TypeError),
     (lambda: learn.learn_genius_crc([(5, 1)]), TypeError),
     (lambda: learn.learn_ring_crc([14]), TypeError),
+    # A float is not an address, a hop count or a byte count, even when it is whole.
+    (lambda: ring.hops_from_basic_address(10.5), TypeError),
+    (lambda: ring.hops_from_basic_address(12.0), TypeError),
+    (lambda: ring.basic_address_from_hops(1.5), TypeError),
+    (lambda: ring.encode_var(10.0, 200, 99), TypeError),
+    (lambda: genius.bus_scan_time("153.6s", [1.5]), TypeError),
+    (lambda: genius.device_scan_time_ns("153.6s", 1.5), TypeError),
 ])
 def test_bad_input_raises_the_documented_exception(call, exception):
     with pytest.raises(exception):
@@ -179,3 +186,10 @@ def test_a_node_keeps_its_vr_table_and_says_so():
             node.vr = ring.VrTable(8)
         node.receive(tcan.to_message(1, 4, 1, 5.0))
         assert node.vr[1] == 5.0
+
+
+def test_bus_scan_time_reads_an_iterator_once():
+    listed = genius.bus_scan_time("153.6s", [4, 8, 16])
+    assert listed.total_ns == 4831000
+    assert genius.bus_scan_time("153.6s", (n for n in [4, 8, 16])) == listed
+    assert genius.bus_scan_time("153.6s", range(3)) == genius.bus_scan_time("153.6s", [0, 1, 2])

@@ -323,9 +323,15 @@ def simulate_scan(devices: Sequence[Union[Device, Tuple[int, float]]], timing: U
 def device_scan_time_ns(rate: Union[Rate, str], io_bytes: int) -> int:
     """One device's contribution to the bus scan in nanoseconds, by GE's formula (exact)."""
     r = rate_from_name(rate) if isinstance(rate, str) else Rate(rate)
-    if not 0 <= io_bytes < 2**32:
-        raise ValueError(f"io_bytes is 0..2**32 - 1, got {io_bytes}")
-    return int(_core.device_scan_time_ns(int(r), io_bytes))
+    return int(_core.device_scan_time_ns(int(r), _io_bytes(io_bytes)))
+
+
+def _io_bytes(n: int) -> int:
+    if isinstance(n, bool) or not isinstance(n, int):
+        raise TypeError(f"io_bytes are ints, not {type(n).__name__}")
+    if not 0 <= n < 2**32:
+        raise ValueError(f"io_bytes is 0..2**32 - 1, got {n}")
+    return n
 
 
 @dataclass(frozen=True)
@@ -341,14 +347,15 @@ class ScanTime:
         return self.total_ns / 1e6
 
 
-def bus_scan_time(rate: Union[Rate, str], io_bytes: Sequence[int]) -> ScanTime:
-    """The scan time of a bus whose devices have ``io_bytes[i]`` input + output bytes each. StatusError
+def bus_scan_time(rate: Union[Rate, str], io_bytes: Iterable[int]) -> ScanTime:
+    """The scan time of a bus whose devices have ``io_bytes[i]`` input + output bytes each (a list, or any
+    iterable of ints). StatusError
     (ScanTimeStatus) for more devices than the rate allows."""
     r = rate_from_name(rate) if isinstance(rate, str) else Rate(rate)
+    io_bytes = list(io_bytes)  # once: an iterator is read here, not used up by the checks
     for n in io_bytes:
-        if not 0 <= n < 2**32:
-            raise ValueError(f"io_bytes is 0..2**32 - 1, got {n}")
-    status, total, io, count = _core.bus_scan_time(int(r), list(io_bytes))
+        _io_bytes(n)
+    status, total, io, count = _core.bus_scan_time(int(r), io_bytes)
     if status != 0:
         raise StatusError(ScanTimeStatus(status), f"{len(io_bytes)} devices at {rate_properties(r)['name']}")
     return ScanTime(total, io, count)

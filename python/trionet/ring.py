@@ -67,15 +67,24 @@ def _text_bytes(text: Text) -> Any:
 # ---- addresses and Q32.32 -------------------------------------------------------------------------------
 
 
+def _integer(value: int, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{what} is an int, not {type(value).__name__}")
+
+
 def hops_from_basic_address(address: int) -> int:
-    """Hops (1..15) of a BASIC address (10..24): ``address - 9``. ValueError for any other address."""
+    """Hops (1..15) of a BASIC address (10..24): ``address - 9``. ValueError for any other address, TypeError
+    for anything but an int."""
+    _integer(address, "a BASIC address")
     if not FIRST_BASIC_ADDRESS <= address <= LAST_BASIC_ADDRESS:
         raise ValueError(f"a BASIC address is {FIRST_BASIC_ADDRESS}..{LAST_BASIC_ADDRESS}, got {address}")
     return address - (FIRST_BASIC_ADDRESS - 1)
 
 
 def basic_address_from_hops(hops: int) -> int:
-    """The BASIC address (10..24) of a hop count (1..15). ValueError for any other count."""
+    """The BASIC address (10..24) of a hop count (1..15). ValueError for any other count, TypeError for anything
+    but an int."""
+    _integer(hops, "a hop count")
     if not MIN_HOPS <= hops <= MAX_HOPS:
         raise ValueError(f"hops are {MIN_HOPS}..{MAX_HOPS}, got {hops}")
     return hops + FIRST_BASIC_ADDRESS - 1
