@@ -101,7 +101,8 @@ class Transmission:
 def encode_transmission(transmission: Transmission, *, profile: Optional[Profile] = None) -> List[Character]:
     """The characters of a transmission (Start, destination, data and blocks, Stop with the CRC-6), with the
     profile's CRC and control layout. StatusError (EncodeStatus) for an SBA above 31, an empty block or no
-    data at all."""
+    data at all; StatusError (ParseStatus, as ``trionet genius encode``) for a transmission that
+    :class:`TransmissionParser` would not accept (more than 256 data bytes or 16 segments: ``overflow``)."""
     t = transmission
     for value, what in [(t.sender, "sender")] + ([(t.destination, "destination")] if t.destination is not None else []):
         if not 0 <= value <= 255:
@@ -113,7 +114,18 @@ def encode_transmission(transmission: Transmission, *, profile: Optional[Profile
                                                    _data_of(profile))
     if characters is None:
         raise StatusError(EncodeStatus(status), f"transmission from SBA {t.sender}")
-    return [Character(byte, control) for byte, control in characters]
+    out = [Character(byte, control) for byte, control in characters]
+    # What is returned must be what the decoder accepts (as the tool checks): parse it with the same parser.
+    parser = TransmissionParser(profile=profile)
+    parsed = ParseStatus.in_progress
+    for c in out:
+        parsed = parser.push(c)
+        if parsed != ParseStatus.in_progress:
+            break
+    if parsed != ParseStatus.ok:
+        raise StatusError(ParseStatus(parsed), f"cannot encode: the decoder would report {ParseStatus(parsed).name} "
+                                               f"(at most 256 data bytes in 16 segments)")
+    return out
 
 
 def encode_words(transmission: Transmission, *, profile: Optional[Profile] = None) -> List[int]:

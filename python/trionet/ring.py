@@ -149,7 +149,9 @@ def _frame(result: Tuple[int, Optional[bytes]], detail: str) -> bytes:
 
 def encode(message: Message, *, profile: Optional[Profile] = None) -> bytes:
     """The whole frame of ``message`` (header to end of message), with the profile's CRC and variable layout
-    (docs/protocol.md's without one). StatusError (EncodeStatus) for a field out of range."""
+    (docs/protocol.md's without one). StatusError (EncodeStatus) for a field out of range. A character
+    transfer longer than a decoder takes (256, or the profile's ring.max_characters) is encoded all the same,
+    for tests of decoders; :func:`encode_print` refuses it as the tool does."""
     data = _data_of(profile)
     hops = message.hops
     if not isinstance(hops, int) or not MIN_HOPS <= hops <= MAX_HOPS:
@@ -181,9 +183,17 @@ def _hops(to: int, what: str = "to") -> int:
 
 
 def encode_print(to: int, text: Text, *, profile: Optional[Profile] = None) -> bytes:
-    """`trionet ring encode print --to N TEXT`: PRINT #to,text as one character transfer (1..256 7-bit
-    characters for a decoder to accept it). ``to`` is a BASIC address 10..24."""
-    return encode(Message.characters(_hops(to), text), profile=profile)
+    """`trionet ring encode print --to N TEXT`: PRINT #to,text as one character transfer of 1..256 7-bit
+    characters (the profile's ring.max_characters with a profile). ``to`` is a BASIC address 10..24. As the
+    tool, a longer text is refused (StatusError, EncodeStatus.buffer_too_small: the frame does not fit a
+    decoder's buffer); :func:`encode` of a :class:`Message` encodes it all the same."""
+    message = Message.characters(_hops(to), text)
+    data = _data_of(profile)
+    limit = MAX_CHARACTERS if data is None else int(data.ring_max_characters)
+    if len(message.text) > limit:
+        raise StatusError(EncodeStatus.buffer_too_small,
+                          f"TEXT has {len(message.text)} characters; a character transfer carries at most {limit}")
+    return encode(message, profile=profile)
 
 
 def encode_var(to: int, vr: int, value: float, *, profile: Optional[Profile] = None) -> bytes:
