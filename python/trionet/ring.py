@@ -255,8 +255,8 @@ class VrTable(_core.VrValues):  # type: ignore[misc]
 
     ``memoryview(table)`` views the values in place (format 'd', no copy); ``table[vr]`` reads and writes
     one. ``policy`` is None (every write to a VR in the table is applied) or a callable (vr, value) -> bool
-    that refuses a write by returning False; an exception in it refuses the write and is raised again by the
-    call that fed the node.
+    whose answer is taken as Python truth: a false one (False, 0, None, "") refuses the write; an exception in
+    it, or in bool() of its answer, refuses the write and is raised again by the call that fed the node.
     """
 
     # The C++ table is made by __new__, not __init__: VrTable.__new__(VrTable) alone gives a table of 1024 VRs,
