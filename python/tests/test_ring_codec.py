@@ -1,5 +1,6 @@
 """trionet.ring's encoders and decoder against `trionet ring encode` and `trionet ring decode --raw`."""
 
+import decimal
 import json
 import random
 
@@ -225,3 +226,28 @@ def test_print_text_longer_than_a_decoder_takes_is_refused_as_the_tool_does(run_
     run_cli(["ring", "encode", "print", "--to", "10", "A" * 101, "--profile", str(path)], status=2)
     # The hop-level encoder still makes a long frame when asked (tests of decoders).
     assert len(ring.encode(ring.Message.characters(1, "A" * 257))) == 259
+
+
+@pytest.mark.parametrize("text", ["895654.974", "-895654.974", "2.345", "0.5", "-0.00000000005", "1e-11",
+                                  "2147483647.99999999977", "-2147483648", "+1e3", ".5", "123456.0000000001164"])
+def test_a_decimal_value_gives_the_tools_frame_exactly(run_cli, text):
+    # The tool rounds the decimal it reads, not the float nearest to it (895654.974 as a float is an exact
+    # tie at 2**-32; the decimal is not).
+    frame = ring.encode_var(10, 1, decimal.Decimal(text))
+    assert frame.hex(" ") == run_cli(["ring", "encode", "var", "--to", "10", "--vr", "1", "--value", text]).strip()
+    assert ring.q32_from_decimal(text) == ring.q32_from_decimal(decimal.Decimal(text))
+
+
+def test_q32_from_decimal_refuses_what_the_tool_refuses():
+    assert ring.q32_from_float(895654.974) - ring.q32_from_decimal("895654.974") == 1
+    for text in ["2147483648", "-2147483648.0000000002", "1e10", "Infinity"]:
+        with pytest.raises(trionet.StatusError):
+            ring.q32_from_decimal(decimal.Decimal(text))
+    with pytest.raises(trionet.StatusError):
+        ring.q32_from_decimal(decimal.Decimal("NaN"))
+    for text in ["", "1 ", "0x10", "nan", "1_000", "--1"]:
+        with pytest.raises(ValueError):
+            ring.q32_from_decimal(text)
+    with pytest.raises(TypeError):
+        ring.q32_from_decimal(1.5)
+    assert ring.q32_from_decimal("1e-400") == 0

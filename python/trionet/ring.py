@@ -9,6 +9,8 @@ port. Misuse raises :class:`trionet.StatusError`; bad wire data comes back as ev
 
 from __future__ import annotations
 
+import decimal
+import re
 import time
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
@@ -99,6 +101,49 @@ def q32_from_float(value: float) -> int:
     return int(raw)
 
 
+# The tool's decimal syntax (host/q32_text.hpp parse_q32): a sign, digits with an optional point, an exponent.
+_DECIMAL_TEXT = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+
+def q32_from_decimal(value: Union[str, decimal.Decimal]) -> int:
+    """The decimal number ``value`` as Q32.32 exactly as ``trionet ring encode var --value`` reads it: the number
+    the text (or decimal.Decimal) writes, not the float nearest to it, times 2**32 rounded once to the nearest,
+    ties away from zero. A float such as 895654.974 may be an exact tie at 2**-32 that the decimal is not, so
+    :func:`q32_from_float` can end one bit apart. StatusError (Q32Status) for NaN, infinities and values
+    outside [-2**31, 2**31); ValueError for text that is not a decimal number (the tool's syntax: "99",
+    "-2.345", "+1e3", ".5", at most 1000 characters)."""
+    if isinstance(value, str):
+        if len(value) > 1000 or not _DECIMAL_TEXT.fullmatch(value):
+            raise ValueError(f"not a decimal number: {value[:40]!r}")
+        number_ = decimal.Decimal(value)
+    elif isinstance(value, decimal.Decimal):
+        number_ = value
+    else:
+        raise TypeError(f"expected a str or a decimal.Decimal, not {type(value).__name__}")
+    if number_.is_nan():
+        raise StatusError(Q32Status.not_a_number, f"{value!r} has no Q32.32 value")
+    if number_.is_infinite() or (not number_.is_zero() and number_.adjusted() > 9):  # 10**10 > 2**31
+        raise StatusError(Q32Status.out_of_range, f"{value!r} has no Q32.32 value")
+    if number_.is_zero() or number_.adjusted() < -10:  # below 10**-10 < 2**-33: rounds to 0
+        return 0
+    sign, digits, exponent = number_.as_tuple()
+    assert isinstance(exponent, int)
+    n = int("".join(map(str, digits)))
+    if exponent >= 0:
+        magnitude = n * 10**exponent << 32
+    else:
+        scale = 10**-exponent
+        magnitude = ((n << 33) + scale) // (2 * scale)  # floor(n / scale * 2**32 + 1/2)
+    raw = -magnitude if sign else magnitude
+    if not -(2**63) <= raw < 2**63:
+        raise StatusError(Q32Status.out_of_range, f"{value!r} has no Q32.32 value")
+    return raw
+
+
+def _q32(value: Union[float, decimal.Decimal]) -> int:
+    return q32_from_decimal(value) if isinstance(value, decimal.Decimal) else q32_from_float(value)
+
+
 def q32_to_float(raw: int) -> float:
     """A Q32.32 value (raw / 2**32) as a float."""
     return float(_core.q32_to_double(raw))
@@ -115,7 +160,7 @@ class Message:
     hops: int
     text: bytes = b""
     vr: int = 0
-    value: float = 0.0
+    value: Union[float, decimal.Decimal] = 0.0
     offset: int = 0
     mode: int = 0
 
@@ -125,8 +170,9 @@ class Message:
         return cls(MessageType.character, hops, text=bytes(_text_bytes(text)))
 
     @classmethod
-    def variable(cls, hops: int, vr: int, value: float) -> "Message":
-        """SEND(n,1,vr,value): a direct variable transfer, VR(vr) = value."""
+    def variable(cls, hops: int, vr: int, value: Union[float, decimal.Decimal]) -> "Message":
+        """SEND(n,1,vr,value): a direct variable transfer, VR(vr) = value (a decimal.Decimal is rounded exactly,
+        as the tool reads its --value: :func:`q32_from_decimal`)."""
         return cls(MessageType.variable, hops, vr=vr, value=value)
 
     @classmethod
@@ -161,7 +207,7 @@ def encode(message: Message, *, profile: Optional[Profile] = None) -> bytes:
     if message.type == MessageType.variable:
         if not 0 <= small(message.vr) <= MAX_VR:
             raise StatusError(EncodeStatus.vr_out_of_range, f"vr must be 0..{MAX_VR}, got {message.vr}")
-        raw = q32_from_float(message.value)
+        raw = _q32(message.value)
         return _frame(_core.encode_variable(hops, message.vr, raw, data), f"VR({message.vr}) to {hops} hops")
     if message.type == MessageType.keypad_offset:
         if not 0 <= small(message.offset) <= 255:
@@ -196,8 +242,10 @@ def encode_print(to: int, text: Text, *, profile: Optional[Profile] = None) -> b
     return encode(message, profile=profile)
 
 
-def encode_var(to: int, vr: int, value: float, *, profile: Optional[Profile] = None) -> bytes:
-    """`trionet ring encode var --to N --vr V --value X`: SEND(to,1,vr,value)."""
+def encode_var(to: int, vr: int, value: Union[float, decimal.Decimal], *, profile: Optional[Profile] = None) -> bytes:
+    """`trionet ring encode var --to N --vr V --value X`: SEND(to,1,vr,value). A float is rounded as a double
+    (:func:`q32_from_float`); for the tool's frame of a decimal X, whatever it is, pass decimal.Decimal("X")
+    (:func:`q32_from_decimal`): a float that is an exact tie at 2**-32 can end one bit apart."""
     return encode(Message.variable(_hops(to), vr, value), profile=profile)
 
 
@@ -637,5 +685,6 @@ __all__ = [
     "KeyStatus", "Keypad", "LAST_BASIC_ADDRESS", "LinkByte", "MAX_CHARACTERS", "MAX_HOPS", "MAX_VR", "MIN_HOPS",
     "Message", "MessageType", "MotionCoordinator", "Profile", "Q32Status", "RingNode", "SendStatus", "SerialLink",
     "Simulator", "VrTable", "VrWriteStatus", "basic_address_from_hops", "decode", "encode", "encode_mode",
-    "encode_offset", "encode_print", "encode_var", "hops_from_basic_address", "q32_from_float", "q32_to_float",
+    "encode_offset", "encode_print", "encode_var", "hops_from_basic_address", "q32_from_decimal", "q32_from_float",
+    "q32_to_float",
 ]
