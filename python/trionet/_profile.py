@@ -71,6 +71,8 @@ class Profile:
 
     def header(self, namespace: str = "trionet_profile") -> str:
         """A C++17 header of constexpr policies for a firmware build (`trionet profile header`)."""
+        if not isinstance(namespace, str):
+            raise TypeError(f"namespace is a str, not {type(namespace).__name__}")
         return str(self._data.header(namespace))
 
     @property
@@ -80,6 +82,8 @@ class Profile:
 
     @name.setter
     def name(self, value: str) -> None:
+        if not isinstance(value, str):
+            raise TypeError(f"a profile's name is a str, not {type(value).__name__}")
         self._data.name = value
 
     def __eq__(self, other: object) -> bool:

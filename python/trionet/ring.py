@@ -74,6 +74,14 @@ def _integer(value: int, what: str) -> None:
         raise TypeError(f"{what} is an int, not {type(value).__name__}")
 
 
+def _count(value: int, what: str, limit: int) -> int:
+    """An int in 0..limit: TypeError naming ``what`` for anything but an int, ValueError outside the range."""
+    _integer(value, what)
+    if not 0 <= value <= limit:
+        raise ValueError(f"{what} is 0..{limit}, got {value}")
+    return value
+
+
 def hops_from_basic_address(address: int) -> int:
     """Hops (1..15) of a BASIC address (10..24): ``address - 9``. ValueError for any other address, TypeError
     for anything but an int."""
@@ -145,7 +153,11 @@ def _q32(value: Union[float, decimal.Decimal]) -> int:
 
 
 def q32_to_float(raw: int) -> float:
-    """A Q32.32 value (raw / 2**32) as a float."""
+    """A Q32.32 value (raw / 2**32) as a float. TypeError for anything but an int, ValueError outside the 64
+    bits of a Q32.32 (-2**63 .. 2**63 - 1)."""
+    _integer(raw, "a Q32.32 value")
+    if not -(2**63) <= raw < 2**63:
+        raise ValueError(f"a Q32.32 value is -2**63 .. 2**63 - 1, got {raw}")
     return float(_core.q32_to_double(raw))
 
 
@@ -328,6 +340,7 @@ class VrTable(_core.VrValues):  # type: ignore[misc]
         self.set(self._index(vr), float(value))
 
     def _index(self, vr: int) -> int:
+        _integer(vr, "a VR number")
         if not 0 <= vr < len(self):
             raise IndexError(f"VR({vr}) is outside the table (0..{len(self) - 1})")
         return vr
@@ -357,7 +370,7 @@ class RingNode:
 
     def transmit(self, limit: int = 65536) -> bytes:
         """Up to ``limit`` bytes for the next node: forwarded messages and the node's own, as they are due."""
-        return bytes(self._node.transmit(limit))
+        return bytes(self._node.transmit(_count(limit, "limit", 2**63 - 1)))
 
     def line_idle(self) -> None:
         """The receive line has been idle (docs/protocol.md 1.10): an open message is lost and counted."""
@@ -489,6 +502,7 @@ def _key(key: Union[Key, int, str]) -> int:
             return int(Key[name])
         except KeyError:
             raise ValueError(f"no key called {key!r} (0-9, up, down, clear, yes, no, point, start, stop)") from None
+    _integer(key, "a key (a Key, its number or its name)")
     return int(Key(key))
 
 
@@ -559,7 +573,7 @@ class Simulator:
     carries nothing before its receiver's line counts as idle (0: never)."""
 
     def __init__(self, nodes: Optional[List[RingNode]] = None, *, idle_byte_times: int = 2) -> None:
-        self._ring = _core.Simulator(idle_byte_times)
+        self._ring = _core.Simulator(_count(idle_byte_times, "idle_byte_times", 2**32 - 1))
         self.nodes: List[RingNode] = []
         for node in nodes or []:
             self.add(node)
@@ -576,8 +590,7 @@ class Simulator:
         """Runs ``byte_times`` byte-times; ``trace`` sees every byte sent on every link."""
         if len(self.nodes) < 2:
             raise ValueError("a ring needs at least 2 nodes")
-        if byte_times < 0:
-            raise ValueError("byte_times must be 0 or more")
+        _count(byte_times, "byte_times", 2**64 - 1)
         if trace is None:
             self._ring.run(byte_times, None)
         else:
@@ -608,15 +621,25 @@ class Simulator:
 
     def drop_next(self, link: int) -> None:
         """The next byte sent on ``link`` never arrives."""
-        self._ring.drop_next(link)
+        self._ring.drop_next(self._link(link))
 
     def flip_next(self, link: int, mask: int) -> None:
         """The next byte sent on ``link`` arrives with the bits of ``mask`` flipped."""
-        self._ring.flip_next(link, mask & 0xFF)
+        _integer(mask, "mask")
+        self._ring.flip_next(self._link(link), mask & 0xFF)
 
     def cut(self, link: int, cut: bool = True) -> None:
         """Cuts ``link`` (nothing arrives) or mends it."""
-        self._ring.cut(link, cut)
+        if not isinstance(cut, bool):
+            raise TypeError(f"cut is a bool, not {type(cut).__name__}")
+        self._ring.cut(self._link(link), cut)
+
+    def _link(self, link: int) -> int:
+        """Link i carries node i's bytes to node i + 1 (the last to the first)."""
+        _integer(link, "a link")
+        if not 0 <= link < max(len(self.nodes), 1):
+            raise ValueError(f"the ring's links are 0..{max(len(self.nodes), 1) - 1}, got {link}")
+        return link
 
 
 # ---- a node on a serial port ----------------------------------------------------------------------------
@@ -631,6 +654,10 @@ class SerialLink:
     """
 
     def __init__(self, node: RingNode, port: Any, *, idle_seconds: float = 0.05) -> None:
+        if not isinstance(node, RingNode):
+            raise TypeError(f"node is a MotionCoordinator or a Keypad, not {type(node).__name__}")
+        if port is None or not (hasattr(port, "read") and hasattr(port, "write")):
+            raise TypeError(f"port is an open serial port (pyserial's Serial), not {type(port).__name__}")
         self.node = node
         self.port = port
         self.idle_seconds = idle_seconds
