@@ -96,6 +96,17 @@ HUGE = 10**30
     (lambda: basic.simulate(["mc", "mc"], key_gap=1.5), TypeError),
     (lambda: basic.Network(["mc", "keypad"]).press(-1, "up"), ValueError),
     (lambda: basic.Network(["mc", "keypad"]).press(1, None), TypeError),
+    (lambda: ring.VrTable(4).write_from_network(-1, 1), ValueError),
+    (lambda: ring.VrTable(4).write_from_network(2**32, 1), ValueError),
+    (lambda: ring.VrTable(4).write_from_network(1.5, 1), TypeError),
+    (lambda: genius.encode_character(1.5), TypeError),
+    (lambda: genius.encode_transmission(genius.Transmission(1.5, (genius.Segment(b"a"),))), TypeError),
+    (lambda: genius.encode_transmission(genius.Transmission(1, (genius.Segment(b"a", True, 1.5),))), TypeError),
+    (lambda: genius.TransmissionParser().push((1.5, True)), TypeError),
+    (lambda: genius.analyse_turns([genius.Device(4, 0, 1.5)], "153.6s", 1), TypeError),
+    (lambda: learn.learn_ring_crc([bytes(14)] * 3, max_classes=-1), ValueError),
+    (lambda: learn.learn_ring_crc([bytes(14)] * 3, max_classes=2**64), ValueError),
+    (lambda: learn.learn_genius_crc([(b"a", 1)], max_classes=1.5), TypeError),
 ])
 def test_bad_input_raises_the_documented_exception(call, exception):
     with pytest.raises(exception):

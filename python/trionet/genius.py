@@ -53,9 +53,15 @@ class DecodedCharacter:
 def encode_character(character: Union[Character, int], control: bool = False) -> int:
     """The 11-bit word of a character (start bit 0, control bit, 8 data bits, stop bit 1)."""
     byte, control = (character.byte, character.control) if isinstance(character, Character) else (character, control)
+    _byte_int(byte, "a character's byte")
     if not 0 <= byte <= 255:
         raise ValueError(f"a character's byte is 0..255, got {byte}")
     return int(_core.encode_character(byte, bool(control)))
+
+
+def _byte_int(value: int, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{what} is an int, not {type(value).__name__}")
 
 
 def decode_character(word: int) -> DecodedCharacter:
@@ -105,9 +111,12 @@ def encode_transmission(transmission: Transmission, *, profile: Optional[Profile
     :class:`TransmissionParser` would not accept (more than 256 data bytes or 16 segments: ``overflow``)."""
     t = transmission
     for value, what in [(t.sender, "sender")] + ([(t.destination, "destination")] if t.destination is not None else []):
+        _byte_int(value, f"the {what} SBA")
         if not 0 <= value <= 255:
             raise StatusError(EncodeStatus.sender_out_of_range if what == "sender" else EncodeStatus.destination_out_of_range,
                               f"{what} SBA {value}")
+    for segment in t.segments:
+        _byte_int(segment.destination, "a block's destination SBA")
     segments = [(s.block, s.destination if 0 <= s.destination <= 255 else 255,
                  bytes(data_bytes(s.data, "a segment's data"))) for s in t.segments]
     status, characters = _core.encode_transmission(t.sender, t.destination is None, t.destination or 0, segments,
@@ -151,6 +160,7 @@ class TransmissionParser:
     def push(self, character: Union[Character, Tuple[int, bool]]) -> ParseStatus:
         """Feeds one character; ParseStatus.ok when it completed a transmission (then in ``received``)."""
         byte, control = character
+        _byte_int(byte, "a character's byte")
         if not 0 <= byte <= 255:
             raise ValueError(f"a character's byte is 0..255, got {byte}")
         status, t = self._parser.push(byte, bool(control))
@@ -279,6 +289,7 @@ def _devices(devices: Sequence[Union[Device, Tuple[int, float]]]) -> List[Tuple[
     out = []
     for d in devices:
         d = d if isinstance(d, Device) else Device(*d)
+        _byte_int(d.data_bytes, "data_bytes")
         if not 0 <= d.data_bytes <= 65535:
             raise ValueError(f"data_bytes is 0..65535, got {d.data_bytes}")
         out.append((small(d.sba, 255), number(d.position_ft), d.data_bytes))

@@ -71,6 +71,14 @@ def variable_transfers(stream: Any) -> Tuple[List[bytes], int]:
     return [bytes(f) for f in frames], int(skipped)
 
 
+def _max_classes(value: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"max_classes is an int, not {type(value).__name__}")
+    if not 0 <= value <= 2**32 - 1:
+        raise ValueError(f"max_classes is 0..2**32 - 1, got {value}")
+    return value
+
+
 def _frames(frames: Union[bytes, bytearray, memoryview, Sequence[Any]]) -> List[bytes]:
     if isinstance(frames, (bytes, bytearray, memoryview)):
         return variable_transfers(frames)[0]
@@ -85,7 +93,7 @@ def learn_ring_crc(frames: Union[bytes, bytearray, memoryview, Sequence[Any]], *
                    max_classes: int = 256) -> CrcLearnResult:
     """Every 16-bit CRC that fits the frames (`trionet ring learn crc`): ``frames`` is a stream of ring bytes
     (its direct variable transfers are used) or a list of 14-byte frames. Three frames usually decide it."""
-    r = _core.learn_ring_crc(_frames(frames), even_polynomials, max_classes)
+    r = _core.learn_ring_crc(_frames(frames), even_polynomials, _max_classes(max_classes))
     return CrcLearnResult(CrcLearnStatus(r["status"]), _classes(r["classes"]), r["survivors"], r["frames"])
 
 
@@ -158,7 +166,7 @@ def learn_genius_crc(samples: Sequence[Union[Crc6Sample, Tuple[bytes, int]]], *,
     for _, c in pairs:
         if not 0 <= c <= 255:
             raise ValueError(f"a CRC-6 is 0..63, got {c}")
-    r = _core.learn_genius_crc(pairs, even_polynomials, max_classes)
+    r = _core.learn_genius_crc(pairs, even_polynomials, _max_classes(max_classes))
     return CrcLearnResult(CrcLearnStatus(r["status"]), _classes(r["classes"]), r["survivors"], r["samples"])
 
 

@@ -347,7 +347,10 @@ class VrTable(_core.VrValues):  # type: ignore[misc]
 
     def write_from_network(self, vr: int, value: float) -> VrWriteStatus:
         """Writes VR(vr) as the network does, through the write policy (value rounded to Q32.32)."""
-        return VrWriteStatus(self.write(vr, float(value)))
+        _integer(vr, "a VR number")
+        if not 0 <= vr <= 65535:  # a VR on the network is 16 bits; out_of_range past the table
+            raise ValueError(f"a VR number from the network is 0..65535, got {vr}")
+        return VrWriteStatus(self.write(vr, number(value)))
 
     def nonzero(self) -> Dict[int, float]:
         """Every VR that is not 0, as {vr: value}."""
