@@ -236,3 +236,14 @@ def test_bus_scan_time_reads_an_iterator_once():
     assert listed.total_ns == 4831000
     assert genius.bus_scan_time("153.6s", (n for n in [4, 8, 16])) == listed
     assert genius.bus_scan_time("153.6s", range(3)) == genius.bus_scan_time("153.6s", [0, 1, 2])
+
+
+@pytest.mark.parametrize("call,words", [
+    (lambda: ring.encode_var(10, 200.0, 99), "vr is an int, not float"),
+    (lambda: ring.encode_var(10.0, 200, 99), "a BASIC address is an int, not float"),
+    (lambda: ring.encode(ring.Message.keypad_mode(1, 1.5)), "mode is an int, not float"),
+    (lambda: tcan.encode_vr(1.0, 2), "vr is an int, not float"),
+])
+def test_a_wrong_type_is_named_by_its_argument(call, words):
+    with pytest.raises(TypeError, match=words):
+        call()

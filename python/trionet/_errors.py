@@ -21,12 +21,13 @@ class StatusError(TrionetError, ValueError):
         super().__init__(f"{status.name}: {detail}" if detail else status.name)
 
 
-def small(value: int, limit: int = 0xFFFF) -> int:
-    """An int for a C++ parameter of at most ``limit``: TypeError for anything but an int; values outside
-    0..limit become ``limit``, which is out of range wherever it goes, so that the library refuses them with
-    its own status."""
+def small(value: int, limit: int = 0xFFFF, what: str = "") -> int:
+    """An int for a C++ parameter of at most ``limit``: TypeError for anything but an int (naming ``what`` when
+    given); values outside 0..limit become ``limit``, which is out of range wherever it goes, so that the
+    library refuses them with its own status."""
     if isinstance(value, bool) or not isinstance(value, int):
-        raise TypeError(f"expected an int, not {type(value).__name__}")
+        raise TypeError(f"{what} is an int, not {type(value).__name__}" if what else
+                        f"expected an int, not {type(value).__name__}")
     return value if 0 <= value <= limit else limit
 
 

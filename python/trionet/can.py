@@ -129,7 +129,7 @@ class DecodedVr:
 def encode_vr(vr: int, value: float, byte_order: ByteOrder = ByteOrder.big_endian) -> bytes:
     """The 8 data bytes of VR(vr) = value, rounded to 4 decimals (ties away from zero). StatusError
     (EncodeStatus) for a VR above 255, NaN or a magnitude of 2**32 or more."""
-    status, data = _core.encode_vr(small(vr), number(value), int(ByteOrder(byte_order)))
+    status, data = _core.encode_vr(small(vr, what="vr"), number(value), int(ByteOrder(byte_order)))
     if data is None:
         raise StatusError(EncodeStatus(status), f"VR({vr}) = {value!r}")
     return bytes(data)
@@ -265,7 +265,7 @@ class VrExchangeNode:
         """Sends VR(vr) = value (rounded to 4 decimals) to node ``to``. StatusError (SendStatus) for a bad
         node, VR or value; the bus's own exception (can.CanError) if it fails to send (counted)."""
         with self._lock:
-            status = self._node.send_to_node(small(to, 255), small(vr), number(value))
+            status = self._node.send_to_node(small(to, 255, "to"), small(vr, what="vr"), number(value))
         if status != SendStatus.ok:
             raise StatusError(SendStatus(status), f"VR({vr}) = {value!r} to node {to} of {self.nodes}")
 

@@ -217,16 +217,16 @@ def encode(message: Message, *, profile: Optional[Profile] = None) -> bytes:
     if message.type == MessageType.character:
         return _frame(_core.encode_characters(hops, _text_bytes(message.text), data), f"PRINT to {hops} hops")
     if message.type == MessageType.variable:
-        if not 0 <= small(message.vr) <= MAX_VR:
+        if not 0 <= small(message.vr, what="vr") <= MAX_VR:
             raise StatusError(EncodeStatus.vr_out_of_range, f"vr must be 0..{MAX_VR}, got {message.vr}")
         raw = _q32(message.value)
         return _frame(_core.encode_variable(hops, message.vr, raw, data), f"VR({message.vr}) to {hops} hops")
     if message.type == MessageType.keypad_offset:
-        if not 0 <= small(message.offset) <= 255:
+        if not 0 <= small(message.offset, what="offset") <= 255:
             raise StatusError(EncodeStatus.offset_out_of_range, f"offset must be 1..15, got {message.offset}")
         return _frame(_core.encode_keypad_offset(hops, message.offset), f"keypad offset {message.offset}")
     if message.type == MessageType.keypad_mode:
-        if not 0 <= small(message.mode) <= 255:
+        if not 0 <= small(message.mode, what="mode") <= 255:
             raise StatusError(EncodeStatus.mode_out_of_range, f"mode must be 0 or 127, got {message.mode}")
         return _frame(_core.encode_keypad_mode(hops, message.mode), f"keypad mode {message.mode}")
     raise StatusError(EncodeStatus.unknown_type, f"{message.type!r}")
