@@ -107,6 +107,11 @@ HUGE = 10**30
     (lambda: learn.learn_ring_crc([bytes(14)] * 3, max_classes=-1), ValueError),
     (lambda: learn.learn_ring_crc([bytes(14)] * 3, max_classes=2**64), ValueError),
     (lambda: learn.learn_genius_crc([(b"a", 1)], max_classes=1.5), TypeError),
+    (lambda: learn.learn_ring_layout([bytes(14)], [(2**40, 1.0)]), ValueError),
+    (lambda: learn.learn_ring_layout([bytes(14)], [(1, 1.0)], crc=learn.CrcParameters(2**20, 0, False, False, 0)),
+     ValueError),
+    (lambda: learn.learn_ring_layout([bytes(14)], [(1, 1.0)], crc=learn.CrcParameters(-1, 0, False, False, 0)),
+     ValueError),
 ])
 def test_bad_input_raises_the_documented_exception(call, exception):
     with pytest.raises(exception):

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _trionet
-from ._errors import data_bytes, int_enum
+from ._errors import data_bytes, int_enum, number
 from ._profile import Profile, _data_of
 from .genius import Character
 
@@ -126,11 +126,27 @@ class LayoutLearnResult:
 
 def learn_ring_layout(frames: Union[bytes, bytearray, memoryview, Sequence[Any]],
                       sent: Iterable[Tuple[int, float]], *, crc: Optional[CrcParameters] = None) -> LayoutLearnResult:
-    """The group orders and CRC input that make frame i read as ``sent[i]`` (VR, value)."""
+    """The group orders and CRC input that make frame i read as ``sent[i]`` (VR, value). ``crc`` is a 16-bit
+    CRC (ValueError for a polynomial, initial value or xor_out outside 0..0xFFFF)."""
+    if crc is not None:
+        if not isinstance(crc, CrcParameters):
+            raise TypeError(f"crc is a CrcParameters, not {type(crc).__name__}")
+        for value, what in [(crc.polynomial, "polynomial"), (crc.initial, "initial"), (crc.xor_out, "xor_out")]:
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise TypeError(f"the CRC's {what} is an int, not {type(value).__name__}")
+            if not 0 <= value <= 0xFFFF:
+                raise ValueError(f"the ring's CRC is 16 bits: its {what} is 0..0xFFFF, got {value:#x}")
+    pairs = []
+    for v, x in sent:
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise TypeError(f"a sent VR number is an int, not {type(v).__name__}")
+        if not 0 <= v <= _trionet.ring.MAX_VR:
+            raise ValueError(f"a sent VR number is 0..{_trionet.ring.MAX_VR}, got {v}")
+        pairs.append((v, number(x)))
     given = None if crc is None else {"polynomial": crc.polynomial, "initial": crc.initial,
                                        "reflect_in": crc.reflect_in, "reflect_out": crc.reflect_out,
                                        "xor_out": crc.xor_out}
-    r = _core.learn_ring_layout(_frames(frames), [(int(v), float(x)) for v, x in sent], given)
+    r = _core.learn_ring_layout(_frames(frames), pairs, given)
     return LayoutLearnResult(LayoutLearnStatus(r["status"]), GroupOrder(r["vr_group_order"]),
                              GroupOrder(r["value_group_order"]), CrcInput(r["crc_input"]),
                              tuple(OrderFit(GroupOrder(v), GroupOrder(x), fits, first)
