@@ -34,13 +34,26 @@ py::tuple identifier(const can::identifier_result& r) {
   return py::make_tuple(static_cast<unsigned>(r.status), r.identifier);
 }
 
-// A frame from its parts; the data is at most 8 bytes (checked by the caller's layer).
+// A frame from its parts, as a bus or a log gave them (python/trionet/can.py has already put the identifier in
+// 0..2^32 - 1, the DLC in 0..15 and the data in at most 8 bytes). Nothing is cut or made up:
+// - an identifier with bits beyond its format (11 bits, or 29 when extended; the tool's bad_identifier) is
+//   not masked into another node's identifier: the frame gets the extended and remote flags, which no node
+//   listens on (a node counts it as foreign);
+// - a data frame whose DLC promises more bytes than the data holds gets the DLC of the data it has (so a
+//   short frame is bad_dlc, as the tool says of 028#01), never zero-filled.
 can::frame frame_of(std::uint32_t id, bool extended, bool remote, unsigned dlc, const byte_view data) {
   can::frame f;
-  f.id = (id & (extended ? can::frame::extended_mask : can::frame::standard_mask)) |
-         (extended ? can::frame::extended_flag : 0U) | (remote ? can::frame::remote_flag : 0U);
-  f.dlc = static_cast<std::uint8_t>(dlc > 15 ? 15 : dlc);
-  for (std::size_t i = 0; i < data.size() && i < 8; ++i) f.data[i] = data[i];
+  const std::uint32_t mask = extended ? can::frame::extended_mask : can::frame::standard_mask;
+  if (id > mask) {
+    f.id = can::frame::extended_flag | can::frame::remote_flag;
+  } else {
+    f.id = id | (extended ? can::frame::extended_flag : 0U) | (remote ? can::frame::remote_flag : 0U);
+  }
+  if (dlc > 15) dlc = 15;
+  const std::size_t given = data.size() < 8 ? data.size() : 8;
+  if (!remote && (dlc < 8 ? dlc : 8U) > given) dlc = static_cast<unsigned>(given);
+  f.dlc = static_cast<std::uint8_t>(dlc);
+  for (std::size_t i = 0; i < given; ++i) f.data[i] = data[i];
   return f;
 }
 
@@ -192,6 +205,7 @@ void bind_can(py::module_& m) {
       .def(py::init([](unsigned node_count, unsigned node, py::object send, std::shared_ptr<vr_values> vr,
                        unsigned order) {
         const can::address_result a = can::make_node_address(narrow(node_count), narrow(node));
+        if (!vr) throw py::type_error("a VrExchangeNode needs a VR table (VrValues), not None");
         if (!a) throw py::value_error(can::to_string(a.status));
         return std::make_unique<exchange_node>(a.address, std::move(send), std::move(vr), order_of(order));
       }))

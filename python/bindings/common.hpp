@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <optional>
 #include <string>
 #include <utility>
@@ -60,8 +61,9 @@ inline py::bytes to_bytes(const std::uint8_t* data, std::size_t size) {
 }
 
 /// VR(): a table of doubles of any size (1..16384) that Python reads as a memoryview without a copy, written
-/// by the network through an optional write policy, a Python callable (vr, value) -> bool. An exception in
-/// the policy refuses the write and is raised again by the call that fed the node (`raise_pending`).
+/// by the network through an optional write policy, a Python callable (vr, value) whose answer is taken as
+/// Python truth (bool(answer): True, 1, "yes" write; False, 0, None refuse). An exception in the policy, or in
+/// bool(answer), refuses the write and is raised again by the call that fed the node (`raise_pending`).
 class vr_values final : public vr_store {
  public:
   explicit vr_values(std::size_t size) : values_(size, 0.0) {}
@@ -71,11 +73,18 @@ class vr_values final : public vr_store {
     const double v = value.to_double();
     if (!policy_.is_none()) {
       try {
-        if (!policy_(vr, v).cast<bool>()) return vr_write_status::refused;
+        const py::object answer = policy_(vr, v);
+        const int truth = PyObject_IsTrue(answer.ptr());
+        if (truth < 0) throw py::error_already_set();
+        if (truth == 0) return vr_write_status::refused;
       } catch (py::error_already_set& e) {
         if (!pending_) pending_ = std::move(e);
         return vr_write_status::refused;
-      } catch (const py::cast_error&) {
+      } catch (const std::exception& e) {  // not a Python exception (pybind11's own): kept as a RuntimeError
+        if (!pending_) {
+          PyErr_SetString(PyExc_RuntimeError, e.what());
+          pending_ = py::error_already_set();
+        }
         return vr_write_status::refused;
       }
     }

@@ -101,7 +101,9 @@ void bind_profile(py::module_& m) {
     learn::profile_result r = learn::read_profile(text);
     py::object value = r ? py::cast(std::move(r.value)) : py::none();
     std::string message = r.message;
-    if (r.status == learn::profile_status::not_json) message = learn::to_string(r.json);
+    // not_json: the JSON status, and what the reader says of it ("syntax: invalid UTF-8"), as the tool prints both.
+    if (r.status == learn::profile_status::not_json)
+      message = std::string(learn::to_string(r.json)) + (r.message.empty() ? "" : ": " + r.message);
     return py::make_tuple(static_cast<unsigned>(r.status), value, r.key, message, r.line, r.column);
   });
 }

@@ -281,7 +281,10 @@ void bind_ring(py::module_& m) {
       .def_property_readonly("in_message", &ring_node::in_message);
 
   py::class_<motion_coordinator_node, ring_node>(m, "MotionCoordinator")
-      .def(py::init<std::shared_ptr<vr_values>>())
+      .def(py::init([](std::shared_ptr<vr_values> vr) {
+        if (!vr) throw py::type_error("a MotionCoordinator needs a VR table (VrValues), not None");
+        return std::make_unique<motion_coordinator_node>(std::move(vr));
+      }))
       .def_property_readonly("vr", &motion_coordinator_node::vr)
       .def("print",
            [](motion_coordinator_node& n, int address, py::handle text) {

@@ -128,6 +128,53 @@ def test_a_node_in_its_own_thread_hands_vrs_to_an_iterator():
         assert b._notifier is None
 
 
+def run_with_timeout(body, seconds=10.0):
+    """Runs body() in a thread; fails (instead of hanging the suite) if it has not returned in time."""
+    outcome = []
+    thread = threading.Thread(target=lambda: outcome.append(body()), daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert not thread.is_alive(), "the call did not return (deadlock)"
+    return outcome[0]
+
+
+def test_a_write_policy_may_call_its_own_node():
+    # The node runs the policy while it holds its lock: a policy that sends, reads the counters or feeds the
+    # node again must not deadlock (as a ring MotionCoordinator's policy may call mc.send).
+    channel = f"trionet-{uuid.uuid4()}"
+    with virtual_bus(channel) as bus1, virtual_bus(channel) as bus4:
+        node1 = tcan.VrExchangeNode(bus1, 1)
+        seen = []
+
+        def echo_policy(vr, value):  # accept, and echo the value back to node 1
+            seen.append(node4.counters()["written"])
+            node4.send(1, vr, value)
+            return True
+
+        node4 = tcan.VrExchangeNode(bus4, 4, write_policy=echo_policy)
+        node1.send(4, 10, 2.5)
+        assert run_with_timeout(lambda: node4.poll(0.2)) == 1
+        assert node4.vr[10] == 2.5 and seen == [0]
+        assert node4.counters()["sent"] == 1 and node4.counters()["written"] == 1
+        assert run_with_timeout(lambda: node1.poll(0.2)) == 1
+        assert node1.vr[10] == 2.5
+
+        # A policy that feeds its node another frame (a bus that loops back, a log replayed from the policy).
+        inner = tcan.to_message(1, 4, 11, 7.0)
+        fed = []
+
+        def feeding_policy(vr, value):
+            if vr == 12:
+                fed.append(node4.receive(inner).status)
+            return True
+
+        node4.vr.policy = feeding_policy
+        result = run_with_timeout(lambda: node4.receive(tcan.to_message(1, 4, 12, 3.0)))
+        assert result.status is tcan.ReceiveStatus.ok and fed == [tcan.ReceiveStatus.ok]
+        assert (node4.vr[11], node4.vr[12]) == (7.0, 3.0)
+        assert [r.vr for r in node4.received(0)] == [10, 11, 12]
+
+
 def test_frames_not_for_a_node_are_counted_not_raised():
     channel = f"trionet-{uuid.uuid4()}"
     with virtual_bus(channel) as bus:
@@ -148,6 +195,45 @@ def test_frames_not_for_a_node_are_counted_not_raised():
         counters = node.counters()
         assert (counters["foreign"], counters["bad_dlc"], counters["bad_sign"], counters["bad_fraction"],
                 counters["out_of_range"]) == (3, 1, 1, 1, 1)
+
+
+def test_an_identifier_that_does_not_fit_is_never_masked_into_a_vr_write():
+    # 0x828 masked to 11 bits is 0x028 (node 1 to node 4): the tool says bad_identifier, the node foreign.
+    data = bytes.fromhex("0100000000020d7a")
+    message = can.Message(arbitration_id=0x828, data=data, is_extended_id=False)
+    assert tcan.from_message(message).status is tcan.DecodeStatus.bad_identifier
+    assert not tcan.from_message(message)
+    too_wide = can.Message(arbitration_id=0x20000028, data=data, is_extended_id=True)
+    assert tcan.from_message(too_wide).status is tcan.DecodeStatus.bad_identifier
+    for identifier in (2**40, -1):  # from a log or a bus written by hand: classified, not raised
+        odd = can.Message(arbitration_id=0x28, data=data, is_extended_id=False)
+        odd.arbitration_id = identifier
+        assert tcan.from_message(odd).status is tcan.DecodeStatus.bad_identifier
+    with virtual_bus(f"trionet-{uuid.uuid4()}") as bus:
+        node = tcan.VrExchangeNode(bus, 4)
+        assert node.receive(message).status is tcan.ReceiveStatus.foreign
+        odd = can.Message(arbitration_id=0x28, data=data, is_extended_id=False)
+        odd.arbitration_id = 2**40 + 0x28
+        assert node.receive(odd).status is tcan.ReceiveStatus.foreign
+        assert node.vr[1] == 0.0
+        assert (node.counters()["foreign"], node.counters()["written"]) == (2, 0)
+        assert node.receive(can.Message(arbitration_id=0x28, data=data, is_extended_id=False))
+        assert node.vr[1] == 2.345
+
+
+def test_a_dlc_above_the_data_given_is_bad_dlc_not_zero_filled():
+    # python-can makes Message(data=b"\x01", dlc=8) (check=False); the tool says bad_dlc of 028#01.
+    short = can.Message(arbitration_id=0x28, data=b"\x01", dlc=8, is_extended_id=False)
+    assert tcan.from_message(short).status is tcan.DecodeStatus.bad_dlc
+    negative = can.Message(arbitration_id=0x28, data=tcan.encode_vr(1, 1), is_extended_id=False)
+    negative.dlc = -1
+    assert tcan.from_message(negative).status is tcan.DecodeStatus.bad_dlc
+    with virtual_bus(f"trionet-{uuid.uuid4()}") as bus:
+        node = tcan.VrExchangeNode(bus, 4)
+        assert node.receive(short).status is tcan.ReceiveStatus.bad_dlc
+        assert node.receive(negative).status is tcan.ReceiveStatus.bad_dlc
+        assert (node.counters()["bad_dlc"], node.counters()["written"]) == (2, 0)
+        assert node.vr[1] == 0.0
 
 
 def test_misuse_of_a_node_raises():

@@ -106,3 +106,24 @@ def test_scan_time_is_ges_figure_and_the_tools(run_cli):
     assert genius.rate_properties(genius.rate_from_name("153.6e"))["max_length_ft"] == 3500
     with pytest.raises(ValueError):
         genius.rate_from_name("9600")
+
+
+def test_what_the_decoder_would_reject_is_not_encoded_as_the_tool_refuses_it(run_cli):
+    # 257 data bytes, or 17 segments: `genius encode` exits 2 ("the decoder would report overflow").
+    too_long = genius.Transmission(1, (genius.Segment(bytes(257)),))
+    with pytest.raises(trionet.StatusError) as raised:
+        genius.encode_transmission(too_long)
+    assert raised.value.status is genius.ParseStatus.overflow
+    run_cli(["genius", "encode", "--from", "1", "--broadcast", "00" * 257], status=2)
+    too_many = genius.Transmission(1, tuple(genius.Segment(b"a", True, 2) for _ in range(17)))
+    with pytest.raises(trionet.StatusError):
+        genius.encode_words(too_many)
+    run_cli(["genius", "encode", "--from", "1", "--broadcast"] + ["block:2:61"] * 17, status=2)
+    # At the limits, encoded, the tool's characters, and decoded back.
+    for t, args in [(genius.Transmission(1, (genius.Segment(bytes(range(256))),)),
+                     ["--broadcast", bytes(range(256)).hex()]),
+                    (genius.Transmission(1, tuple(genius.Segment(b"a", True, 2) for _ in range(16))),
+                     ["--broadcast"] + ["block:2:61"] * 16)]:
+        characters = genius.encode_transmission(t)
+        assert characters == cli_characters(run_cli(["genius", "encode", "--from", "1"] + args))
+        assert genius.decode_transmissions(characters) == [t]

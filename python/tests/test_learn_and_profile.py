@@ -82,3 +82,28 @@ def test_a_profile_reads_writes_and_says_what_is_wrong(run_cli, tmp_path):
         trionet.Profile.from_json(b"\xff\xfe")
     with pytest.raises(TypeError):
         ring.Decoder(profile="hidden.json")
+
+
+def test_a_profile_with_invalid_utf8_or_over_1_mib_is_refused_as_the_tool_refuses_it(run_cli, tmp_path):
+    bad = b'{"trionet_profile": 1, "name": "\xff"}'
+    with pytest.raises(trionet.ProfileError) as raised:
+        trionet.Profile.from_json(bad)
+    assert raised.value.status.name == "not_json" and raised.value.column == 33
+    assert raised.value.message == "syntax: invalid UTF-8"
+    path = tmp_path / "bad.json"
+    path.write_bytes(bad)
+    with pytest.raises(trionet.ProfileError):
+        trionet.Profile.from_file(path)
+    run_cli(["profile", "show", str(path)], status=2)
+    big = tmp_path / "big.json"
+    big.write_bytes(b'{"trionet_profile": 1, "name": "' + b"x" * (2 << 20) + b'"}')
+    with pytest.raises(trionet.ProfileError, match="too_large"):
+        trionet.Profile.from_file(big)
+    exact = tmp_path / "exact.json"  # 1 MiB exactly is read
+    head = b'{"trionet_profile": 1, "name": "'
+    exact.write_bytes(head + b"x" * ((1 << 20) - len(head) - 2) + b'"}')
+    assert len(trionet.Profile.from_file(exact).name) == (1 << 20) - len(head) - 2
+    assert trionet.Profile.from_json(bytearray(b'{"trionet_profile": 1, "name": "caf\xc3\xa9"}')).name == "caf\u00e9"
+    for wrong in (None, 5):
+        with pytest.raises(TypeError):
+            trionet.Profile.from_json(wrong)

@@ -1,5 +1,6 @@
 """trionet.ring's encoders and decoder against `trionet ring encode` and `trionet ring decode --raw`."""
 
+import decimal
 import json
 import random
 
@@ -95,7 +96,8 @@ def mixed_stream(seed, size):
     """Frames of every kind, with errors: stray bytes, cut messages, flipped bits."""
     rnd = random.Random(seed)
     frames = [ring.encode_print(11, "HELLO"), ring.encode_var(10, 200, 99), ring.encode_offset(10, 11),
-              ring.encode_mode(10, 127), ring.encode_var(24, 7, -2.345), ring.encode_print(10, "x" * 300)]
+              ring.encode_mode(10, 127), ring.encode_var(24, 7, -2.345),
+              ring.encode(ring.Message.characters(1, "x" * 300))]  # longer than a decoder takes
     out = bytearray()
     while len(out) < size:
         frame = bytearray(rnd.choice(frames))
@@ -208,3 +210,44 @@ def test_a_profile_decodes_what_the_tool_decodes_with_it(run_cli, tmp_path):
     assert [e.to_dict() for e in ring.decode(data, profile=profile)] == cli_events(run_cli, data, str(path))
     assert ring.decode(frame, profile=profile)[0].value == -7.25
     assert ring.decode(frame)[0].event == "crc_error"
+
+
+def test_print_text_longer_than_a_decoder_takes_is_refused_as_the_tool_does(run_cli, tmp_path):
+    assert len(ring.encode_print(10, "A" * 256)) == 258
+    with pytest.raises(trionet.StatusError, match="257 characters"):
+        ring.encode_print(10, "A" * 257)
+    run_cli(["ring", "encode", "print", "--to", "10", "A" * 257], status=2)
+    path = tmp_path / "short.json"
+    path.write_text('{"trionet_profile": 1, "ring": {"max_characters": 100}}')
+    profile = trionet.Profile.from_file(path)
+    assert len(ring.encode_print(10, "A" * 100, profile=profile)) == 102
+    with pytest.raises(trionet.StatusError, match="at most 100"):
+        ring.encode_print(10, "A" * 101, profile=profile)
+    run_cli(["ring", "encode", "print", "--to", "10", "A" * 101, "--profile", str(path)], status=2)
+    # The hop-level encoder still makes a long frame when asked (tests of decoders).
+    assert len(ring.encode(ring.Message.characters(1, "A" * 257))) == 259
+
+
+@pytest.mark.parametrize("text", ["895654.974", "-895654.974", "2.345", "0.5", "-0.00000000005", "1e-11",
+                                  "2147483647.99999999977", "-2147483648", "+1e3", ".5", "123456.0000000001164"])
+def test_a_decimal_value_gives_the_tools_frame_exactly(run_cli, text):
+    # The tool rounds the decimal it reads, not the float nearest to it (895654.974 as a float is an exact
+    # tie at 2**-32; the decimal is not).
+    frame = ring.encode_var(10, 1, decimal.Decimal(text))
+    assert frame.hex(" ") == run_cli(["ring", "encode", "var", "--to", "10", "--vr", "1", "--value", text]).strip()
+    assert ring.q32_from_decimal(text) == ring.q32_from_decimal(decimal.Decimal(text))
+
+
+def test_q32_from_decimal_refuses_what_the_tool_refuses():
+    assert ring.q32_from_float(895654.974) - ring.q32_from_decimal("895654.974") == 1
+    for text in ["2147483648", "-2147483648.0000000002", "1e10", "Infinity"]:
+        with pytest.raises(trionet.StatusError):
+            ring.q32_from_decimal(decimal.Decimal(text))
+    with pytest.raises(trionet.StatusError):
+        ring.q32_from_decimal(decimal.Decimal("NaN"))
+    for text in ["", "1 ", "0x10", "nan", "1_000", "--1"]:
+        with pytest.raises(ValueError):
+            ring.q32_from_decimal(text)
+    with pytest.raises(TypeError):
+        ring.q32_from_decimal(1.5)
+    assert ring.q32_from_decimal("1e-400") == 0

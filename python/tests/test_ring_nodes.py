@@ -95,6 +95,31 @@ def test_the_write_policy_refuses_and_its_exception_comes_back():
     assert b.vr[6] == 0.0
 
 
+class FailingTruth:
+    def __bool__(self):
+        raise RuntimeError("bool failed")
+
+
+@pytest.mark.parametrize("answer,written", [(True, True), (1, True), ("yes", True), ([1], True), (2.5, True),
+                                            (False, False), (0, False), (None, False), ("", False), ([], False)])
+def test_a_write_policy_answer_is_taken_as_python_truth(answer, written):
+    mc = ring.MotionCoordinator(write_policy=lambda vr, value: answer)
+    mc.receive(ring.encode_var(10, 1, 5))
+    assert mc.vr[1] == (5.0 if written else 0.0)
+    assert mc.counters()["variables_written" if written else "variables_refused"] == 1
+
+
+def test_an_exception_in_bool_of_a_policy_answer_is_raised_not_lost():
+    mc = ring.MotionCoordinator(write_policy=lambda vr, value: FailingTruth())
+    with pytest.raises(RuntimeError, match="bool failed"):
+        mc.receive(ring.encode_var(10, 1, 5))
+    assert mc.vr[1] == 0.0 and mc.counters()["variables_refused"] == 1
+    table = ring.VrTable(4, policy=lambda vr, value: FailingTruth())
+    with pytest.raises(RuntimeError, match="bool failed"):
+        table.write_from_network(1, 2.0)
+    assert table[1] == 0.0
+
+
 def test_misuse_of_a_node_raises_and_a_full_queue_returns_false():
     mc = ring.MotionCoordinator()
     for call, status in [(lambda: mc.send(9, 1, 1), ring.SendStatus.bad_address),

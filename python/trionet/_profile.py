@@ -41,9 +41,12 @@ class Profile:
 
     @classmethod
     def from_json(cls, text: Union[str, bytes]) -> "Profile":
-        """Reads a profile; keys left out keep their defaults. Raises ProfileError naming the bad key."""
-        if isinstance(text, bytes):
-            text = text.decode("utf-8", errors="replace")
+        """Reads a profile; keys left out keep their defaults. Raises ProfileError naming the bad key. Bytes are
+        read as the tool reads a file: invalid UTF-8 is an error (not_json), not replaced."""
+        if isinstance(text, (bytes, bytearray)):
+            text = bytes(text)  # to the C++ reader as they are: it checks the UTF-8, as `trionet profile show`
+        elif not isinstance(text, str):
+            raise TypeError(f"a profile is JSON text (str or bytes), not {type(text).__name__}")
         status, data, key, message, line, column = _core.read_profile(text)
         if data is None:
             raise ProfileError(status, key, message, line, column)
@@ -53,9 +56,10 @@ class Profile:
 
     @classmethod
     def from_file(cls, path: Union[str, "os.PathLike[str]"]) -> "Profile":
-        """Reads a profile file (OSError if it cannot be read, ProfileError if it is not valid)."""
+        """Reads a profile file (OSError if it cannot be read, ProfileError if it is not valid: a file larger than
+        1 MiB is too_large, as for the tool, not cut and parsed)."""
         with open(path, "rb") as f:
-            return cls.from_json(f.read(1 << 20))
+            return cls.from_json(f.read((1 << 20) + 1))  # one byte more than the reader takes: too_large
 
     def to_json(self) -> str:
         """The profile as JSON with every key, as `trionet profile show` writes it."""
@@ -67,6 +71,8 @@ class Profile:
 
     def header(self, namespace: str = "trionet_profile") -> str:
         """A C++17 header of constexpr policies for a firmware build (`trionet profile header`)."""
+        if not isinstance(namespace, str):
+            raise TypeError(f"namespace is a str, not {type(namespace).__name__}")
         return str(self._data.header(namespace))
 
     @property
@@ -76,6 +82,8 @@ class Profile:
 
     @name.setter
     def name(self, value: str) -> None:
+        if not isinstance(value, str):
+            raise TypeError(f"a profile's name is a str, not {type(value).__name__}")
         self._data.name = value
 
     def __eq__(self, other: object) -> bool:

@@ -75,8 +75,16 @@ def _read_program(path: str) -> bytes:
     return data
 
 
+def _whole(value: int, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{what} is an int, not {type(value).__name__}")
+
+
 def _spec(node: Node, builtin: bool) -> Tuple[str, str, Union[str, bytes]]:
     if isinstance(node, Program):
+        if not isinstance(node.text, (str, bytes)) or not isinstance(node.name, str):
+            raise TypeError(f"a Program is text (str or bytes) and a name (str), not {type(node.text).__name__} "
+                            f"and {type(node.name).__name__}")
         return ("mc", node.name, node.text)
     if isinstance(node, Keypad) or node == "keypad":
         return ("keypad", "", "")
@@ -106,6 +114,15 @@ class Network:
                  bit_rate: float = 125000.0, key_gap: int = 1000, profile: Optional[Profile] = None,
                  on_event: Optional[Callable[[NetworkEvent], None]] = None, trace: bool = False,
                  _builtin: bool = False) -> None:
+        if isinstance(nodes, (str, bytes, Program, Keypad)):
+            raise TypeError(f"nodes is a list of nodes (a ring has 2..15), not one {type(nodes).__name__}: "
+                            f"[{nodes!r}, ...]")
+        if not isinstance(keys, str):
+            raise TypeError(f"keys is a key script (str), not {type(keys).__name__}")
+        _whole(statements_per_byte_time, "statements_per_byte_time")
+        _whole(key_gap, "key_gap")
+        if isinstance(bit_rate, (str, bytes)) or bit_rate is None:
+            raise TypeError(f"bit_rate is a number, not {type(bit_rate).__name__}")
         if not 1 <= statements_per_byte_time <= 1_000_000:
             raise ValueError(f"statements_per_byte_time must be 1..1000000, got {statements_per_byte_time}")
         if not 1 <= bit_rate <= 1e9:
@@ -133,12 +150,14 @@ class Network:
     def run(self, byte_times: int = 1_000_000) -> Dict[str, Any]:
         """Runs until the network settles or ``byte_times`` byte-times have passed since the start; the
         summary, as `trionet ring simulate --json` prints it."""
+        _whole(byte_times, "byte_times")
         if not 1 <= byte_times <= 10**12:
             raise ValueError(f"byte_times must be 1..10^12, got {byte_times}")
         return dict(json.loads(self._net.run(byte_times)))
 
     def run_json(self, byte_times: int = 1_000_000) -> str:
         """:meth:`run`, giving the JSON line itself."""
+        _whole(byte_times, "byte_times")
         if not 1 <= byte_times <= 10**12:
             raise ValueError(f"byte_times must be 1..10^12, got {byte_times}")
         return str(self._net.run(byte_times))
@@ -149,6 +168,11 @@ class Network:
 
     def press(self, keypad: int, key: str) -> None:
         """Presses and releases a key now on keypad ``keypad`` (1-based among the keypads)."""
+        _whole(keypad, "keypad")
+        if not isinstance(key, str):
+            raise TypeError(f"key is a key's name (str), not {type(key).__name__}")
+        if not 1 <= keypad <= 15:
+            raise ValueError(f"keypad is 1..15 (among the ring's keypads), got {keypad}")
         self._net.press(keypad, key)
 
     @property

@@ -13,7 +13,7 @@ import collections
 import threading
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, Iterator, Optional, Union
+from typing import TYPE_CHECKING, Any, Callable, Deque, Dict, Iterator, Optional, Tuple, Union
 
 from . import _trionet
 from ._errors import StatusError, int_enum, number, small
@@ -29,8 +29,11 @@ SchemeStatus = int_enum("SchemeStatus", _e["SchemeStatus"], __name__,
                         "Why an identifier question has no answer (can::scheme_status).")
 EncodeStatus = int_enum("EncodeStatus", _e["EncodeStatus"], __name__,
                         "Why a VR message could not be encoded (can::encode_status).")
-DecodeStatus = int_enum("DecodeStatus", _e["DecodeStatus"], __name__,
-                        "Whether 8 data bytes are a VR message (can::decode_status).")
+DecodeStatus = int_enum("DecodeStatus", list(_e["DecodeStatus"]) + [("bad_identifier", len(_e["DecodeStatus"]))],
+                        __name__,
+                        "Whether 8 data bytes are a VR message (can::decode_status); ``bad_identifier`` (the "
+                        "package's own, as the tool's record kind) is a message whose identifier does not fit its "
+                        "format (a standard identifier above 0x7FF, an extended one above 0x1FFFFFFF).")
 ByteOrder = int_enum("ByteOrder", _e["ByteOrder"], __name__,
                      "The byte order of a message's integer part and fraction (can::byte_order).")
 SendStatus = int_enum("SendStatus", _e["SendStatus"], __name__, "What became of a send (can::send_status).")
@@ -126,7 +129,7 @@ class DecodedVr:
 def encode_vr(vr: int, value: float, byte_order: ByteOrder = ByteOrder.big_endian) -> bytes:
     """The 8 data bytes of VR(vr) = value, rounded to 4 decimals (ties away from zero). StatusError
     (EncodeStatus) for a VR above 255, NaN or a magnitude of 2**32 or more."""
-    status, data = _core.encode_vr(small(vr), number(value), int(ByteOrder(byte_order)))
+    status, data = _core.encode_vr(small(vr, what="vr"), number(value), int(ByteOrder(byte_order)))
     if data is None:
         raise StatusError(EncodeStatus(status), f"VR({vr}) = {value!r}")
     return bytes(data)
@@ -147,14 +150,36 @@ def to_message(sender: int, receiver: int, vr: int, value: float, *, nodes: int 
                               data=encode_vr(vr, value, byte_order))
 
 
+def _identifier_fits(identifier: int, extended: bool) -> bool:
+    return 0 <= identifier <= (0x1FFFFFFF if extended else 0x7FF)
+
+
+def _frame_parts(message: "python_can.Message") -> Tuple[int, bool, bool, int, bytes]:
+    """(identifier, extended, remote, dlc, data) of a message as the binding takes them: the identifier in
+    0..2**32 - 1 (anything else does not fit its format either), the DLC in 0..15, at most 8 data bytes. A
+    DLC above the number of data bytes is not trusted (the binding reads the data the message has)."""
+    identifier = int(message.arbitration_id)
+    if not 0 <= identifier <= 0xFFFFFFFF:
+        identifier = 0xFFFFFFFF
+    data = bytes(message.data)
+    if message.is_fd and len(data) > 8:  # no CAN FD frame is a VR message
+        return identifier, bool(message.is_extended_id), bool(message.is_remote_frame), 15, data[:8]
+    dlc = min(max(int(message.dlc), 0), 15)
+    return identifier, bool(message.is_extended_id), bool(message.is_remote_frame), dlc, data[:8]
+
+
 def from_message(message: "python_can.Message", *, nodes: int = DEFAULT_NODE_COUNT,
                  byte_order: ByteOrder = ByteOrder.big_endian) -> DecodedVr:
-    """Reads a python-can message as a VR message of the exchange: a remote frame, a DLC other than 8 or an
-    extended identifier is ``bad_dlc`` or has no route; the identifier gives the route."""
+    """Reads a python-can message as a VR message of the exchange: a remote frame, a DLC other than 8 (or
+    more than the data bytes the message holds) is ``bad_dlc``; an identifier that does not fit its format
+    (standard above 0x7FF) is ``bad_identifier``; an extended identifier has no route; the identifier gives
+    the route."""
+    identifier, extended, remote, dlc, data = _frame_parts(message)
+    if not _identifier_fits(int(message.arbitration_id), extended):
+        return DecodedVr(DecodeStatus.bad_identifier)
     status, vr, negative, integer_part, fraction, value = _core.decode_vr_frame(
-        message.arbitration_id, bool(message.is_extended_id), bool(message.is_remote_frame), int(message.dlc),
-        bytes(message.data), int(ByteOrder(byte_order)))
-    route = None if message.is_extended_id else route_of(message.arbitration_id, nodes)
+        identifier, extended, remote, dlc, data, int(ByteOrder(byte_order)))
+    route = None if extended else route_of(identifier, nodes)
     return DecodedVr(DecodeStatus(status), vr, value, negative, integer_part, fraction, route)
 
 
@@ -206,21 +231,29 @@ class VrExchangeNode:
         self.node = node
         self.nodes = nodes
         self.byte_order = ByteOrder(byte_order)
-        self.vr = vr if isinstance(vr, VrTable) else VrTable(vr)
+        self._vr = vr if isinstance(vr, VrTable) else VrTable(vr)
         if write_policy is not None:
-            self.vr.policy = write_policy
+            self._vr.policy = write_policy
         self.on_vr = on_vr
         self.send_timeout = send_timeout
         self._queue: Deque[ReceivedVr] = collections.deque(maxlen=queue_limit)
-        self._lock = threading.Lock()
+        # Re-entrant: the node runs the write policy while it holds the lock, and a policy may call the node
+        # (send, counters, receive) from that thread; other threads wait as before.
+        self._lock = threading.RLock()
         self._arrived = threading.Condition(self._lock)
         self._notifier: Optional[Any] = None
         self._dropped_from_queue = 0
         try:
-            self._node = _core.VrExchangeNode(small(nodes, 255), small(node, 255), self._transmit, self.vr,
+            self._node = _core.VrExchangeNode(small(nodes, 255), small(node, 255), self._transmit, self._vr,
                                               int(self.byte_order))
         except ValueError as error:
             raise StatusError(SchemeStatus[str(error)], f"node {node} of {nodes}") from None
+
+    @property
+    def vr(self) -> VrTable:
+        """The node's VR table, the one received frames write (read-only: the node keeps the table it was made
+        with)."""
+        return self._vr
 
     def _transmit(self, identifier: int, data: bytes) -> None:
         message = self._can.Message(arbitration_id=identifier, is_extended_id=False, data=data)
@@ -232,7 +265,7 @@ class VrExchangeNode:
         """Sends VR(vr) = value (rounded to 4 decimals) to node ``to``. StatusError (SendStatus) for a bad
         node, VR or value; the bus's own exception (can.CanError) if it fails to send (counted)."""
         with self._lock:
-            status = self._node.send_to_node(small(to, 255), small(vr), number(value))
+            status = self._node.send_to_node(small(to, 255, "to"), small(vr, what="vr"), number(value))
         if status != SendStatus.ok:
             raise StatusError(SendStatus(status), f"VR({vr}) = {value!r} to node {to} of {self.nodes}")
 
@@ -240,18 +273,13 @@ class VrExchangeNode:
 
     def receive(self, message: "python_can.Message") -> ReceivedFrame:
         """Feeds one received message to the node: a frame on one of its identifiers writes VR(); anything
-        else is classified and counted. Error frames are ignored (not counted)."""
+        else is classified and counted (an identifier that does not fit its format is foreign, a DLC above
+        the data bytes the message holds is bad_dlc). Error frames are ignored (not counted)."""
         if message.is_error_frame:
             return ReceivedFrame(ReceiveStatus.foreign)
-        data = bytes(message.data)
-        if message.is_fd and len(data) > 8:  # no CAN FD frame is a VR message
-            data = data[:8]
-            dlc = 15
-        else:
-            dlc = int(message.dlc)
+        identifier, extended, remote, dlc, data = _frame_parts(message)
         with self._lock:
-            status, sender, channel, vr, value = self._node.receive(
-                int(message.arbitration_id), bool(message.is_extended_id), bool(message.is_remote_frame), dlc, data)
+            status, sender, channel, vr, value = self._node.receive(identifier, extended, remote, dlc, data)
             result = ReceivedFrame(ReceiveStatus(status), sender, channel, vr, value)
             if result.status == ReceiveStatus.ok:
                 received = ReceivedVr(sender, vr, value, channel)

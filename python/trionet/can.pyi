@@ -26,6 +26,7 @@ class DecodeStatus(enum.IntEnum):
     bad_dlc = 1
     bad_sign = 2
     bad_fraction = 3
+    bad_identifier = 4
 
 class ByteOrder(enum.IntEnum):
     big_endian = 0
@@ -112,7 +113,8 @@ class VrExchangeNode:
     node: int
     nodes: int
     byte_order: ByteOrder
-    vr: VrTable
+    @property
+    def vr(self) -> VrTable: ...
     on_vr: Optional[Callable[[ReceivedVr], None]]
     send_timeout: Optional[float]
     def __init__(self, bus: python_can.BusABC, node: int, nodes: int = ..., *, byte_order: ByteOrder = ...,

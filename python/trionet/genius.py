@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _trionet
-from ._errors import StatusError, int_enum, number, small
+from ._errors import StatusError, data_bytes, int_enum, number, small
 from ._profile import Profile, _data_of
 
 _core = _trionet.genius
@@ -53,9 +53,15 @@ class DecodedCharacter:
 def encode_character(character: Union[Character, int], control: bool = False) -> int:
     """The 11-bit word of a character (start bit 0, control bit, 8 data bits, stop bit 1)."""
     byte, control = (character.byte, character.control) if isinstance(character, Character) else (character, control)
+    _byte_int(byte, "a character's byte")
     if not 0 <= byte <= 255:
         raise ValueError(f"a character's byte is 0..255, got {byte}")
     return int(_core.encode_character(byte, bool(control)))
+
+
+def _byte_int(value: int, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{what} is an int, not {type(value).__name__}")
 
 
 def decode_character(word: int) -> DecodedCharacter:
@@ -101,18 +107,34 @@ class Transmission:
 def encode_transmission(transmission: Transmission, *, profile: Optional[Profile] = None) -> List[Character]:
     """The characters of a transmission (Start, destination, data and blocks, Stop with the CRC-6), with the
     profile's CRC and control layout. StatusError (EncodeStatus) for an SBA above 31, an empty block or no
-    data at all."""
+    data at all; StatusError (ParseStatus, as ``trionet genius encode``) for a transmission that
+    :class:`TransmissionParser` would not accept (more than 256 data bytes or 16 segments: ``overflow``)."""
     t = transmission
     for value, what in [(t.sender, "sender")] + ([(t.destination, "destination")] if t.destination is not None else []):
+        _byte_int(value, f"the {what} SBA")
         if not 0 <= value <= 255:
             raise StatusError(EncodeStatus.sender_out_of_range if what == "sender" else EncodeStatus.destination_out_of_range,
                               f"{what} SBA {value}")
-    segments = [(s.block, s.destination if 0 <= s.destination <= 255 else 255, bytes(s.data)) for s in t.segments]
+    for segment in t.segments:
+        _byte_int(segment.destination, "a block's destination SBA")
+    segments = [(s.block, s.destination if 0 <= s.destination <= 255 else 255,
+                 bytes(data_bytes(s.data, "a segment's data"))) for s in t.segments]
     status, characters = _core.encode_transmission(t.sender, t.destination is None, t.destination or 0, segments,
                                                    _data_of(profile))
     if characters is None:
         raise StatusError(EncodeStatus(status), f"transmission from SBA {t.sender}")
-    return [Character(byte, control) for byte, control in characters]
+    out = [Character(byte, control) for byte, control in characters]
+    # What is returned must be what the decoder accepts (as the tool checks): parse it with the same parser.
+    parser = TransmissionParser(profile=profile)
+    parsed = ParseStatus.in_progress
+    for c in out:
+        parsed = parser.push(c)
+        if parsed != ParseStatus.in_progress:
+            break
+    if parsed != ParseStatus.ok:
+        raise StatusError(ParseStatus(parsed), f"cannot encode: the decoder would report {ParseStatus(parsed).name} "
+                                               f"(at most 256 data bytes in 16 segments)")
+    return out
 
 
 def encode_words(transmission: Transmission, *, profile: Optional[Profile] = None) -> List[int]:
@@ -138,6 +160,7 @@ class TransmissionParser:
     def push(self, character: Union[Character, Tuple[int, bool]]) -> ParseStatus:
         """Feeds one character; ParseStatus.ok when it completed a transmission (then in ``received``)."""
         byte, control = character
+        _byte_int(byte, "a character's byte")
         if not 0 <= byte <= 255:
             raise ValueError(f"a character's byte is 0..255, got {byte}")
         status, t = self._parser.push(byte, bool(control))
@@ -266,6 +289,7 @@ def _devices(devices: Sequence[Union[Device, Tuple[int, float]]]) -> List[Tuple[
     out = []
     for d in devices:
         d = d if isinstance(d, Device) else Device(*d)
+        _byte_int(d.data_bytes, "data_bytes")
         if not 0 <= d.data_bytes <= 65535:
             raise ValueError(f"data_bytes is 0..65535, got {d.data_bytes}")
         out.append((small(d.sba, 255), number(d.position_ft), d.data_bytes))
@@ -322,9 +346,15 @@ def simulate_scan(devices: Sequence[Union[Device, Tuple[int, float]]], timing: U
 def device_scan_time_ns(rate: Union[Rate, str], io_bytes: int) -> int:
     """One device's contribution to the bus scan in nanoseconds, by GE's formula (exact)."""
     r = rate_from_name(rate) if isinstance(rate, str) else Rate(rate)
-    if not 0 <= io_bytes < 2**32:
-        raise ValueError(f"io_bytes is 0..2**32 - 1, got {io_bytes}")
-    return int(_core.device_scan_time_ns(int(r), io_bytes))
+    return int(_core.device_scan_time_ns(int(r), _io_bytes(io_bytes)))
+
+
+def _io_bytes(n: int) -> int:
+    if isinstance(n, bool) or not isinstance(n, int):
+        raise TypeError(f"io_bytes are ints, not {type(n).__name__}")
+    if not 0 <= n < 2**32:
+        raise ValueError(f"io_bytes is 0..2**32 - 1, got {n}")
+    return n
 
 
 @dataclass(frozen=True)
@@ -340,14 +370,15 @@ class ScanTime:
         return self.total_ns / 1e6
 
 
-def bus_scan_time(rate: Union[Rate, str], io_bytes: Sequence[int]) -> ScanTime:
-    """The scan time of a bus whose devices have ``io_bytes[i]`` input + output bytes each. StatusError
+def bus_scan_time(rate: Union[Rate, str], io_bytes: Iterable[int]) -> ScanTime:
+    """The scan time of a bus whose devices have ``io_bytes[i]`` input + output bytes each (a list, or any
+    iterable of ints). StatusError
     (ScanTimeStatus) for more devices than the rate allows."""
     r = rate_from_name(rate) if isinstance(rate, str) else Rate(rate)
+    io_bytes = list(io_bytes)  # once: an iterator is read here, not used up by the checks
     for n in io_bytes:
-        if not 0 <= n < 2**32:
-            raise ValueError(f"io_bytes is 0..2**32 - 1, got {n}")
-    status, total, io, count = _core.bus_scan_time(int(r), list(io_bytes))
+        _io_bytes(n)
+    status, total, io, count = _core.bus_scan_time(int(r), io_bytes)
     if status != 0:
         raise StatusError(ScanTimeStatus(status), f"{len(io_bytes)} devices at {rate_properties(r)['name']}")
     return ScanTime(total, io, count)

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any, Iterable, List, Optional, Sequence, Tuple, Union
 
 from . import _trionet
-from ._errors import int_enum
+from ._errors import data_bytes, int_enum, number
 from ._profile import Profile, _data_of
 from .genius import Character
 
@@ -71,10 +71,18 @@ def variable_transfers(stream: Any) -> Tuple[List[bytes], int]:
     return [bytes(f) for f in frames], int(skipped)
 
 
+def _max_classes(value: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"max_classes is an int, not {type(value).__name__}")
+    if not 0 <= value <= 2**32 - 1:
+        raise ValueError(f"max_classes is 0..2**32 - 1, got {value}")
+    return value
+
+
 def _frames(frames: Union[bytes, bytearray, memoryview, Sequence[Any]]) -> List[bytes]:
     if isinstance(frames, (bytes, bytearray, memoryview)):
         return variable_transfers(frames)[0]
-    out = [bytes(f) for f in frames]
+    out = [bytes(data_bytes(f, "a frame")) for f in frames]
     for f in out:
         if len(f) != 14:
             raise ValueError(f"a direct variable transfer's data is 14 bytes, got {len(f)}")
@@ -85,7 +93,7 @@ def learn_ring_crc(frames: Union[bytes, bytearray, memoryview, Sequence[Any]], *
                    max_classes: int = 256) -> CrcLearnResult:
     """Every 16-bit CRC that fits the frames (`trionet ring learn crc`): ``frames`` is a stream of ring bytes
     (its direct variable transfers are used) or a list of 14-byte frames. Three frames usually decide it."""
-    r = _core.learn_ring_crc(_frames(frames), even_polynomials, max_classes)
+    r = _core.learn_ring_crc(_frames(frames), even_polynomials, _max_classes(max_classes))
     return CrcLearnResult(CrcLearnStatus(r["status"]), _classes(r["classes"]), r["survivors"], r["frames"])
 
 
@@ -118,11 +126,27 @@ class LayoutLearnResult:
 
 def learn_ring_layout(frames: Union[bytes, bytearray, memoryview, Sequence[Any]],
                       sent: Iterable[Tuple[int, float]], *, crc: Optional[CrcParameters] = None) -> LayoutLearnResult:
-    """The group orders and CRC input that make frame i read as ``sent[i]`` (VR, value)."""
+    """The group orders and CRC input that make frame i read as ``sent[i]`` (VR, value). ``crc`` is a 16-bit
+    CRC (ValueError for a polynomial, initial value or xor_out outside 0..0xFFFF)."""
+    if crc is not None:
+        if not isinstance(crc, CrcParameters):
+            raise TypeError(f"crc is a CrcParameters, not {type(crc).__name__}")
+        for value, what in [(crc.polynomial, "polynomial"), (crc.initial, "initial"), (crc.xor_out, "xor_out")]:
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise TypeError(f"the CRC's {what} is an int, not {type(value).__name__}")
+            if not 0 <= value <= 0xFFFF:
+                raise ValueError(f"the ring's CRC is 16 bits: its {what} is 0..0xFFFF, got {value:#x}")
+    pairs = []
+    for v, x in sent:
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise TypeError(f"a sent VR number is an int, not {type(v).__name__}")
+        if not 0 <= v <= _trionet.ring.MAX_VR:
+            raise ValueError(f"a sent VR number is 0..{_trionet.ring.MAX_VR}, got {v}")
+        pairs.append((v, number(x)))
     given = None if crc is None else {"polynomial": crc.polynomial, "initial": crc.initial,
                                        "reflect_in": crc.reflect_in, "reflect_out": crc.reflect_out,
                                        "xor_out": crc.xor_out}
-    r = _core.learn_ring_layout(_frames(frames), [(int(v), float(x)) for v, x in sent], given)
+    r = _core.learn_ring_layout(_frames(frames), pairs, given)
     return LayoutLearnResult(LayoutLearnStatus(r["status"]), GroupOrder(r["vr_group_order"]),
                              GroupOrder(r["value_group_order"]), CrcInput(r["crc_input"]),
                              tuple(OrderFit(GroupOrder(v), GroupOrder(x), fits, first)
@@ -153,11 +177,12 @@ def genius_crc_samples(characters: Iterable[Union[Character, Tuple[int, bool]]],
 def learn_genius_crc(samples: Sequence[Union[Crc6Sample, Tuple[bytes, int]]], *, even_polynomials: bool = False,
                      max_classes: int = 256) -> CrcLearnResult:
     """Every CRC-6 that fits the samples (`trionet genius learn crc`); 4 or 5 samples usually decide it."""
-    pairs = [(bytes(s.data), int(s.crc)) if isinstance(s, Crc6Sample) else (bytes(s[0]), int(s[1])) for s in samples]
+    pairs = [(bytes(data_bytes(s.data, "a sample's data")), int(s.crc)) if isinstance(s, Crc6Sample)
+             else (bytes(data_bytes(s[0], "a sample's data")), int(s[1])) for s in samples]
     for _, c in pairs:
         if not 0 <= c <= 255:
             raise ValueError(f"a CRC-6 is 0..63, got {c}")
-    r = _core.learn_genius_crc(pairs, even_polynomials, max_classes)
+    r = _core.learn_genius_crc(pairs, even_polynomials, _max_classes(max_classes))
     return CrcLearnResult(CrcLearnStatus(r["status"]), _classes(r["classes"]), r["survivors"], r["samples"])
 
 

@@ -9,12 +9,14 @@ port. Misuse raises :class:`trionet.StatusError`; bad wire data comes back as ev
 
 from __future__ import annotations
 
+import decimal
+import re
 import time
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 from . import _trionet
-from ._errors import StatusError, int_enum, number, small
+from ._errors import StatusError, data_bytes, int_enum, number, small
 from ._profile import Profile, _data_of
 
 _core = _trionet.ring
@@ -53,28 +55,46 @@ Text = Union[str, bytes, bytearray, memoryview]
 
 
 def _text_bytes(text: Text) -> Any:
-    """Characters as bytes: a str must be ASCII (the ring carries 7-bit characters), buffers pass as they are."""
+    """Characters as bytes: a str must be ASCII (the ring carries 7-bit characters), bytes-like objects pass as
+    they are; TypeError for anything else (an int or a list is not text)."""
     if isinstance(text, str):
         try:
             return text.encode("ascii")
         except UnicodeEncodeError as error:
             raise StatusError(EncodeStatus.character_out_of_range,
                               f"{text[error.start]!r} at {error.start} is not a 7-bit character") from None
-    return text
+    return data_bytes(text, "text")
 
 
 # ---- addresses and Q32.32 -------------------------------------------------------------------------------
 
 
+def _integer(value: int, what: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError(f"{what} is an int, not {type(value).__name__}")
+
+
+def _count(value: int, what: str, limit: int) -> int:
+    """An int in 0..limit: TypeError naming ``what`` for anything but an int, ValueError outside the range."""
+    _integer(value, what)
+    if not 0 <= value <= limit:
+        raise ValueError(f"{what} is 0..{limit}, got {value}")
+    return value
+
+
 def hops_from_basic_address(address: int) -> int:
-    """Hops (1..15) of a BASIC address (10..24): ``address - 9``. ValueError for any other address."""
+    """Hops (1..15) of a BASIC address (10..24): ``address - 9``. ValueError for any other address, TypeError
+    for anything but an int."""
+    _integer(address, "a BASIC address")
     if not FIRST_BASIC_ADDRESS <= address <= LAST_BASIC_ADDRESS:
         raise ValueError(f"a BASIC address is {FIRST_BASIC_ADDRESS}..{LAST_BASIC_ADDRESS}, got {address}")
     return address - (FIRST_BASIC_ADDRESS - 1)
 
 
 def basic_address_from_hops(hops: int) -> int:
-    """The BASIC address (10..24) of a hop count (1..15). ValueError for any other count."""
+    """The BASIC address (10..24) of a hop count (1..15). ValueError for any other count, TypeError for anything
+    but an int."""
+    _integer(hops, "a hop count")
     if not MIN_HOPS <= hops <= MAX_HOPS:
         raise ValueError(f"hops are {MIN_HOPS}..{MAX_HOPS}, got {hops}")
     return hops + FIRST_BASIC_ADDRESS - 1
@@ -89,8 +109,55 @@ def q32_from_float(value: float) -> int:
     return int(raw)
 
 
+# The tool's decimal syntax (host/q32_text.hpp parse_q32): a sign, digits with an optional point, an exponent.
+_DECIMAL_TEXT = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+
+def q32_from_decimal(value: Union[str, decimal.Decimal]) -> int:
+    """The decimal number ``value`` as Q32.32 exactly as ``trionet ring encode var --value`` reads it: the number
+    the text (or decimal.Decimal) writes, not the float nearest to it, times 2**32 rounded once to the nearest,
+    ties away from zero. A float such as 895654.974 may be an exact tie at 2**-32 that the decimal is not, so
+    :func:`q32_from_float` can end one bit apart. StatusError (Q32Status) for NaN, infinities and values
+    outside [-2**31, 2**31); ValueError for text that is not a decimal number (the tool's syntax: "99",
+    "-2.345", "+1e3", ".5", at most 1000 characters)."""
+    if isinstance(value, str):
+        if len(value) > 1000 or not _DECIMAL_TEXT.fullmatch(value):
+            raise ValueError(f"not a decimal number: {value[:40]!r}")
+        number_ = decimal.Decimal(value)
+    elif isinstance(value, decimal.Decimal):
+        number_ = value
+    else:
+        raise TypeError(f"expected a str or a decimal.Decimal, not {type(value).__name__}")
+    if number_.is_nan():
+        raise StatusError(Q32Status.not_a_number, f"{value!r} has no Q32.32 value")
+    if number_.is_infinite() or (not number_.is_zero() and number_.adjusted() > 9):  # 10**10 > 2**31
+        raise StatusError(Q32Status.out_of_range, f"{value!r} has no Q32.32 value")
+    if number_.is_zero() or number_.adjusted() < -10:  # below 10**-10 < 2**-33: rounds to 0
+        return 0
+    sign, digits, exponent = number_.as_tuple()
+    assert isinstance(exponent, int)
+    n = int("".join(map(str, digits)))
+    if exponent >= 0:
+        magnitude = n * 10**exponent << 32
+    else:
+        scale = 10**-exponent
+        magnitude = ((n << 33) + scale) // (2 * scale)  # floor(n / scale * 2**32 + 1/2)
+    raw = -magnitude if sign else magnitude
+    if not -(2**63) <= raw < 2**63:
+        raise StatusError(Q32Status.out_of_range, f"{value!r} has no Q32.32 value")
+    return raw
+
+
+def _q32(value: Union[float, decimal.Decimal]) -> int:
+    return q32_from_decimal(value) if isinstance(value, decimal.Decimal) else q32_from_float(value)
+
+
 def q32_to_float(raw: int) -> float:
-    """A Q32.32 value (raw / 2**32) as a float."""
+    """A Q32.32 value (raw / 2**32) as a float. TypeError for anything but an int, ValueError outside the 64
+    bits of a Q32.32 (-2**63 .. 2**63 - 1)."""
+    _integer(raw, "a Q32.32 value")
+    if not -(2**63) <= raw < 2**63:
+        raise ValueError(f"a Q32.32 value is -2**63 .. 2**63 - 1, got {raw}")
     return float(_core.q32_to_double(raw))
 
 
@@ -105,7 +172,7 @@ class Message:
     hops: int
     text: bytes = b""
     vr: int = 0
-    value: float = 0.0
+    value: Union[float, decimal.Decimal] = 0.0
     offset: int = 0
     mode: int = 0
 
@@ -115,8 +182,9 @@ class Message:
         return cls(MessageType.character, hops, text=bytes(_text_bytes(text)))
 
     @classmethod
-    def variable(cls, hops: int, vr: int, value: float) -> "Message":
-        """SEND(n,1,vr,value): a direct variable transfer, VR(vr) = value."""
+    def variable(cls, hops: int, vr: int, value: Union[float, decimal.Decimal]) -> "Message":
+        """SEND(n,1,vr,value): a direct variable transfer, VR(vr) = value (a decimal.Decimal is rounded exactly,
+        as the tool reads its --value: :func:`q32_from_decimal`)."""
         return cls(MessageType.variable, hops, vr=vr, value=value)
 
     @classmethod
@@ -139,7 +207,9 @@ def _frame(result: Tuple[int, Optional[bytes]], detail: str) -> bytes:
 
 def encode(message: Message, *, profile: Optional[Profile] = None) -> bytes:
     """The whole frame of ``message`` (header to end of message), with the profile's CRC and variable layout
-    (docs/protocol.md's without one). StatusError (EncodeStatus) for a field out of range."""
+    (docs/protocol.md's without one). StatusError (EncodeStatus) for a field out of range. A character
+    transfer longer than a decoder takes (256, or the profile's ring.max_characters) is encoded all the same,
+    for tests of decoders; :func:`encode_print` refuses it as the tool does."""
     data = _data_of(profile)
     hops = message.hops
     if not isinstance(hops, int) or not MIN_HOPS <= hops <= MAX_HOPS:
@@ -147,16 +217,16 @@ def encode(message: Message, *, profile: Optional[Profile] = None) -> bytes:
     if message.type == MessageType.character:
         return _frame(_core.encode_characters(hops, _text_bytes(message.text), data), f"PRINT to {hops} hops")
     if message.type == MessageType.variable:
-        if not 0 <= small(message.vr) <= MAX_VR:
+        if not 0 <= small(message.vr, what="vr") <= MAX_VR:
             raise StatusError(EncodeStatus.vr_out_of_range, f"vr must be 0..{MAX_VR}, got {message.vr}")
-        raw = q32_from_float(message.value)
+        raw = _q32(message.value)
         return _frame(_core.encode_variable(hops, message.vr, raw, data), f"VR({message.vr}) to {hops} hops")
     if message.type == MessageType.keypad_offset:
-        if not 0 <= small(message.offset) <= 255:
+        if not 0 <= small(message.offset, what="offset") <= 255:
             raise StatusError(EncodeStatus.offset_out_of_range, f"offset must be 1..15, got {message.offset}")
         return _frame(_core.encode_keypad_offset(hops, message.offset), f"keypad offset {message.offset}")
     if message.type == MessageType.keypad_mode:
-        if not 0 <= small(message.mode) <= 255:
+        if not 0 <= small(message.mode, what="mode") <= 255:
             raise StatusError(EncodeStatus.mode_out_of_range, f"mode must be 0 or 127, got {message.mode}")
         return _frame(_core.encode_keypad_mode(hops, message.mode), f"keypad mode {message.mode}")
     raise StatusError(EncodeStatus.unknown_type, f"{message.type!r}")
@@ -171,13 +241,23 @@ def _hops(to: int, what: str = "to") -> int:
 
 
 def encode_print(to: int, text: Text, *, profile: Optional[Profile] = None) -> bytes:
-    """`trionet ring encode print --to N TEXT`: PRINT #to,text as one character transfer (1..256 7-bit
-    characters for a decoder to accept it). ``to`` is a BASIC address 10..24."""
-    return encode(Message.characters(_hops(to), text), profile=profile)
+    """`trionet ring encode print --to N TEXT`: PRINT #to,text as one character transfer of 1..256 7-bit
+    characters (the profile's ring.max_characters with a profile). ``to`` is a BASIC address 10..24. As the
+    tool, a longer text is refused (StatusError, EncodeStatus.buffer_too_small: the frame does not fit a
+    decoder's buffer); :func:`encode` of a :class:`Message` encodes it all the same."""
+    message = Message.characters(_hops(to), text)
+    data = _data_of(profile)
+    limit = MAX_CHARACTERS if data is None else int(data.ring_max_characters)
+    if len(message.text) > limit:
+        raise StatusError(EncodeStatus.buffer_too_small,
+                          f"TEXT has {len(message.text)} characters; a character transfer carries at most {limit}")
+    return encode(message, profile=profile)
 
 
-def encode_var(to: int, vr: int, value: float, *, profile: Optional[Profile] = None) -> bytes:
-    """`trionet ring encode var --to N --vr V --value X`: SEND(to,1,vr,value)."""
+def encode_var(to: int, vr: int, value: Union[float, decimal.Decimal], *, profile: Optional[Profile] = None) -> bytes:
+    """`trionet ring encode var --to N --vr V --value X`: SEND(to,1,vr,value). A float is rounded as a double
+    (:func:`q32_from_float`); for the tool's frame of a decimal X, whatever it is, pass decimal.Decimal("X")
+    (:func:`q32_from_decimal`): a float that is an exact tie at 2**-32 can end one bit apart."""
     return encode(Message.variable(_hops(to), vr, value), profile=profile)
 
 
@@ -206,12 +286,19 @@ class Decoder(_core.Decoder):  # type: ignore[misc]
     one event per byte fed.
     """
 
-    def __init__(self, profile: Optional[Profile] = None) -> None:
+    # The C++ decoder is made by __new__, not __init__: an instance made with Decoder.__new__(Decoder) alone is
+    # a working decoder, not an unconstructed C++ object (which pybind11 would let a method read: a crash).
+    def __new__(cls, profile: Optional[Profile] = None, *args: Any, **kwargs: Any) -> "Decoder":
         data = _data_of(profile)
         if data is not None and data.ring_max_characters != MAX_CHARACTERS:
             raise ValueError(f"profile ring.max_characters is {data.ring_max_characters}: the decoder is built for "
                              f"{MAX_CHARACTERS}")
-        super().__init__(data)
+        self: Decoder = _core.Decoder.__new__(cls)
+        _core.Decoder.__init__(self, data)
+        return self
+
+    def __init__(self, profile: Optional[Profile] = None) -> None:
+        pass  # made by __new__
 
 
 def decode(data: Any, *, profile: Optional[Profile] = None) -> List[Event]:
@@ -228,14 +315,22 @@ class VrTable(_core.VrValues):  # type: ignore[misc]
 
     ``memoryview(table)`` views the values in place (format 'd', no copy); ``table[vr]`` reads and writes
     one. ``policy`` is None (every write to a VR in the table is applied) or a callable (vr, value) -> bool
-    that refuses a write by returning False; an exception in it refuses the write and is raised again by the
-    call that fed the node.
+    whose answer is taken as Python truth: a false one (False, 0, None, "") refuses the write; an exception in
+    it, or in bool() of its answer, refuses the write and is raised again by the call that fed the node.
     """
 
-    def __init__(self, size: int = 1024, policy: Optional[Callable[[int, float], bool]] = None) -> None:
+    # The C++ table is made by __new__, not __init__: VrTable.__new__(VrTable) alone gives a table of 1024 VRs,
+    # not an unconstructed C++ object (which pybind11 would let a method read: a crash).
+    def __new__(cls, size: int = 1024, *args: Any, **kwargs: Any) -> "VrTable":
+        if isinstance(size, bool) or not isinstance(size, int):
+            raise TypeError(f"a VR table's size is an int, not {type(size).__name__}")
         if not 1 <= size <= 16384:
             raise ValueError(f"a VR table holds 1..16384 variables, got {size}")
-        super().__init__(size)
+        self: VrTable = _core.VrValues.__new__(cls)
+        _core.VrValues.__init__(self, size)
+        return self
+
+    def __init__(self, size: int = 1024, policy: Optional[Callable[[int, float], bool]] = None) -> None:
         self.policy = policy
 
     def __getitem__(self, vr: int) -> float:
@@ -245,13 +340,17 @@ class VrTable(_core.VrValues):  # type: ignore[misc]
         self.set(self._index(vr), float(value))
 
     def _index(self, vr: int) -> int:
+        _integer(vr, "a VR number")
         if not 0 <= vr < len(self):
             raise IndexError(f"VR({vr}) is outside the table (0..{len(self) - 1})")
         return vr
 
     def write_from_network(self, vr: int, value: float) -> VrWriteStatus:
         """Writes VR(vr) as the network does, through the write policy (value rounded to Q32.32)."""
-        return VrWriteStatus(self.write(vr, float(value)))
+        _integer(vr, "a VR number")
+        if not 0 <= vr <= 65535:  # a VR on the network is 16 bits; out_of_range past the table
+            raise ValueError(f"a VR number from the network is 0..65535, got {vr}")
+        return VrWriteStatus(self.write(vr, number(value)))
 
     def nonzero(self) -> Dict[int, float]:
         """Every VR that is not 0, as {vr: value}."""
@@ -274,7 +373,7 @@ class RingNode:
 
     def transmit(self, limit: int = 65536) -> bytes:
         """Up to ``limit`` bytes for the next node: forwarded messages and the node's own, as they are due."""
-        return bytes(self._node.transmit(limit))
+        return bytes(self._node.transmit(_count(limit, "limit", 2**63 - 1)))
 
     def line_idle(self) -> None:
         """The receive line has been idle (docs/protocol.md 1.10): an open message is lost and counted."""
@@ -325,10 +424,16 @@ class MotionCoordinator(RingNode):
 
     def __init__(self, vr: Union[int, VrTable] = 1024, *,
                  write_policy: Optional[Callable[[int, float], bool]] = None) -> None:
-        self.vr = vr if isinstance(vr, VrTable) else VrTable(vr)
+        self._vr = vr if isinstance(vr, VrTable) else VrTable(vr)
         if write_policy is not None:
-            self.vr.policy = write_policy
-        self._node = _core.MotionCoordinator(self.vr)
+            self._vr.policy = write_policy
+        self._node = _core.MotionCoordinator(self._vr)
+
+    @property
+    def vr(self) -> VrTable:
+        """The node's VR table, the one the ring writes (read-only: the node keeps the table it was made with;
+        write to it, or make a node with another table)."""
+        return self._vr
 
     def print(self, to: int, text: Text) -> int:
         """PRINT #to,text without waiting: as many whole character messages as the transmit queue has room
@@ -400,6 +505,7 @@ def _key(key: Union[Key, int, str]) -> int:
             return int(Key[name])
         except KeyError:
             raise ValueError(f"no key called {key!r} (0-9, up, down, clear, yes, no, point, start, stop)") from None
+    _integer(key, "a key (a Key, its number or its name)")
     return int(Key(key))
 
 
@@ -470,7 +576,7 @@ class Simulator:
     carries nothing before its receiver's line counts as idle (0: never)."""
 
     def __init__(self, nodes: Optional[List[RingNode]] = None, *, idle_byte_times: int = 2) -> None:
-        self._ring = _core.Simulator(idle_byte_times)
+        self._ring = _core.Simulator(_count(idle_byte_times, "idle_byte_times", 2**32 - 1))
         self.nodes: List[RingNode] = []
         for node in nodes or []:
             self.add(node)
@@ -487,8 +593,7 @@ class Simulator:
         """Runs ``byte_times`` byte-times; ``trace`` sees every byte sent on every link."""
         if len(self.nodes) < 2:
             raise ValueError("a ring needs at least 2 nodes")
-        if byte_times < 0:
-            raise ValueError("byte_times must be 0 or more")
+        _count(byte_times, "byte_times", 2**64 - 1)
         if trace is None:
             self._ring.run(byte_times, None)
         else:
@@ -519,15 +624,25 @@ class Simulator:
 
     def drop_next(self, link: int) -> None:
         """The next byte sent on ``link`` never arrives."""
-        self._ring.drop_next(link)
+        self._ring.drop_next(self._link(link))
 
     def flip_next(self, link: int, mask: int) -> None:
         """The next byte sent on ``link`` arrives with the bits of ``mask`` flipped."""
-        self._ring.flip_next(link, mask & 0xFF)
+        _integer(mask, "mask")
+        self._ring.flip_next(self._link(link), mask & 0xFF)
 
     def cut(self, link: int, cut: bool = True) -> None:
         """Cuts ``link`` (nothing arrives) or mends it."""
-        self._ring.cut(link, cut)
+        if not isinstance(cut, bool):
+            raise TypeError(f"cut is a bool, not {type(cut).__name__}")
+        self._ring.cut(self._link(link), cut)
+
+    def _link(self, link: int) -> int:
+        """Link i carries node i's bytes to node i + 1 (the last to the first)."""
+        _integer(link, "a link")
+        if not 0 <= link < max(len(self.nodes), 1):
+            raise ValueError(f"the ring's links are 0..{max(len(self.nodes), 1) - 1}, got {link}")
+        return link
 
 
 # ---- a node on a serial port ----------------------------------------------------------------------------
@@ -542,6 +657,10 @@ class SerialLink:
     """
 
     def __init__(self, node: RingNode, port: Any, *, idle_seconds: float = 0.05) -> None:
+        if not isinstance(node, RingNode):
+            raise TypeError(f"node is a MotionCoordinator or a Keypad, not {type(node).__name__}")
+        if port is None or not (hasattr(port, "read") and hasattr(port, "write")):
+            raise TypeError(f"port is an open serial port (pyserial's Serial), not {type(port).__name__}")
         self.node = node
         self.port = port
         self.idle_seconds = idle_seconds
@@ -596,5 +715,6 @@ __all__ = [
     "KeyStatus", "Keypad", "LAST_BASIC_ADDRESS", "LinkByte", "MAX_CHARACTERS", "MAX_HOPS", "MAX_VR", "MIN_HOPS",
     "Message", "MessageType", "MotionCoordinator", "Profile", "Q32Status", "RingNode", "SendStatus", "SerialLink",
     "Simulator", "VrTable", "VrWriteStatus", "basic_address_from_hops", "decode", "encode", "encode_mode",
-    "encode_offset", "encode_print", "encode_var", "hops_from_basic_address", "q32_from_float", "q32_to_float",
+    "encode_offset", "encode_print", "encode_var", "hops_from_basic_address", "q32_from_decimal", "q32_from_float",
+    "q32_to_float",
 ]
