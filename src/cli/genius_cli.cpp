@@ -40,7 +40,8 @@ constexpr const char* decode_usage =
     "Prints each transmission and each error as soon as it is complete, with where it is (line and character,\n"
     "byte offset, or capture record), then a summary line. A token that is not a character is an error (the\n"
     "character is lost, as with a framing error) and decoding goes on. --write-pcap also writes every\n"
-    "character to a capture, one record per transmission, timed at rate R (default 153.6s).\n"
+    "character to a capture, one record per transmission, timed at rate R (default 153.6s); a token that is\n"
+    "not a character goes there as the word 0xFFFF (a framing error), so the capture keeps the loss.\n"
     "With --pcap, --json prints each record as the fields Wireshark shows (docs/wireshark.md).\n"
     "Exit status 0 when the input was read (wire errors included), 1 when reading or writing failed, 2 for\n"
     "bad arguments.\n";
@@ -216,7 +217,8 @@ int encode_main(const std::vector<std::string>& words) {
 bool parse_token(std::string_view text, std::uint16_t& word) {
   unsigned value = 0;
   if (text.substr(0, 2) == "w:") {
-    if (!parse_hex(std::string(text.substr(2)), 3, value) || value > genius::word_mask) return false;
+    // Any 3 hex digits: bits above bit 10 are a framing error, as the same word read with --raw.
+    if (!parse_hex(std::string(text.substr(2)), 3, value)) return false;
     word = static_cast<std::uint16_t>(value);
     return true;
   }
@@ -268,8 +270,11 @@ class genius_stream {
     }
   }
 
-  // A token that is no character: the character is lost, as with a framing error.
+  // A token that is no character: the character is lost, as with a framing error. A capture gets the word
+  // 0xFFFF in its place (a framing error: bits above bit 10), so that it holds no transmission the decoder
+  // rejected.
   void bad_token(const std::string& where, std::string_view token) {
+    record(lost_word);
     if (parser_.in_transmission()) {
       (void)parser_.push_framing_error();  // counted by the parser
     } else {
@@ -323,6 +328,8 @@ class genius_stream {
       if (self->written_ == host::pcapng_write_status::ok) self->written_ = status;
     }
   };
+
+  static constexpr std::uint16_t lost_word = 0xFFFF;
 
   void record(std::uint16_t w) {
     if (writer_ == nullptr) return;
