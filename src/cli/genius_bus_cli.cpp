@@ -16,6 +16,7 @@
 
 #include "genius_bus.hpp"
 #include "genius_plan.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/pcapng.hpp"
 #include "trionet/host/text.hpp"
@@ -185,10 +186,42 @@ const char* what_name(const genius_turn_record& t) {
   return "not_reached";
 }
 
+// The simulated devices are the library's genius::device, built for CRC-6/G-704 and the control layout of
+// protocol.md 3.2: a profile with other Genius keys is refused (cli.md: a command never ignores a field it
+// cannot honour). "" when the profile keeps the defaults, else the message.
+std::string simulate_profile_refusal() {
+  const learn::genius_profile& g = active_profile().genius;
+  const auto hex = [](unsigned v) {
+    char text[8];
+    std::snprintf(text, sizeof text, "0x%02x", v);
+    return std::string(text);
+  };
+  const auto crc_text = [&](const genius::crc6_parameters& c) {
+    return "polynomial " + hex(c.polynomial) + ", initial " + hex(c.initial) + ", reflect_in " +
+           (c.reflect_in ? "true" : "false") + ", reflect_out " + (c.reflect_out ? "true" : "false") + ", xor_out " +
+           hex(c.xor_out);
+  };
+  const auto layout_text = [](const genius::control_layout& l) {
+    return "start " + std::to_string(l.start) + ", stop " + std::to_string(l.stop) + ", start_of_block " +
+           std::to_string(l.start_of_block) + ", end_of_block " + std::to_string(l.end_of_block) + ", tag_position " +
+           (l.position == genius::tag_position::high ? "high" : "low");
+  };
+  const std::string why = ": `trionet genius simulate` supports only ";
+  const std::string built = " (its devices are the library's genius::device, built for the defaults)";
+  if (!(g.crc == genius::crc6_parameters{}))
+    return "the profile's genius.crc6 is " + crc_text(g.crc) + why + crc_text(genius::crc6_parameters{}) + built;
+  if (!(g.control == genius::control_layout{}))
+    return "the profile's genius.control is " + layout_text(g.control) + why + layout_text(genius::control_layout{}) +
+           built;
+  return "";
+}
+
 int simulate_main(const words& all) {
   arguments args;
   std::string error;
   if (!parse_arguments(all, genius_simulate_option_list(), args, error)) return fail(error);
+  const std::string refused = simulate_profile_refusal();
+  if (!refused.empty()) return fail(refused);
   if (!args.positionals.empty()) return fail("unexpected argument '" + host::printable(args.positionals[0]) + "'");
   genius_bus_config config;
   int status = exit_ok;

@@ -188,6 +188,43 @@ TEST(GeniusSimulateCli, AnOutOfRangeNumberIsNamedWithItsRange) {
   expect_usage_error(run + "--fault cut:x@0+1", "must be noise:FEET@T+D");
 }
 
+// The simulated devices are built for CRC-6/G-704 and the layout of protocol.md 3.2: a profile with other
+// Genius keys is refused with the field, its value and what simulate supports, not ignored (s37 item 3).
+TEST(GeniusSimulateCli, AProfileWithAnotherGeniusCrcOrLayoutIsRefusedNotIgnored) {
+  const std::string shown = run_cli("profile show").out;
+  const std::string path = "/tmp/trionet-genius-sim-profile-" + std::to_string(::getpid()) + ".json";
+  const auto write_with = [&](const std::string& from, const std::string& to) {
+    std::string text = shown;
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
+  };
+  const std::string run = "genius simulate --rate 153.6s --device 4@0 --device 5@10 --scans 2 --profile " + path;
+  write_with("\"polynomial\": \"0x03\"", "\"polynomial\": \"0x2f\"");
+  auto r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "trionet: the profile's genius.crc6 is polynomial 0x2f, initial 0x00, reflect_in true, reflect_out "
+            "true, xor_out 0x00: `trionet genius simulate` supports only polynomial 0x03, initial 0x00, "
+            "reflect_in true, reflect_out true, xor_out 0x00 (its devices are the library's genius::device, "
+            "built for the defaults)\n");
+  write_with("\"tag_position\": \"high\"", "\"tag_position\": \"low\"");
+  r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("genius.control is start 0, stop 1, start_of_block 2, end_of_block 3, tag_position low"),
+            std::string::npos)
+      << r.err;
+  write_with("\"name\"", "\"name\"");  // the defaults: simulated as without --profile
+  r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::remove(path.c_str());
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
