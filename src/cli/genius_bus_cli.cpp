@@ -320,6 +320,15 @@ int simulate_main(const words& all) {
     });
   }
   const genius_bus_result r = bus.run();
+  // The run's time bound (room for every scan, the faults and idle restarts) cut it short: said on stderr,
+  // exit 4 with --fail-on-limit (cli.md).
+  const auto bound_reached = [&] {
+    if (r.complete) return exit_ok;
+    return limit_reached("genius simulate: stopped at the run's time bound, " + fixed(r.end_us / 1000.0, 3) +
+                         " ms (room for " + std::to_string(config.scans) + " scans), with " +
+                         std::to_string(r.scan_us.size()) + " of " + std::to_string(config.scans) +
+                         " scans complete");
+  };
   if (splitter) {
     // A transmission still under way when the run ends stays out of the capture (it has no Stop yet).
     capture_file.flush();
@@ -393,7 +402,7 @@ int simulate_main(const words& all) {
     }
     out += "]}";
     std::printf("%s\n", out.c_str());
-    return exit_ok;
+    return bound_reached();
   }
 
   const genius::rate_properties props = genius::properties(config.rate);
@@ -443,7 +452,7 @@ int simulate_main(const words& all) {
                 pad(std::to_string(c.lost_transmissions), 4).c_str(), pad(std::to_string(c.idle_restarts), 4).c_str(),
                 pad(std::to_string(c.deliveries), 10).c_str());
   }
-  return exit_ok;
+  return bound_reached();
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -225,6 +225,28 @@ TEST(GeniusSimulateCli, AProfileWithAnotherGeniusCrcOrLayoutIsRefusedNotIgnored)
   std::remove(path.c_str());
 }
 
+// A run its time bound cut short (nobody sends, so no scan completes) says so on stderr and exits 4 with
+// --fail-on-limit, 0 without, as cli.md's rules for limits say (s37 item 4).
+TEST(GeniusSimulateCli, ARunCutShortByItsTimeBoundSaysSoAndExits4WithFailOnLimit) {
+  const std::string run = "genius simulate --rate 153.6s --device 4@0:0 --device 5@10:0";
+  const std::string said =
+      "trionet: genius simulate: stopped at the run's time bound, 154.220 ms (room for 10 scans), with 0 of 10 "
+      "scans complete\n";
+  auto r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, said);
+  EXPECT_NE(r.out.find("scans: none complete in 154.220 ms\n"), std::string::npos) << r.out;
+  r = run_cli(run + " --fail-on-limit");
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_EQ(r.err, said);
+  r = run_cli(run + " --json --fail-on-limit");
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_NE(r.out.find("\"complete\":false"), std::string::npos) << r.out;
+  r = run_cli("genius simulate --rate 153.6s --device 4@0 --device 5@10 --scans 2 --fail-on-limit");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
