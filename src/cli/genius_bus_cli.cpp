@@ -274,6 +274,26 @@ int simulate_main(const words& all) {
   }
   const std::string problem = host::check_genius_bus(stations, config);
   if (!problem.empty()) return fail(problem);
+  if (config.controller >= 0) {
+    // The controller sends the others' OUT_BYTES as blocks, nothing of its own (s37 item 5): bytes given to
+    // it would be dropped, and with no OUT_BYTES anywhere it never sends, so no scan opens.
+    const std::vector<std::string> texts = values_of(args.options["--device"]);
+    bool outputs = false;
+    for (std::size_t i = 0; i < stations.size(); ++i) {
+      const genius_station& st = stations[i];
+      if (st.sba != config.controller) {
+        outputs = outputs || st.output_bytes > 0;
+      } else if (texts[i].find(':') != std::string::npos && (st.input_bytes > 0 || st.output_bytes > 0)) {
+        return fail("--device '" + host::printable(texts[i]) + "' is the controller: it sends the other devices' " +
+                    "OUT_BYTES as blocks and no bytes of its own; give it as SBA@FEET or SBA@FEET:0");
+      }
+    }
+    if (!outputs) {
+      return fail("--controller " + std::to_string(config.controller) +
+                  ": no other device has OUT_BYTES (SBA@FEET:IN_BYTES/OUT_BYTES), so the controller would " +
+                  "never send and no scan would open");
+    }
+  }
   const bool json = args.flag("--json");
   const bool trace = args.flag("--trace");
 
@@ -320,6 +340,15 @@ int simulate_main(const words& all) {
     });
   }
   const genius_bus_result r = bus.run();
+  // A fault timed after the run's end never happened: said, not dropped silently (s37 item 7).
+  {
+    const std::vector<std::string> texts = values_of(args.options["--fault"]);
+    for (std::size_t k = 0; k < config.faults.size() && k < texts.size(); ++k) {
+      if (config.faults[k].at_us <= r.end_us) continue;
+      note("genius simulate: --fault " + host::printable(texts[k]) + " never happened: the run ended at " +
+                   fixed(r.end_us, 3) + " us");
+    }
+  }
   // The run's time bound (room for every scan, the faults and idle restarts) cut it short: said on stderr,
   // exit 4 with --fail-on-limit (cli.md).
   const auto bound_reached = [&] {
@@ -586,9 +615,11 @@ const char* const genius_simulate_usage =
     "                               [--pcap FILE] [--json] [--prop-us-per-2000ft P] [--detect-us D] [--seed S]\n"
     "Runs a Genius bus of device nodes (the library's genius::device; the controller a genius::bus_controller)\n"
     "on a modelled line: each device at FEET sends IN_BYTES of inputs (default 1) as a broadcast at its turns;\n"
-    "with --controller, that device sends every other device its OUT_BYTES as a block once a scan. The run\n"
+    "with --controller, that device sends every other device its OUT_BYTES as a block once a scan, and no\n"
+    "bytes of its own (bytes given to it, or no OUT_BYTES on any other device, are refused). The run\n"
     "starts with every device powered up and lasts N scans (default 10): a scan runs from a Stop of the\n"
-    "controller (else of the lowest SBA that sends) to its next. Prints the turns after the first scan's\n"
+    "controller (else of the lowest SBA that sends) to its next. A fault timed after the run's end (it never\n"
+    "happened) and a run its time bound cut short are said on stderr. Prints the turns after the first scan's\n"
     "opening Stop (each device's turn, and the start bit that cancelled it), the transmissions of that scan,\n"
     "the measured scan time beside GE's published figure, collisions, deliveries (each checked against what\n"
     "its sender sent) and every device's counters. SPEC (times in microseconds from the start):\n"

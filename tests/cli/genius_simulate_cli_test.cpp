@@ -247,6 +247,40 @@ TEST(GeniusSimulateCli, ARunCutShortByItsTimeBoundSaysSoAndExits4WithFailOnLimit
   EXPECT_EQ(r.err, "");
 }
 
+// The controller sends the others' OUT_BYTES and nothing of its own: bytes given to it, or a bus where no
+// other device has OUT_BYTES (the controller would never send, no scan would open), are refused, not
+// dropped (s37 item 5).
+TEST(GeniusSimulateCli, ControllerBytesThatWouldBeDroppedAreRefused) {
+  auto r = run_cli("genius simulate --rate 153.6s --device 4@0:5 --device 5@10:1/2 --controller 4 --scans 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "trionet: --device '4@0:5' is the controller: it sends the other devices' OUT_BYTES as blocks and no "
+            "bytes of its own; give it as SBA@FEET or SBA@FEET:0\n");
+  r = run_cli("genius simulate --rate 153.6s --device 4@0 --device 5@100 --device 6@200 --controller 4 --scans 10");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "trionet: --controller 4: no other device has OUT_BYTES (SBA@FEET:IN_BYTES/OUT_BYTES), so the "
+            "controller would never send and no scan would open\n");
+  for (const char* controller : {"4@0", "4@0:0", "4@0:0/0"}) {
+    r = run_cli(std::string("genius simulate --rate 153.6s --device ") + controller +
+                " --device 5@10:1/2 --controller 4 --scans 3");
+    EXPECT_EQ(r.exit_code, 0) << controller << r.err;
+    EXPECT_EQ(r.err, "") << controller;
+  }
+}
+
+// A fault the run never reaches is said on stderr, not dropped silently (s37 item 7).
+TEST(GeniusSimulateCli, AFaultAfterTheRunsEndIsSaidToHaveNeverHappened) {
+  auto r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --fault off:1@100000+1000 --scans 10");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err,
+            "trionet: genius simulate: --fault off:1@100000+1000 never happened: the run ended at 7099.505 us\n");
+  r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --fault off:1@1000+1000 --scans 10");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
