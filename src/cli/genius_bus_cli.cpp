@@ -440,7 +440,9 @@ int simulate_main(const words& all) {
               config.skip_us > 0 ? "explicit" : "rule", fixed(detection_us, 2).c_str(),
               format_real(config.propagation_us_per_2000ft).c_str());
   std::printf("first scan, after the Stop of SBA %u (time 0):\n", static_cast<unsigned>(r.opener));
-  if (r.first_scan_turns.empty()) std::printf("  no turns (the scan's opening Stop never came)\n");
+  if (r.first_scan_turns.empty()) {
+    std::printf("  no turns (%s)\n", stations.size() == 1 ? "no other device" : "the scan's opening Stop never came");
+  }
   if (!r.first_scan_turns.empty()) std::printf("  SBA  turn_us  what\n");
   for (const genius_turn_record& t : r.first_scan_turns) {
     std::printf("  %s  %s  %s\n", pad(std::to_string(t.sba), 3).c_str(), pad(fixed(t.due_us, 3), 7).c_str(),

@@ -805,7 +805,8 @@ int scan_time_main(const std::vector<std::string>& words) {
   if (bus.minimum_applies) {
     std::printf(" (the bus controller's minimum of %s ms applies)\n", exact_ms(minimum_ns).c_str());
   } else if (minimum_ns != 0) {
-    std::printf(" (above the minimum of %s ms)\n", exact_ms(minimum_ns).c_str());
+    std::printf(" (%s the minimum of %s ms)\n", bus.sum_ns == minimum_ns ? "equal to" : "above",
+                exact_ms(minimum_ns).c_str());
   } else {
     std::printf(" (no minimum)\n");
   }

@@ -281,6 +281,14 @@ TEST(GeniusSimulateCli, AFaultAfterTheRunsEndIsSaidToHaveNeverHappened) {
   EXPECT_EQ(r.err, "");
 }
 
+// A lone device has no turns because there is no other device, not because a Stop never came (s37 item 11).
+TEST(GeniusSimulateCli, ALoneDeviceHasNoTurnsBecauseThereIsNoOtherDevice) {
+  const auto r = run_cli("genius simulate --rate 153.6s --device 0@0 --scans 3");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  no turns (no other device)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("scans: 3;"), std::string::npos) << r.out;
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
