@@ -309,9 +309,14 @@ int simulate_main(const words& all) {
   std::unique_ptr<host::genius_record_splitter> splitter;
   std::uint32_t interface = 0;
   host::pcapng_write_status written = host::pcapng_write_status::ok;
+  int write_errno = 0;  // the system's cause of the first failed write
   const auto sink = [&](byte_view record, std::uint64_t time_ns) {
+    errno = 0;
     const host::pcapng_write_status s = writer->write(interface, time_ns, record);
-    if (written == host::pcapng_write_status::ok) written = s;
+    if (written == host::pcapng_write_status::ok) {
+      written = s;
+      if (s != host::pcapng_write_status::ok) write_errno = errno;
+    }
   };
   if (args.has("--pcap")) {
     const std::string& path = args.options.at("--pcap");
@@ -360,9 +365,12 @@ int simulate_main(const words& all) {
   };
   if (splitter) {
     // A transmission still under way when the run ends stays out of the capture (it has no Stop yet).
+    errno = 0;
     capture_file.flush();
+    const int cause = write_errno != 0 ? write_errno : errno;
     if (written != host::pcapng_write_status::ok || !capture_file) {
-      return fail_io("cannot write the capture " + host::printable(args.options.at("--pcap")));
+      return fail_io("cannot write the capture " + host::printable(args.options.at("--pcap")) + ": " +
+                     std::strerror(cause != 0 ? cause : EIO));
     }
   }
 

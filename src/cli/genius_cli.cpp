@@ -308,6 +308,7 @@ class genius_stream {
   }
 
   bool capture_ok() const { return written_ == host::pcapng_write_status::ok; }
+  int write_errno() const { return write_errno_; }  // the system's cause of the first failed write (0: none)
 
  private:
   void print_transmission(const genius::transmission& t) {
@@ -324,8 +325,12 @@ class genius_stream {
   struct sink {
     genius_stream* self;
     void operator()(byte_view record, std::uint64_t time_ns) const {
+      errno = 0;
       const host::pcapng_write_status status = self->writer_->write(self->interface_, time_ns, record);
-      if (self->written_ == host::pcapng_write_status::ok) self->written_ = status;
+      if (self->written_ == host::pcapng_write_status::ok) {
+        self->written_ = status;
+        if (status != host::pcapng_write_status::ok) self->write_errno_ = errno;
+      }
     }
   };
 
@@ -347,6 +352,7 @@ class genius_stream {
   std::uint32_t interface_ = 0;
   double character_ns_ = 0;
   std::uint64_t characters_ = 0;
+  int write_errno_ = 0;
   host::genius_record_splitter splitter_;
   host::pcapng_write_status written_ = host::pcapng_write_status::ok;
 };
@@ -499,10 +505,13 @@ int decode_main(const std::vector<std::string>& all) {
   }
   stream.summary();
   if (writer) {
+    errno = 0;
     capture_file.flush();
+    const int cause = stream.write_errno() != 0 ? stream.write_errno() : errno;
     if (!stream.capture_ok() || !capture_file) {
       out.flush();
-      return fail_io("cannot write the capture " + host::printable(args.options.at("--write-pcap")));
+      return fail_io("cannot write the capture " + host::printable(args.options.at("--write-pcap")) + ": " +
+                     std::strerror(cause != 0 ? cause : EIO));
     }
   }
   return out.flush() ? exit_ok : fail_output();

@@ -289,6 +289,21 @@ TEST(GeniusSimulateCli, ALoneDeviceHasNoTurnsBecauseThereIsNoOtherDevice) {
   EXPECT_NE(r.out.find("scans: 3;"), std::string::npos) << r.out;
 }
 
+// A capture that cannot be written whole names the system's cause, as every other write error does (s37
+// item 11): a full device, for simulate --pcap and decode --write-pcap.
+TEST(GeniusSimulateCli, ACaptureOnAFullDeviceNamesTheCause) {
+  if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no /dev/full";
+  auto r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --pcap /dev/full");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n");
+  r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --scans 3000 --pcap /dev/full");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n");
+  r = run_cli("genius decode --write-pcap /dev/full c:24 11 c:52");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n");
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
