@@ -383,6 +383,16 @@ TEST(GeniusPlanCli, ABusTooLongForTheRateMovesTo153k6Extended) {
       << r.out;
 }
 
+// More devices than 38.4 allows: the reason is the count, not the margins (s37 item 11).
+TEST(GeniusPlanCli, TooManyDevicesAt38k4IsTheReasonGiven) {
+  std::string devices;
+  for (int i = 0; i <= 16; ++i) devices += " --device D" + std::to_string(i) + "@" + std::to_string(i * 10);
+  const auto r = run_cli("genius plan --rate 38.4" + devices);
+  EXPECT_NE(r.out.find("no plan: 17 devices, and 38.4 allows 16\n"), std::string::npos) << r.out;
+  const auto json = run_cli("genius plan --rate 38.4 --json" + devices);
+  EXPECT_NE(json.out.find("17 devices, and 38.4 allows 16"), std::string::npos) << json.out;
+}
+
 TEST(GeniusPlanCli, BadArgumentsExit2WithAMessage) {
   expect_usage_error("genius plan --device A@0", "--rate");
   expect_usage_error("genius plan --rate 153.6s --device A", "--device 'A'");
