@@ -293,15 +293,13 @@ TEST(GeniusSimulateCli, ALoneDeviceHasNoTurnsBecauseThereIsNoOtherDevice) {
 // item 11): a full device, for simulate --pcap and decode --write-pcap.
 TEST(GeniusSimulateCli, ACaptureOnAFullDeviceNamesTheCause) {
   if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no /dev/full";
-  auto r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --pcap /dev/full");
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n");
-  r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --scans 3000 --pcap /dev/full");
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n");
-  r = run_cli("genius decode --write-pcap /dev/full c:24 11 c:52");
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n");
+  for (const char* command : {"genius simulate --rate 153.6s --device 0@0 --device 1@100 --pcap /dev/full",
+                              "genius simulate --rate 153.6s --device 0@0 --device 1@100 --scans 3000 --pcap /dev/full",
+                              "genius decode --write-pcap /dev/full c:24 11 c:52"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n") << command;
+  }
 }
 
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
