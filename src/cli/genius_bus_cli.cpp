@@ -16,6 +16,7 @@
 
 #include "genius_bus.hpp"
 #include "genius_plan.hpp"
+#include "profile_cli.hpp"
 #include "trionet/host/capture.hpp"
 #include "trionet/host/pcapng.hpp"
 #include "trionet/host/text.hpp"
@@ -185,10 +186,42 @@ const char* what_name(const genius_turn_record& t) {
   return "not_reached";
 }
 
+// The simulated devices are the library's genius::device, built for CRC-6/G-704 and the control layout of
+// protocol.md 3.2: a profile with other Genius keys is refused (cli.md: a command never ignores a field it
+// cannot honour). "" when the profile keeps the defaults, else the message.
+std::string simulate_profile_refusal() {
+  const learn::genius_profile& g = active_profile().genius;
+  const auto hex = [](unsigned v) {
+    char text[8];
+    std::snprintf(text, sizeof text, "0x%02x", v);
+    return std::string(text);
+  };
+  const auto crc_text = [&](const genius::crc6_parameters& c) {
+    return "polynomial " + hex(c.polynomial) + ", initial " + hex(c.initial) + ", reflect_in " +
+           (c.reflect_in ? "true" : "false") + ", reflect_out " + (c.reflect_out ? "true" : "false") + ", xor_out " +
+           hex(c.xor_out);
+  };
+  const auto layout_text = [](const genius::control_layout& l) {
+    return "start " + std::to_string(l.start) + ", stop " + std::to_string(l.stop) + ", start_of_block " +
+           std::to_string(l.start_of_block) + ", end_of_block " + std::to_string(l.end_of_block) + ", tag_position " +
+           (l.position == genius::tag_position::high ? "high" : "low");
+  };
+  const std::string why = ": `trionet genius simulate` supports only ";
+  const std::string built = " (its devices are the library's genius::device, built for the defaults)";
+  if (!(g.crc == genius::crc6_parameters{}))
+    return "the profile's genius.crc6 is " + crc_text(g.crc) + why + crc_text(genius::crc6_parameters{}) + built;
+  if (!(g.control == genius::control_layout{}))
+    return "the profile's genius.control is " + layout_text(g.control) + why + layout_text(genius::control_layout{}) +
+           built;
+  return "";
+}
+
 int simulate_main(const words& all) {
   arguments args;
   std::string error;
   if (!parse_arguments(all, genius_simulate_option_list(), args, error)) return fail(error);
+  const std::string refused = simulate_profile_refusal();
+  if (!refused.empty()) return fail(refused);
   if (!args.positionals.empty()) return fail("unexpected argument '" + host::printable(args.positionals[0]) + "'");
   genius_bus_config config;
   int status = exit_ok;
@@ -241,6 +274,26 @@ int simulate_main(const words& all) {
   }
   const std::string problem = host::check_genius_bus(stations, config);
   if (!problem.empty()) return fail(problem);
+  if (config.controller >= 0) {
+    // The controller sends the others' OUT_BYTES as blocks, nothing of its own (s37 item 5): bytes given to
+    // it would be dropped, and with no OUT_BYTES anywhere it never sends, so no scan opens.
+    const std::vector<std::string> texts = values_of(args.options["--device"]);
+    bool outputs = false;
+    for (std::size_t i = 0; i < stations.size(); ++i) {
+      const genius_station& st = stations[i];
+      if (st.sba != config.controller) {
+        outputs = outputs || st.output_bytes > 0;
+      } else if (texts[i].find(':') != std::string::npos && (st.input_bytes > 0 || st.output_bytes > 0)) {
+        return fail("--device '" + host::printable(texts[i]) + "' is the controller: it sends the other devices' " +
+                    "OUT_BYTES as blocks and no bytes of its own; give it as SBA@FEET or SBA@FEET:0");
+      }
+    }
+    if (!outputs) {
+      return fail("--controller " + std::to_string(config.controller) +
+                  ": no other device has OUT_BYTES (SBA@FEET:IN_BYTES/OUT_BYTES), so the controller would " +
+                  "never send and no scan would open");
+    }
+  }
   const bool json = args.flag("--json");
   const bool trace = args.flag("--trace");
 
@@ -256,9 +309,14 @@ int simulate_main(const words& all) {
   std::unique_ptr<host::genius_record_splitter> splitter;
   std::uint32_t interface = 0;
   host::pcapng_write_status written = host::pcapng_write_status::ok;
+  int write_errno = 0;  // the system's cause of the first failed write
   const auto sink = [&](byte_view record, std::uint64_t time_ns) {
+    errno = 0;
     const host::pcapng_write_status s = writer->write(interface, time_ns, record);
-    if (written == host::pcapng_write_status::ok) written = s;
+    if (written == host::pcapng_write_status::ok) {
+      written = s;
+      if (s != host::pcapng_write_status::ok) write_errno = errno;
+    }
   };
   if (args.has("--pcap")) {
     const std::string& path = args.options.at("--pcap");
@@ -287,11 +345,32 @@ int simulate_main(const words& all) {
     });
   }
   const genius_bus_result r = bus.run();
+  // A fault timed after the run's end never happened: said, not dropped silently (s37 item 7).
+  {
+    const std::vector<std::string> texts = values_of(args.options["--fault"]);
+    for (std::size_t k = 0; k < config.faults.size() && k < texts.size(); ++k) {
+      if (config.faults[k].at_us <= r.end_us) continue;
+      note("genius simulate: --fault " + host::printable(texts[k]) + " never happened: the run ended at " +
+                   fixed(r.end_us, 3) + " us");
+    }
+  }
+  // The run's time bound (room for every scan, the faults and idle restarts) cut it short: said on stderr,
+  // exit 4 with --fail-on-limit (cli.md).
+  const auto bound_reached = [&] {
+    if (r.complete) return exit_ok;
+    return limit_reached("genius simulate: stopped at the run's time bound, " + fixed(r.end_us / 1000.0, 3) +
+                         " ms (room for " + std::to_string(config.scans) + " scans), with " +
+                         std::to_string(r.scan_us.size()) + " of " + std::to_string(config.scans) +
+                         " scans complete");
+  };
   if (splitter) {
     // A transmission still under way when the run ends stays out of the capture (it has no Stop yet).
+    errno = 0;
     capture_file.flush();
+    const int cause = write_errno != 0 ? write_errno : errno;
     if (written != host::pcapng_write_status::ok || !capture_file) {
-      return fail_io("cannot write the capture " + host::printable(args.options.at("--pcap")));
+      return fail_io("cannot write the capture " + host::printable(args.options.at("--pcap")) + ": " +
+                     std::strerror(cause != 0 ? cause : EIO));
     }
   }
 
@@ -360,7 +439,7 @@ int simulate_main(const words& all) {
     }
     out += "]}";
     std::printf("%s\n", out.c_str());
-    return exit_ok;
+    return bound_reached();
   }
 
   const genius::rate_properties props = genius::properties(config.rate);
@@ -369,7 +448,9 @@ int simulate_main(const words& all) {
               config.skip_us > 0 ? "explicit" : "rule", fixed(detection_us, 2).c_str(),
               format_real(config.propagation_us_per_2000ft).c_str());
   std::printf("first scan, after the Stop of SBA %u (time 0):\n", static_cast<unsigned>(r.opener));
-  if (r.first_scan_turns.empty()) std::printf("  no turns (the scan's opening Stop never came)\n");
+  if (r.first_scan_turns.empty()) {
+    std::printf("  no turns (%s)\n", stations.size() == 1 ? "no other device" : "the scan's opening Stop never came");
+  }
   if (!r.first_scan_turns.empty()) std::printf("  SBA  turn_us  what\n");
   for (const genius_turn_record& t : r.first_scan_turns) {
     std::printf("  %s  %s  %s\n", pad(std::to_string(t.sba), 3).c_str(), pad(fixed(t.due_us, 3), 7).c_str(),
@@ -410,7 +491,7 @@ int simulate_main(const words& all) {
                 pad(std::to_string(c.lost_transmissions), 4).c_str(), pad(std::to_string(c.idle_restarts), 4).c_str(),
                 pad(std::to_string(c.deliveries), 10).c_str());
   }
-  return exit_ok;
+  return bound_reached();
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -544,9 +625,11 @@ const char* const genius_simulate_usage =
     "                               [--pcap FILE] [--json] [--prop-us-per-2000ft P] [--detect-us D] [--seed S]\n"
     "Runs a Genius bus of device nodes (the library's genius::device; the controller a genius::bus_controller)\n"
     "on a modelled line: each device at FEET sends IN_BYTES of inputs (default 1) as a broadcast at its turns;\n"
-    "with --controller, that device sends every other device its OUT_BYTES as a block once a scan. The run\n"
+    "with --controller, that device sends every other device its OUT_BYTES as a block once a scan, and no\n"
+    "bytes of its own (bytes given to it, or no OUT_BYTES on any other device, are refused). The run\n"
     "starts with every device powered up and lasts N scans (default 10): a scan runs from a Stop of the\n"
-    "controller (else of the lowest SBA that sends) to its next. Prints the turns after the first scan's\n"
+    "controller (else of the lowest SBA that sends) to its next. A fault timed after the run's end (it never\n"
+    "happened) and a run its time bound cut short are said on stderr. Prints the turns after the first scan's\n"
     "opening Stop (each device's turn, and the start bit that cancelled it), the transmissions of that scan,\n"
     "the measured scan time beside GE's published figure, collisions, deliveries (each checked against what\n"
     "its sender sent) and every device's counters. SPEC (times in microseconds from the start):\n"

@@ -40,7 +40,8 @@ constexpr const char* decode_usage =
     "Prints each transmission and each error as soon as it is complete, with where it is (line and character,\n"
     "byte offset, or capture record), then a summary line. A token that is not a character is an error (the\n"
     "character is lost, as with a framing error) and decoding goes on. --write-pcap also writes every\n"
-    "character to a capture, one record per transmission, timed at rate R (default 153.6s).\n"
+    "character to a capture, one record per transmission, timed at rate R (default 153.6s); a token that is\n"
+    "not a character goes there as the word 0xFFFF (a framing error), so the capture keeps the loss.\n"
     "With --pcap, --json prints each record as the fields Wireshark shows (docs/wireshark.md).\n"
     "Exit status 0 when the input was read (wire errors included), 1 when reading or writing failed, 2 for\n"
     "bad arguments.\n";
@@ -216,7 +217,8 @@ int encode_main(const std::vector<std::string>& words) {
 bool parse_token(std::string_view text, std::uint16_t& word) {
   unsigned value = 0;
   if (text.substr(0, 2) == "w:") {
-    if (!parse_hex(std::string(text.substr(2)), 3, value) || value > genius::word_mask) return false;
+    // Any 3 hex digits: bits above bit 10 are a framing error, as the same word read with --raw.
+    if (!parse_hex(std::string(text.substr(2)), 3, value)) return false;
     word = static_cast<std::uint16_t>(value);
     return true;
   }
@@ -268,8 +270,11 @@ class genius_stream {
     }
   }
 
-  // A token that is no character: the character is lost, as with a framing error.
+  // A token that is no character: the character is lost, as with a framing error. A capture gets the word
+  // 0xFFFF in its place (a framing error: bits above bit 10), so that it holds no transmission the decoder
+  // rejected.
   void bad_token(const std::string& where, std::string_view token) {
+    record(lost_word);
     if (parser_.in_transmission()) {
       (void)parser_.push_framing_error();  // counted by the parser
     } else {
@@ -303,6 +308,7 @@ class genius_stream {
   }
 
   bool capture_ok() const { return written_ == host::pcapng_write_status::ok; }
+  int write_errno() const { return write_errno_; }  // the system's cause of the first failed write (0: none)
 
  private:
   void print_transmission(const genius::transmission& t) {
@@ -319,10 +325,16 @@ class genius_stream {
   struct sink {
     genius_stream* self;
     void operator()(byte_view record, std::uint64_t time_ns) const {
+      errno = 0;
       const host::pcapng_write_status status = self->writer_->write(self->interface_, time_ns, record);
-      if (self->written_ == host::pcapng_write_status::ok) self->written_ = status;
+      if (self->written_ == host::pcapng_write_status::ok) {
+        self->written_ = status;
+        if (status != host::pcapng_write_status::ok) self->write_errno_ = errno;
+      }
     }
   };
+
+  static constexpr std::uint16_t lost_word = 0xFFFF;
 
   void record(std::uint16_t w) {
     if (writer_ == nullptr) return;
@@ -340,6 +352,7 @@ class genius_stream {
   std::uint32_t interface_ = 0;
   double character_ns_ = 0;
   std::uint64_t characters_ = 0;
+  int write_errno_ = 0;
   host::genius_record_splitter splitter_;
   host::pcapng_write_status written_ = host::pcapng_write_status::ok;
 };
@@ -492,10 +505,13 @@ int decode_main(const std::vector<std::string>& all) {
   }
   stream.summary();
   if (writer) {
+    errno = 0;
     capture_file.flush();
+    const int cause = stream.write_errno() != 0 ? stream.write_errno() : errno;
     if (!stream.capture_ok() || !capture_file) {
       out.flush();
-      return fail_io("cannot write the capture " + host::printable(args.options.at("--write-pcap")));
+      return fail_io("cannot write the capture " + host::printable(args.options.at("--write-pcap")) + ": " +
+                     std::strerror(cause != 0 ? cause : EIO));
     }
   }
   return out.flush() ? exit_ok : fail_output();
@@ -798,7 +814,8 @@ int scan_time_main(const std::vector<std::string>& words) {
   if (bus.minimum_applies) {
     std::printf(" (the bus controller's minimum of %s ms applies)\n", exact_ms(minimum_ns).c_str());
   } else if (minimum_ns != 0) {
-    std::printf(" (above the minimum of %s ms)\n", exact_ms(minimum_ns).c_str());
+    std::printf(" (%s the minimum of %s ms)\n", bus.sum_ns == minimum_ns ? "equal to" : "above",
+                exact_ms(minimum_ns).c_str());
   } else {
     std::printf(" (no minimum)\n");
   }

@@ -132,6 +132,11 @@ sample_extraction genius_crc_samples(span<const genius::character> characters, c
   return out;
 }
 
+namespace {
+crc6_learn_result search(const std::vector<crc6_sample>& samples, const crc6_learn_options& options,
+                         crc6_learn_result& result);
+}  // namespace
+
 crc6_learn_result learn_genius_crc(const std::vector<crc6_sample>& samples,
                                    const crc6_learn_options& options) {
   crc6_learn_result result;
@@ -144,6 +149,32 @@ crc6_learn_result learn_genius_crc(const std::vector<crc6_sample>& samples,
       return result;
     }
   }
+  // A sample repeated says nothing more: the search and the final check run over distinct samples only
+  // (in the order they first came), so that a capture of one transmission repeated costs what one costs.
+  std::vector<std::size_t> order(samples.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto same = [&](std::size_t a, std::size_t b) {
+    return samples[a].crc == samples[b].crc && samples[a].data == samples[b].data;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (samples[a].crc != samples[b].crc) return samples[a].crc < samples[b].crc;
+    return samples[a].data < samples[b].data;
+  });
+  std::vector<bool> repeated(samples.size(), false);
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    if (same(order[k - 1], order[k])) repeated[order[k]] = true;
+  }
+  std::vector<crc6_sample> distinct_samples;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!repeated[i]) distinct_samples.push_back(samples[i]);
+  }
+  result.distinct_samples = distinct_samples.size();
+  return search(distinct_samples, options, result);
+}
+
+namespace {
+crc6_learn_result search(const std::vector<crc6_sample>& samples, const crc6_learn_options& options,
+                         crc6_learn_result& result) {
   std::vector<genius::crc6_parameters> survivors;
   for (unsigned polynomial = 0; polynomial <= mask; ++polynomial) {
     if (options.progress) options.progress(polynomial, mask + 1);
@@ -212,5 +243,6 @@ crc6_learn_result learn_genius_crc(const std::vector<crc6_sample>& samples,
   finish_classes(result);
   return result;
 }
+}  // namespace
 
 }  // namespace trionet::learn

@@ -60,6 +60,7 @@ struct [[nodiscard]] crc6_learn_result {
   std::vector<crc6_class> classes;
   std::size_t survivors = 0;  ///< parameter sets that fit every sample
   std::size_t samples = 0;
+  std::size_t distinct_samples = 0;  ///< of which different from every other (repeats say nothing more)
   std::size_t bad_sample_index = 0;  ///< for bad_frame: no data, or a CRC above 63
   std::size_t rejected = 0;  ///< candidates that failed the final check with crc6_runtime (a bug if not 0)
   explicit operator bool() const noexcept { return status == crc_learn_status::ok; }

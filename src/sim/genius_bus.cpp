@@ -498,10 +498,76 @@ struct genius_bus::state {
     return true;
   }
 
+  // The first 0 -> 1 edge of a source at its own time > `t`, where it is 0 at `t`.
+  std::int64_t next_rise(const source& s, std::int64_t t) const {
+    if (s.device < 0) {
+      auto it = std::upper_bound(s.zeros.begin(), s.zeros.end(), std::make_pair(t, never));
+      return std::min(s.cut, it == s.zeros.begin() ? t + 1 : std::prev(it)->second);
+    }
+    const std::int64_t total = 11 * static_cast<std::int64_t>(s.words.size());
+    std::int64_t j = (t - s.start) / bit + 1;
+    for (; j < total; ++j) {
+      if (((s.words[static_cast<std::size_t>(j / 11)] >> (j % 11)) & 1u) != 0) break;
+    }
+    return std::min(s.cut, s.start + j * bit);
+  }
+
+  // What end_of_low found, per receiver: the line was 0 throughout [from, to) there. Sources added or words
+  // appended only add 0s, so it stays true until a cut or a power-off takes a 0 away (stale_low_ends). A
+  // source pruned (over, out of `active`) was 0 there all the same: it is kept (else a receiver idle since
+  // before the prune would walk the stretch again at each look: quadratic in its length).
+  struct low_stretch {
+    std::int64_t from = 0;
+    std::int64_t to = 0;
+  };
+  mutable std::vector<low_stretch> lows;
+  mutable std::uint64_t line_steps = 0;  // end_of_low's steps (genius_bus_result::line_steps)
+
+  void stale_low_ends() { lows.assign(lows.size(), low_stretch{}); }
+
+  // The first time >= `t` at which the line at receiver `r` is 1. Each step jumps to where the last of the
+  // sources 0 there rises, so the work is linear in the edges passed over, however many sources overlap
+  // (looking at every source's falling edge for one where all are 1 is exponential in that number).
+  std::int64_t end_of_low(std::size_t r, std::int64_t t) const {
+    const receiver& rc = receivers[r];
+    if (lows.size() != receivers.size()) lows.assign(receivers.size(), low_stretch{});
+    low_stretch& known = lows[r];
+    std::int64_t from = t;
+    std::int64_t u = t;
+    if (known.from <= t && t < known.to) {
+      from = known.from;
+      u = known.to;
+    }
+    for (;;) {
+      ++line_steps;
+      std::int64_t until = u;
+      for (const source* sp : active) {
+        const source& s = *sp;
+        const std::int64_t at = u - s.prop[r];
+        if (at < s.lo || at >= s.hi || level(s, at)) continue;
+        if (!cuts.empty() && blocked(s, rc, u)) continue;
+        std::int64_t rise = next_rise(s, at) + s.prop[r];
+        for (const cut_window& c : cuts) {  // heard here only until a cut comes between
+          if (c.from > u && c.from < rise && ((s.position_ft < c.position_ft) != (rc.position_ft < c.position_ft)))
+            rise = c.from;
+        }
+        until = std::max(until, rise);
+      }
+      if (until == u) break;
+      u = until;
+      if (known.from <= u && u < known.to) u = known.to;  // (a walk begun before what is known)
+    }
+    if (u > from) known = low_stretch{from, u};
+    return u;
+  }
+
   // The first falling edge of the line at receiver `r` at or after `t`; `who` the source that made it.
   std::int64_t line_edge(std::size_t r, std::int64_t t, std::int64_t& who) const {
     std::int64_t from = t;
     for (int guard = 0; guard < 100000; ++guard) {
+      // A falling edge at `e` needs the line 1 at e - 1: none before the line is first 1.
+      const std::int64_t high = end_of_low(r, from > 0 ? from - 1 : from);
+      from = std::max(from, high + 1);
       std::int64_t best = never;
       std::int64_t best_id = -1;
       for (const source* sp : active) {
@@ -1431,6 +1497,7 @@ struct genius_bus::state {
       if (s.open) {
         s.cut = now;
         s.hi = std::min(s.hi, now);
+        stale_low_ends();
         s.zero_end = s.hi;
         close_source(st.tx_source);
       }
@@ -1520,6 +1587,7 @@ struct genius_bus::state {
       case genius_fault_kind::cut:
         cuts.push_back(cut_window{f.position_ft, now, now + ps_of_us(f.duration_us)});
         cut_history.push_back(cuts.back());
+        stale_low_ends();  // a source behind the cut is 0 there no more
         faults_end = std::max(faults_end, now + ps_of_us(f.duration_us));
         unfollow_all();  // no one follows while a cut is open
         if (on_trace) trace("line cut at " + std::to_string(f.position_ft) + " ft for " + std::to_string(f.duration_us) + " us");
@@ -1695,6 +1763,7 @@ genius_bus_result genius_bus::run() {
   s.result.end_us = us_of_ps(s.now);
   s.result.faults_end_us = us_of_ps(s.faults_end);
   s.result.complete = s.done;
+  s.result.line_steps = s.line_steps;
   // The first scan's turns: those armed by the opener's first Stop, in SBA order after it.
   if (s.config.record_turns) {
     for (const genius_stop_record& rec : s.result.stops) {

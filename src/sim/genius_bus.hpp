@@ -162,6 +162,7 @@ struct genius_bus_result {
   std::vector<std::string> loss_details;  ///< the first few uncounted losses, described
   double end_us = 0;          ///< simulated time at the end (the time bound, if the run stopped there)
   std::uint64_t events = 0;   ///< simulation events processed
+  std::uint64_t line_steps = 0;  ///< steps taken finding where the line goes back to 1 (linear in its edges)
   bool complete = false;      ///< all `scans` scans completed (else the time bound ended the run)
 };
 

@@ -369,6 +369,8 @@ genius_plan_result plan_genius_bus(const std::vector<genius_plan_device>& device
   if (n > slowest.max_devices && options.rate != genius::rate::baud_38k4) {
     result.why_not = "no assignment keeps every margin at the rates down to 76.8, and 38.4 allows " +
                      std::to_string(slowest.max_devices) + " devices";
+  } else if (n > slowest.max_devices) {  // the margins are not why (s37 item 11): the rate cannot take them
+    result.why_not = std::to_string(n) + " devices, and 38.4 allows " + std::to_string(slowest.max_devices);
   } else {
     result.why_not = "no assignment of SBAs keeps every margin at least the detection time at any rate from " +
                      std::string(genius::properties(options.rate).name) + " down to 38.4" +

@@ -292,6 +292,9 @@ std::map<std::string, case_runner> cases() {
   all["can monitor|limit reached"] = [] { return run_cli("can monitor -", std::string(9000, '1') + "\n"); };
   all["genius decode|limit reached"] = [] { return run_cli("genius decode", std::string(100000, 'q') + "\n"); };
   all["genius learn|limit reached"] = [] { return run_cli_redirected("genius learn crc --raw </dev/zero"); };
+  all["genius simulate|limit reached"] = [] {  // nobody sends: no scan before the time bound (s37 item 4)
+    return run_cli("genius simulate --rate 153.6s --device 4@0:0 --device 5@10:0 --scans 2");
+  };
   const auto big_profile = [] {
     return temp_file("big.json", "{\"trionet_profile\": 1, \"name\": \"" + std::string(1 << 20, 'x') + "\"}");
   };
@@ -311,6 +314,9 @@ std::map<std::string, case_runner> cases() {
   // Checks that fail, learning that finds no single answer.
   all["ring learn|check failed"] = [] { return run_cli("ring learn crc", "91 48 49 90\n"); };
   all["genius learn|check failed"] = [] { return run_cli("genius learn crc", "c:01 02 11 c:5d\n"); };
+  all["genius plan|check failed"] = [] {  // SBAs given whose margins are too small (s37 item 6)
+    return run_cli("genius plan --rate 153.6s --device A@0=0 --device B@2000=1 --device C@0=2 --check");
+  };
   all["genius timing|check failed"] = [] {
     return run_cli("genius timing --rate 153.6s --after 4 --device 4@0 --device 5@2000 --device 6@0 --check");
   };

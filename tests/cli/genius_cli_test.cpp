@@ -132,12 +132,26 @@ TEST(GeniusCli, BadTokensAreErrorsWithTheTokenClippedAndEscaped) {
   EXPECT_EQ(r.err, "");
   EXPECT_EQ(r.out,
             "error at line 1, character 1 (c:4): not a character (XX, c:XX or w:XXX)\n"
-            "error at line 1, character 2 (w:800): not a character (XX, c:XX or w:XXX)\n"
+            "error at line 1, character 2 (w:800): framing_error (more than 11 bits)\n"
             "error at line 1, character 4 (zz\\x01): not a character (XX, c:XX or w:XXX)\n"
             "error at line 1, character 7 (" + std::string(40, 'q') + "...): not a character (XX, c:XX or w:XXX)\n"
             "0 transmissions, 4 errors, 3 characters skipped\n")
       << "a bad token inside a transmission loses it, as a framing error would: 5a c:75 11 are skipped up to "
          "the next Start";
+}
+
+// A word of 3 hex digits above 11 bits is the framing error the same word read with --raw is (s37 item 11);
+// 4 digits is no token.
+TEST(GeniusCli, AWordTokenAbove11BitsIsAFramingErrorAsWithRaw) {
+  EXPECT_EQ(run_cli("genius decode w:fff").out,
+            "error at line 1, character 1 (w:fff): framing_error (more than 11 bits)\n"
+            "0 transmissions, 1 error, 0 characters skipped\n");
+  EXPECT_EQ(run_cli("genius decode --raw", std::string("\x0f\xff", 2)).out,
+            "error at offset 0 (w:fff): framing_error (more than 11 bits)\n"
+            "0 transmissions, 1 error, 0 characters skipped\n");
+  EXPECT_EQ(run_cli("genius decode w:1000").out,
+            "error at line 1, character 1 (w:1000): not a character (XX, c:XX or w:XXX)\n"
+            "0 transmissions, 1 error, 0 characters skipped\n");
 }
 
 TEST(GeniusCli, RawWordsWithOffsets) {
@@ -244,6 +258,24 @@ TEST(GeniusCli, WritePcapThenReadItBack) {
   EXPECT_EQ(fields.exit_code, 0);
   EXPECT_NE(fields.out.find("\"frame.interface_name\":\"genius 76.8\""), std::string::npos) << fields.out;
   EXPECT_NE(fields.out.find("\"trionet_genius.status\":\"ok\""), std::string::npos) << fields.out;
+  std::remove(capture.c_str());
+}
+
+// A token that is not a character is a lost character: the capture holds a framing error (0xFFFF) in its
+// place, so that it never shows a transmission that passes its CRC where the decoder lost one (s37 item 2).
+TEST(GeniusCli, WritePcapKeepsABadTokenAsAFramingErrorNotAValidTransmission) {
+  const std::string capture = "/tmp/trionet-genius-bad-" + std::to_string(::getpid()) + ".pcapng";
+  for (const std::string bad : {"zz", "w:fff"}) {
+    const auto written = run_cli("genius decode --write-pcap " + capture, "c:24 11 " + bad + " c:52");
+    ASSERT_EQ(written.exit_code, 0) << written.err;
+    EXPECT_EQ(written.out.substr(written.out.find("0 transmissions")), "0 transmissions, 1 error, 1 character skipped\n")
+        << bad;
+    const auto read = run_cli("genius decode --pcap " + capture);
+    EXPECT_EQ(read.exit_code, 0) << read.err;
+    EXPECT_EQ(read.out.find("transmission from"), std::string::npos) << bad << "\n" << read.out;
+    EXPECT_NE(read.out.find("framing_error (more than 11 bits)"), std::string::npos) << bad << "\n" << read.out;
+    EXPECT_NE(read.out.find(bad == "zz" ? "(w:ffff)" : "(w:fff)"), std::string::npos) << bad << "\n" << read.out;
+  }
   std::remove(capture.c_str());
 }
 

@@ -112,3 +112,16 @@ TEST(GeniusScanTimeCli, BadArgumentsExit2WithAMessage) {
 }
 
 }  // namespace
+
+namespace {
+
+// A sum equal to the minimum is not "above" it (s37 item 11).
+TEST(GeniusScanTimeCliMessages, ASumEqualToTheMinimumIsSaidToBeEqual) {
+  const auto r = trionet::test::run_cli("genius scan-time --rate 153.6s --device 16 --minimum-ms 2.087");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("scan time 2.087 ms (equal to the minimum of 2.087 ms)\n"), std::string::npos) << r.out;
+  const auto above = trionet::test::run_cli("genius scan-time --rate 153.6s --device 16 --minimum-ms 2.086");
+  EXPECT_NE(above.out.find("(above the minimum of 2.086 ms)\n"), std::string::npos) << above.out;
+}
+
+}  // namespace

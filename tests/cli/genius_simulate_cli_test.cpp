@@ -188,6 +188,120 @@ TEST(GeniusSimulateCli, AnOutOfRangeNumberIsNamedWithItsRange) {
   expect_usage_error(run + "--fault cut:x@0+1", "must be noise:FEET@T+D");
 }
 
+// The simulated devices are built for CRC-6/G-704 and the layout of protocol.md 3.2: a profile with other
+// Genius keys is refused with the field, its value and what simulate supports, not ignored (s37 item 3).
+TEST(GeniusSimulateCli, AProfileWithAnotherGeniusCrcOrLayoutIsRefusedNotIgnored) {
+  const std::string shown = run_cli("profile show").out;
+  const std::string path = "/tmp/trionet-genius-sim-profile-" + std::to_string(::getpid()) + ".json";
+  const auto write_with = [&](const std::string& from, const std::string& to) {
+    std::string text = shown;
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
+  };
+  const std::string run = "genius simulate --rate 153.6s --device 4@0 --device 5@10 --scans 2 --profile " + path;
+  write_with("\"polynomial\": \"0x03\"", "\"polynomial\": \"0x2f\"");
+  auto r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "trionet: the profile's genius.crc6 is polynomial 0x2f, initial 0x00, reflect_in true, reflect_out "
+            "true, xor_out 0x00: `trionet genius simulate` supports only polynomial 0x03, initial 0x00, "
+            "reflect_in true, reflect_out true, xor_out 0x00 (its devices are the library's genius::device, "
+            "built for the defaults)\n");
+  write_with("\"tag_position\": \"high\"", "\"tag_position\": \"low\"");
+  r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("genius.control is start 0, stop 1, start_of_block 2, end_of_block 3, tag_position low"),
+            std::string::npos)
+      << r.err;
+  write_with("\"name\"", "\"name\"");  // the defaults: simulated as without --profile
+  r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::remove(path.c_str());
+}
+
+// A run its time bound cut short (nobody sends, so no scan completes) says so on stderr and exits 4 with
+// --fail-on-limit, 0 without, as cli.md's rules for limits say (s37 item 4).
+TEST(GeniusSimulateCli, ARunCutShortByItsTimeBoundSaysSoAndExits4WithFailOnLimit) {
+  const std::string run = "genius simulate --rate 153.6s --device 4@0:0 --device 5@10:0";
+  const std::string said =
+      "trionet: genius simulate: stopped at the run's time bound, 154.220 ms (room for 10 scans), with 0 of 10 "
+      "scans complete\n";
+  auto r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, said);
+  EXPECT_NE(r.out.find("scans: none complete in 154.220 ms\n"), std::string::npos) << r.out;
+  r = run_cli(run + " --fail-on-limit");
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_EQ(r.err, said);
+  r = run_cli(run + " --json --fail-on-limit");
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_NE(r.out.find("\"complete\":false"), std::string::npos) << r.out;
+  r = run_cli("genius simulate --rate 153.6s --device 4@0 --device 5@10 --scans 2 --fail-on-limit");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
+// The controller sends the others' OUT_BYTES and nothing of its own: bytes given to it, or a bus where no
+// other device has OUT_BYTES (the controller would never send, no scan would open), are refused, not
+// dropped (s37 item 5).
+TEST(GeniusSimulateCli, ControllerBytesThatWouldBeDroppedAreRefused) {
+  auto r = run_cli("genius simulate --rate 153.6s --device 4@0:5 --device 5@10:1/2 --controller 4 --scans 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "trionet: --device '4@0:5' is the controller: it sends the other devices' OUT_BYTES as blocks and no "
+            "bytes of its own; give it as SBA@FEET or SBA@FEET:0\n");
+  r = run_cli("genius simulate --rate 153.6s --device 4@0 --device 5@100 --device 6@200 --controller 4 --scans 10");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "trionet: --controller 4: no other device has OUT_BYTES (SBA@FEET:IN_BYTES/OUT_BYTES), so the "
+            "controller would never send and no scan would open\n");
+  for (const char* controller : {"4@0", "4@0:0", "4@0:0/0"}) {
+    r = run_cli(std::string("genius simulate --rate 153.6s --device ") + controller +
+                " --device 5@10:1/2 --controller 4 --scans 3");
+    EXPECT_EQ(r.exit_code, 0) << controller << r.err;
+    EXPECT_EQ(r.err, "") << controller;
+  }
+}
+
+// A fault the run never reaches is said on stderr, not dropped silently (s37 item 7).
+TEST(GeniusSimulateCli, AFaultAfterTheRunsEndIsSaidToHaveNeverHappened) {
+  auto r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --fault off:1@100000+1000 --scans 10");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err,
+            "trionet: genius simulate: --fault off:1@100000+1000 never happened: the run ended at 7099.505 us\n");
+  r = run_cli("genius simulate --rate 153.6s --device 0@0 --device 1@100 --fault off:1@1000+1000 --scans 10");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "");
+}
+
+// A lone device has no turns because there is no other device, not because a Stop never came (s37 item 11).
+TEST(GeniusSimulateCli, ALoneDeviceHasNoTurnsBecauseThereIsNoOtherDevice) {
+  const auto r = run_cli("genius simulate --rate 153.6s --device 0@0 --scans 3");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  no turns (no other device)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("scans: 3;"), std::string::npos) << r.out;
+}
+
+// A capture that cannot be written whole names the system's cause, as every other write error does (s37
+// item 11): a full device, for simulate --pcap and decode --write-pcap.
+TEST(GeniusSimulateCli, ACaptureOnAFullDeviceNamesTheCause) {
+  if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no /dev/full";
+  for (const char* command : {"genius simulate --rate 153.6s --device 0@0 --device 1@100 --pcap /dev/full",
+                              "genius simulate --rate 153.6s --device 0@0 --device 1@100 --scans 3000 --pcap /dev/full",
+                              "genius decode --write-pcap /dev/full c:24 11 c:52"}) {
+    const auto r = run_cli(command);
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_EQ(r.err, "trionet: cannot write the capture /dev/full: No space left on device\n") << command;
+  }
+}
+
 TEST(GeniusPlanCli, SeedLayoutGetsAPlanWithoutCollisionRiskAt153k6s) {
   const auto r = run_cli("genius plan --rate 153.6s --device A@0 --device B@2000 --device C@0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -265,6 +379,16 @@ TEST(GeniusPlanCli, ABusTooLongForTheRateMovesTo153k6Extended) {
                        "allows 2000 ft"),
             std::string::npos)
       << r.out;
+}
+
+// More devices than 38.4 allows: the reason is the count, not the margins (s37 item 11).
+TEST(GeniusPlanCli, TooManyDevicesAt38k4IsTheReasonGiven) {
+  std::string devices;
+  for (int i = 0; i <= 16; ++i) devices += " --device D" + std::to_string(i) + "@" + std::to_string(i * 10);
+  const auto r = run_cli("genius plan --rate 38.4" + devices);
+  EXPECT_NE(r.out.find("no plan: 17 devices, and 38.4 allows 16\n"), std::string::npos) << r.out;
+  const auto json = run_cli("genius plan --rate 38.4 --json" + devices);
+  EXPECT_NE(json.out.find("17 devices, and 38.4 allows 16"), std::string::npos) << json.out;
 }
 
 TEST(GeniusPlanCli, BadArgumentsExit2WithAMessage) {

@@ -395,6 +395,30 @@ TEST(GeniusBus, ADevicePoweredOnInsideBackToBackCharactersMissesStartsUntilASile
   EXPECT_LE(in_step.recovery_us, in_step.one_scan_idle_and_under_way_us);
 }
 
+// Overlapping noise bursts (report s37 item 1): the line is 0 while any burst is, so finding where it goes
+// back to 1 took a look at every burst's every edge for one where all were 1 at once, about 2^N of them for
+// N bursts (20 bursts ran for minutes). The work is now linear in the edges: the same count of steps for 64
+// bursts as the span of the noise in bits allows, and the run ends with every scan.
+TEST(GeniusBus, OverlappingNoiseBurstsCostStepsLinearInTheNoiseNotExponentialInTheirCount) {
+  const std::vector<genius_station> layout = {{0, 0, 1, 0}, {1, 100, 1, 0}};
+  const auto with_bursts = [&](int n) {
+    genius_bus_config config;
+    config.scans = 10;
+    for (int i = 1; i <= n; ++i) config.faults.push_back({genius_fault_kind::noise, 10.0 * i, 100000, 0, 50});
+    return run(layout, config);
+  };
+  const double bit_us = genius::bit_time_us(genius::rate::standard_153k6);
+  const double noise_bits = (100000 + 10.0 * 64) / bit_us;  // from the first burst's start to the last's end
+  for (const int n : {1, 20, 64}) {
+    const genius_bus_result r = with_bursts(n);
+    EXPECT_TRUE(r.complete) << n;
+    EXPECT_GT(r.line_steps, 0u) << n;
+    // Two receivers, each walking the stretch about once (a step per rise of the last burst still 0).
+    EXPECT_LT(static_cast<double>(r.line_steps), 4 * noise_bits) << n;
+    EXPECT_LT(r.events, 200000u) << n;
+  }
+}
+
 TEST(GeniusBus, BadLayoutsAreRefusedWithTheReason) {
   genius_bus_config config;
   EXPECT_EQ(check_genius_bus({}, config), "no devices");
