@@ -81,7 +81,7 @@ void bind_profile(py::module_& m) {
       .def("header",
            [](const learn::profile& p, const std::string& name) {
              const learn::header_result r = learn::profile_header(p, name);
-             if (!r) throw py::value_error(std::string("not a C++ namespace name: ") + name);
+             if (!r) throw py::value_error("namespace '" + name + "' cannot be used: " + r.reason);
              return r.text;
            })
       .def_readwrite("name", &learn::profile::name)

@@ -72,6 +72,9 @@ def test_a_profile_reads_writes_and_says_what_is_wrong(run_cli, tmp_path):
     assert "namespace plant" in p.header("plant")
     with pytest.raises(ValueError):
         p.header("not a name")
+    for name, why in (("int", "keyword"), ("trionet", "trionet")):  # headers that would not compile
+        with pytest.raises(ValueError, match=f"namespace '{name}' cannot be used: .*{why}"):
+            p.header(name)
     with pytest.raises(trionet.ProfileError) as raised:
         trionet.Profile.from_json('{"trionet_profile": 1, "ring": {"crc": {"polynomial": "0x10000"}}}')
     assert raised.value.key == "ring.crc.polynomial" and raised.value.status.name == "out_of_range"

@@ -80,15 +80,15 @@ def test_q32_conversions_round_as_send_does():
 
 
 def cli_events(run_cli, data, profile=None):
-    """The tool's events for raw bytes, with its "offset" of the event named "position" as the package
-    names it (the tool prints two "offset" keys for a keypad offset message: the event's, then the
-    message's)."""
+    """The tool's events for raw bytes: its "position" is the package's Event.position."""
     args = ["ring", "decode", "--raw"] + (["--profile", profile] if profile else [])
     events = []
     for line in run_cli(args, stdin=data).splitlines():
         pairs = json.loads(line, object_pairs_hook=list)
-        assert pairs[1][0] == "offset"
-        events.append({"position" if i == 1 else k: v for i, (k, v) in enumerate(pairs)})
+        assert pairs[1][0] == "position"
+        keys = [k for k, _ in pairs]
+        assert len(keys) == len(set(keys)), line  # one key once (a keypad offset message has its own "offset")
+        events.append(dict(pairs))
     return events
 
 
