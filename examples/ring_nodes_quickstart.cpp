@@ -5,7 +5,7 @@
 
 int main() {
   trionet::vr_table<256> vr;                   // VR(), written by the network through its write policy
-  trionet::ring::motion_coordinator<> mc(vr);  // receive buffer 256, forward buffer 32, transmit queue 32
+  trionet::ring::motion_coordinator<> mc(vr);  // receive buffer 256, forward buffer 16, transmit queue 32
   trionet::ring::keypad<> keypad;              // local mode until its keypad offset arrives
 
   trionet::ring::simulator<> ring;  // deterministic: one byte per link per byte-time

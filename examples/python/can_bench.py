@@ -17,11 +17,12 @@ import time
 
 import can
 
+from trionet import TrionetError
 from trionet import can as tcan
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].replace("\n", " "))
     parser.add_argument("--interface", default="virtual", help="python-can interface (default: virtual)")
     parser.add_argument("--channel", default=None, help="channel (default: a fresh virtual channel)")
     parser.add_argument("--count", type=int, default=10000, help="VRs to send (default 10000)")
@@ -30,12 +31,19 @@ def main() -> int:
     parser.add_argument("--receiver", type=int, default=4, help="the receiving node (default 4)")
     parser.add_argument("--timing", action="store_true", help="also print how long it took")
     args = parser.parse_args()
+    if args.count < 1:
+        parser.error(f"--count is the number of VRs to send, at least 1, not {args.count}")
+    if args.sender == args.receiver:
+        parser.error(f"--sender and --receiver are both node {args.sender}: a node does not send to itself")
 
     channel = args.channel or "bench"  # a virtual channel is private to this process
     with can.Bus(interface=args.interface, channel=channel) as bus_a, \
             can.Bus(interface=args.interface, channel=channel) as bus_b:
-        sender = tcan.VrExchangeNode(bus_a, args.sender, args.nodes)
-        receiver = tcan.VrExchangeNode(bus_b, args.receiver, args.nodes)
+        try:
+            sender = tcan.VrExchangeNode(bus_a, args.sender, args.nodes)
+            receiver = tcan.VrExchangeNode(bus_b, args.receiver, args.nodes)
+        except (ValueError, TrionetError) as e:  # a node number or count the exchange does not have
+            parser.error(str(e))
         receiver.start()  # its own thread reads the bus
 
         expected = [(i % 256, (i * 37 % 2000003) / 1000.0 - 1000.0) for i in range(args.count)]

@@ -18,7 +18,7 @@ import json
 import sys
 from typing import Counter, Dict, Optional, Tuple
 
-from trionet import Profile, ring
+from trionet import Profile, ProfileError, ring
 
 CHUNK = 1 << 16
 
@@ -87,17 +87,26 @@ def analyse(stream, profile: Optional[Profile], as_json: bool) -> int:
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].replace("\n", " "))
     parser.add_argument("capture", nargs="?", help="a file of raw ring bytes (default: a simulated capture)")
     parser.add_argument("--profile", help="a profile (docs/profile.md) with the network's CRC and layout")
     parser.add_argument("--json", action="store_true", help="print every event as a JSON line instead")
     args = parser.parse_args()
-    profile = Profile.from_file(args.profile) if args.profile else None
+    try:
+        profile = Profile.from_file(args.profile) if args.profile else None
+    except (OSError, ProfileError) as e:
+        print(f"{parser.prog}: profile {args.profile}: {e.strerror if isinstance(e, OSError) else e}", file=sys.stderr)
+        return 1
     if args.capture is None:
         import io
 
         return analyse(io.BytesIO(simulated_capture()), profile, args.json)
-    with open(args.capture, "rb") as f:
+    try:
+        f = open(args.capture, "rb")
+    except OSError as e:
+        print(f"{parser.prog}: cannot open {args.capture}: {e.strerror}", file=sys.stderr)
+        return 1
+    with f:
         return analyse(f, profile, args.json)
 
 

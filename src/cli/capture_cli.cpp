@@ -15,7 +15,8 @@ void add_position(event& e, const capture_position& where) {
 }
 
 int read_capture(const std::string& path, host::capture_network network, bool fields, std::uint8_t can_node_count,
-                 const std::function<void(const host::pcapng_record&, const capture_position&, std::string&)>& decode) {
+                 const std::function<void(const host::pcapng_record&, const capture_position&, std::string&)>& decode,
+                 const capture_note& note) {
   std::ifstream file;
   const host::file_result usable = host::open_input_stream(path, file);
   if (!usable) return fail_io(usable.message(path, "capture"));
@@ -33,7 +34,11 @@ int read_capture(const std::string& path, host::capture_network network, bool fi
       return fail_io(host::printable(path) + ": " + host::to_string(r.status));
     }
     if (!r) {
-      event(out.text(), "capture_error").number("record", number).text("reason", host::to_string(r.status));
+      if (note) {
+        note(number, host::to_string(r.status), true, out.text());
+      } else {
+        event(out.text(), "capture_error").number("record", number).text("reason", host::to_string(r.status));
+      }
       if (host::ends_reading(r.status)) break;
       continue;
     }
@@ -47,6 +52,8 @@ int read_capture(const std::string& path, host::capture_network network, bool fi
       out.text() += '\n';
     } else if (r.record.network == network) {
       decode(r.record, where, out.text());
+    } else if (note) {
+      note(number, host::to_string(r.record.network), false, out.text());
     } else {
       event e(out.text(), "other_network");
       add_position(e, where);

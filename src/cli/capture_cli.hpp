@@ -29,7 +29,12 @@ void add_position(event& e, const capture_position& where);
 /// event. A record the reader rejects is a `capture_error` event and reading goes on; a file that cannot be
 /// read on ends with a `capture_error` event. Returns the exit status: 1 if the file cannot be opened, is not
 /// pcapng or cannot be read, or standard output fails; else 0.
+/// A decoder that prints text instead of JSON events passes `note`: it is called, in place of the
+/// `capture_error` and `other_network` events, with the record's number, the reader's reason (`error` true) or
+/// the other network's name (`error` false), and the output to append to.
+using capture_note = std::function<void(std::uint64_t record, std::string_view what, bool error, std::string& out)>;
 int read_capture(const std::string& path, host::capture_network network, bool fields, std::uint8_t can_node_count,
-                 const std::function<void(const host::pcapng_record&, const capture_position&, std::string&)>& decode);
+                 const std::function<void(const host::pcapng_record&, const capture_position&, std::string&)>& decode,
+                 const capture_note& note = nullptr);
 
 }  // namespace trionet::cli

@@ -520,8 +520,9 @@ int plan_main(const words& all) {
     }
     d.name = text.substr(0, at);
     for (const char c : d.name) {
-      if (static_cast<unsigned char>(c) < 0x21 || static_cast<unsigned char>(c) > 0x7e)
-        return fail("--device '" + host::printable(text) + "': a NAME is printable characters without blanks");
+      if (static_cast<unsigned char>(c) < 0x21 || static_cast<unsigned char>(c) > 0x7e || c == '@' || c == '=')
+        return fail("--device '" + host::printable(text) +
+                    "': a NAME is printable characters without blanks, '@' or '=' (they mark FEET and SBA)");
     }
     d.sba = static_cast<int>(sba);
     devices.push_back(d);

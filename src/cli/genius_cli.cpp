@@ -424,6 +424,18 @@ int decode_capture(const arguments& args) {
         stream.end("record " + std::to_string(where.record));
         out += pending;
         pending.clear();
+      },
+      args.flag("--json") ? capture_note{} : [&](std::uint64_t record, std::string_view what, bool error, std::string& out) {
+        // In text, as the other errors are, and counted in the summary; a record of another network is
+        // not an error of this one.
+        const std::string place = "record " + std::to_string(record);
+        if (error) {
+          stream.input_error(place + ": the capture cannot be read there (" + std::string(what) + ")");
+        } else {
+          pending += place + ": not a Genius record (" + std::string(what) + "), not decoded\n";
+        }
+        out += pending;
+        pending.clear();
       });
   if (status != exit_ok || args.flag("--json")) return status;
   stream.summary();

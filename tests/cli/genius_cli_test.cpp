@@ -1,7 +1,10 @@
 // `trionet genius encode | decode | timing`: exact output, and exit 2 with a message on bad arguments.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
+
+#include <unistd.h>
 
 #include "support/run_cli.hpp"
 
@@ -276,6 +279,44 @@ TEST(GeniusCli, WritePcapKeepsABadTokenAsAFramingErrorNotAValidTransmission) {
     EXPECT_NE(read.out.find("framing_error (more than 11 bits)"), std::string::npos) << bad << "\n" << read.out;
     EXPECT_NE(read.out.find(bad == "zz" ? "(w:ffff)" : "(w:fff)"), std::string::npos) << bad << "\n" << read.out;
   }
+  std::remove(capture.c_str());
+}
+
+// In text, a record the capture reader rejects is an error like the others, counted in the summary, and a
+// record of another network is named, not printed as a JSON event among text lines (s37 item 11).
+TEST(GeniusCli, CaptureProblemsAreTextErrorsCountedInTheSummary) {
+  const std::string capture = "/tmp/trionet-genius-cut-" + std::to_string(::getpid()) + ".pcapng";
+  const auto written = run_cli("genius decode --write-pcap " + capture, "c:24 11 c:52 c:24 22 c:52");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const auto whole = run_cli("genius decode --pcap " + capture);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  ASSERT_NE(whole.out.find("\n2 transmissions, 0 errors, 0 characters skipped\n"), std::string::npos) << whole.out;
+  {
+    std::FILE* f = std::fopen(capture.c_str(), "r+b");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(std::fseek(f, 0, SEEK_END), 0);
+    const long size = std::ftell(f);
+    std::fclose(f);
+    ASSERT_EQ(::truncate(capture.c_str(), size - 6), 0);  // the last record cut short
+  }
+  const auto cut = run_cli("genius decode --pcap " + capture);
+  EXPECT_EQ(cut.exit_code, 0) << cut.err;
+  EXPECT_EQ(cut.out.find('{'), std::string::npos) << cut.out;
+  EXPECT_NE(cut.out.find("error at record 3: the capture cannot be read there (truncated)\n"), std::string::npos)
+      << cut.out;
+  EXPECT_NE(cut.out.find("\n1 transmission, 1 error, 0 characters skipped\n"), std::string::npos) << cut.out;
+  const auto fields = run_cli("genius decode --pcap " + capture + " --json");
+  EXPECT_NE(fields.out.find("{\"event\":\"capture_error\",\"record\":3,\"reason\":\"truncated\"}"),
+            std::string::npos)
+      << "--json keeps the event: " << fields.out;
+
+  const auto ring = run_cli("ring simulate example2 --byte-times 20000 --pcap " + capture);
+  ASSERT_EQ(ring.exit_code, 0) << ring.err;
+  const auto other = run_cli("genius decode --pcap " + capture);
+  EXPECT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_EQ(other.out.find('{'), std::string::npos) << other.out;
+  EXPECT_NE(other.out.find("record 1: not a Genius record (ring), not decoded\n"), std::string::npos) << other.out;
+  EXPECT_NE(other.out.find("\n0 transmissions, 0 errors, 0 characters skipped\n"), std::string::npos) << other.out;
   std::remove(capture.c_str());
 }
 

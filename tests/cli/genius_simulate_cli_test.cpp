@@ -398,6 +398,9 @@ TEST(GeniusPlanCli, BadArgumentsExit2WithAMessage) {
   expect_usage_error("genius plan --rate 153.6s --device A@0=1 --device B@0", "every device");
   expect_usage_error("genius plan --rate 153.6s --device A@0 --device A@10", "given twice");
   expect_usage_error("genius plan --rate 153.6s --device A@0=3 --device B@10=3", "SBA 3 is given twice");
+  // A name holding '@' or '=' would be read as another device (A@0@1 was the name A@0 at 1 ft).
+  expect_usage_error("genius plan --rate 153.6s --device A@0@1", "without blanks, '@' or '='");
+  expect_usage_error("genius plan --rate 153.6s --device A=1@0", "without blanks, '@' or '='");
 }
 
 }  // namespace
