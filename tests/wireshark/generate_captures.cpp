@@ -4,7 +4,8 @@
 //   example2.pcapng  the manual's example 2 on the simulated ring, one interface per link (125 kbit/s)
 //   can.pcapng       two CAN buses: VR frames of a 5-node exchange between several pairs, and non-VR frames
 //   genius.pcapng    a Genius line: broadcast, directed, blocks, CRC errors, framing errors, stray characters
-//   random.pcapng    a ring link, a Genius line and a CAN bus carrying random messages with random faults
+//   random.pcapng    a ring link, a Genius line (its name not UTF-8) and a CAN bus carrying random messages with
+//                    random faults
 //
 // and NAME.jsonl beside each: one JSON object per record, in file order, read back from the capture with
 // pcapng_reader and printed by the record view (trionet/host/capture_view.hpp); can_3_nodes.jsonl is the view
@@ -454,7 +455,9 @@ void write_random(const std::string& dir) {
   pcapng_writer writer(file);
   random_source r(0x7452494F4E4554ull);
   ring_link link(writer, "link 0: random");
-  const std::uint32_t line = writer.add_interface("genius random", capture_network::genius).id;
+  // A name in Latin-1, not UTF-8 (a capture written elsewhere): tshark prints its bytes, the view escapes the
+  // byte that is not UTF-8, and scripts/wireshark-compare reads both as the same name.
+  const std::uint32_t line = writer.add_interface("genius random, Stra\xdf" "e 3", capture_network::genius).id;
   const std::uint32_t bus = writer.add_interface("can random", capture_network::can).id;
   genius_record_splitter splitter;
   std::uint64_t now = 0;
