@@ -242,8 +242,8 @@ int simulate_main(const words& all) {
     config.controller = static_cast<int>(sba);
   }
   if (args.has("--skip-us") &&
-      (!host::parse_real(args.options["--skip-us"], 0, 1000, config.skip_us) || !(config.skip_us > 0))) {
-    return fail("--skip-us must be a number of microseconds > 0 and <= 1000");
+      !host::parse_real(args.options["--skip-us"], 0.01, 1000, config.skip_us)) {
+    return fail("--skip-us must be a number of microseconds from 0.01 (the resolution of the results) to 1000");
   }
   if (args.has("--prop-us-per-2000ft") &&
       !host::parse_real(args.options["--prop-us-per-2000ft"], 0, 1000, config.propagation_us_per_2000ft)) {

@@ -607,8 +607,9 @@ int timing_main(const std::vector<std::string>& words) {
     devices.push_back(d);
   }
   const bool explicit_skip = args.has("--skip-us");
-  if (explicit_skip && (!parse_bounded(args.options["--skip-us"], 0, max_us, timing.skip_us) || !(timing.skip_us > 0))) {
-    return fail("--skip-us must be a number of microseconds > 0 and <= 1000000");
+  // Below 0.01 us a skip time would print as 0.00: the figures are given to the hundredth of a microsecond.
+  if (explicit_skip && !parse_bounded(args.options["--skip-us"], 0.01, max_us, timing.skip_us)) {
+    return fail("--skip-us must be a number of microseconds from 0.01 (the resolution of the results) to 1000000");
   }
   if (args.has("--prop-us-per-2000ft") &&
       !parse_bounded(args.options["--prop-us-per-2000ft"], 0, max_us, timing.propagation_us_per_2000ft)) {

@@ -216,6 +216,11 @@ TEST(GeniusCli, BadArgumentsExit2WithAMessage) {
   expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --device 4@1", "SBA 4");
   expect_usage_error("genius timing --rate 76.8 --after 5 --device 4@0", "--after 5");
   expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --skip-us 0", "--skip-us");
+  // A skip time that would print as 0.00 us (s37 item 11: 1e-300 was taken and printed as 0).
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --skip-us 1e-300", "from 0.01");
+  expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --skip-us 0.009", "from 0.01");
+  EXPECT_EQ(run_cli("genius timing --rate 76.8 --after 4 --device 4@0 --device 5@0 --skip-us 0.01").exit_code, 0);
+  expect_usage_error("genius simulate --rate 76.8 --device 4@0 --device 5@0 --skip-us 1e-300", "from 0.01");
   expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --prop-us-per-2000ft -1", "--prop");
   expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --detect-us x", "--detect-us");
   expect_usage_error("genius timing --rate 76.8 --after 4 --device 4@0 --bogus 1", "--bogus");
