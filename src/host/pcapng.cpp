@@ -76,11 +76,8 @@ std::uint16_t link_type_of(capture_network network) {
 
 // if_tsresol: bit 7 clear = 10^-n s per tick, set = 2^-n s. Finer than 10^-19 s or 2^-63 s a 64-bit tick
 // count does not even span a second: no capture uses that.
-bool resolution_supported(std::uint8_t tsresol) {
-  return (tsresol & 0x7Fu) <= ((tsresol & 0x80u) != 0 ? 63u : 19u);
-}
-
-// Ticks at a supported resolution to whole nanoseconds; false if that does not fit 64 bits.
+// Ticks at any if_tsresol to whole nanoseconds (a time finer than 1 ns rounds down, as far as 0); false if that
+// does not fit 64 bits.
 bool ticks_to_nanoseconds(std::uint64_t ticks, std::uint8_t tsresol, std::uint64_t& out) {
   const unsigned exponent = tsresol & 0x7Fu;
   if ((tsresol & 0x80u) == 0) {
@@ -89,24 +86,19 @@ bool ticks_to_nanoseconds(std::uint64_t ticks, std::uint8_t tsresol, std::uint64
       for (unsigned i = exponent; i < 9; ++i) scale *= 10;
       if (ticks > UINT64_MAX / scale) return false;
       out = ticks * scale;
-    } else {
-      for (unsigned i = 9; i < exponent; ++i) scale *= 10;
+    } else if (exponent <= 28) {
+      for (unsigned i = 9; i < exponent; ++i) scale *= 10;  // at most 10^19, within 64 bits
       out = ticks / scale;
+    } else {
+      out = 0;  // 10^20 and more ticks to a nanosecond: no 64-bit count reaches one
     }
     return true;
   }
-  // Keep at most 30 fraction bits so that fraction * 10^9 fits 64 bits; the bits dropped are worth less than
-  // one nanosecond together, so the result is off by at most 1 ns.
-  const unsigned dropped = exponent > 30 ? exponent - 30 : 0;
-  const unsigned bits = exponent - dropped;
-  const std::uint64_t kept = ticks >> dropped;
-  const std::uint64_t seconds = kept >> bits;
-  const std::uint64_t fraction = kept & ((std::uint64_t{1} << bits) - 1u);
-  if (seconds > UINT64_MAX / nanoseconds_per_second) return false;
-  const std::uint64_t whole = seconds * nanoseconds_per_second;
-  const std::uint64_t part = (fraction * nanoseconds_per_second) >> bits;
-  if (whole > UINT64_MAX - part) return false;
-  out = whole + part;
+  // ticks x 10^9 < 2^94: exact in 128 bits, then shifted down by the exponent (0..127), rounding down.
+  __extension__ typedef unsigned __int128 wide;  // GCC's and Clang's 128-bit integer (host code only)
+  const wide nanoseconds = (static_cast<wide>(ticks) * nanoseconds_per_second) >> exponent;
+  if (nanoseconds > UINT64_MAX) return false;
+  out = static_cast<std::uint64_t>(nanoseconds);
   return true;
 }
 
@@ -403,7 +395,6 @@ pcapng_read_status pcapng_reader::read_packet(pcapng_record& out) {
   const pcapng_interface& description = interfaces_[interface];
   out.interface = interface;
   out.original_length = u32(block_.data() + 16);
-  if (!resolution_supported(description.tsresol)) return pcapng_read_status::unsupported_resolution;
   if (!ticks_to_nanoseconds(ticks, description.tsresol, out.time_ns) || !add_offset(out.time_ns, description.tsoffset)) return pcapng_read_status::timestamp_out_of_range;
   byte_view bytes(block_.data() + 20, captured);
   out.dissector = {};
@@ -422,8 +413,9 @@ pcapng_read_status pcapng_reader::read_packet(pcapng_record& out) {
       tag_at += 4;
       if (size > bytes.size() - tag_at) return pcapng_read_status::bad_exported_pdu;
       if (type == exp_pdu_tag_dissector_name && out.dissector.empty()) {
-        std::size_t used = size;
-        while (used > 0 && tag[4 + used - 1] == 0) --used;
+        // The name ends at its first NUL, as Wireshark reads it: what follows is padding, whatever it holds.
+        std::size_t used = 0;
+        while (used < size && tag[4 + used] != 0) ++used;
         out.dissector = std::string_view(reinterpret_cast<const char*>(tag + 4), used);
       }
       ended = type == exp_pdu_tag_end_of_opt;

@@ -315,6 +315,33 @@ TEST(PcapngReader, ConvertsDecimalAndBinaryResolutions) {
   EXPECT_EQ(got.records[3].time_ns, 1000000000u);
 }
 
+// Every if_tsresol is read, as Wireshark reads it (s37 item 10: 10^-127 s and 2^-127 s were refused as an
+// unsupported resolution and the records lost): a time finer than a nanosecond rounds down.
+TEST(PcapngReader, ReadsTheFinestResolutions) {
+  block_builder le;
+  const std::string file = as_string(join({
+      le.section(),
+      le.interface(1, "10^-127", 0x7F),
+      le.interface(1, "2^-127", 0xFF),
+      le.interface(1, "10^-28", 28),
+      le.interface(1, "10^-29", 29),
+      le.interface(1, "2^-64", 0x80 | 64),
+      le.interface(1, "2^-93", 0x80 | 93),
+      le.interface(1, "2^-94", 0x80 | 94),
+      le.packet(0, UINT64_MAX, {}),
+      le.packet(1, UINT64_MAX, {}),
+      le.packet(2, 10000000000000000000ull, {}),  // 10^19 ticks of 10^-28 s: 10^-9 s
+      le.packet(3, UINT64_MAX, {}),
+      le.packet(4, UINT64_MAX, {}),               // just under 1 s
+      le.packet(5, UINT64_MAX, {}),               // 2^64 / 2^93 s: under 2 ns
+      le.packet(6, UINT64_MAX, {}),
+  }));
+  const read_back got = read_all(file);
+  ASSERT_EQ(got.records.size(), 7u) << to_string(got.statuses.back());
+  const std::uint64_t expected[] = {0, 0, 1, 0, 999999999, 1, 0};
+  for (std::size_t i = 0; i < 7; ++i) EXPECT_EQ(got.records[i].time_ns, expected[i]) << i;
+}
+
 TEST(PcapngReader, AppliesTheTimestampOffset) {
   block_builder le;
   bytes offset;
@@ -363,6 +390,19 @@ TEST(PcapngReader, ForeignExportedPduIsOther) {
   EXPECT_EQ(got.records[0].network, capture_network::other);
   EXPECT_EQ(got.dissectors[0], "sip");
   EXPECT_EQ(got.payloads[0], (bytes{'I', 'N', 'V'}));
+}
+
+// Wireshark reads the dissector name up to its first NUL: bytes after it (a damaged padding) do not make a
+// Genius record another network's (s37 item 10: the tool lost the record that tshark decoded).
+TEST(PcapngReader, TheDissectorNameEndsAtItsFirstNul) {
+  block_builder le;
+  const bytes tags = {0, 12, 0, 16, 't', 'r', 'i', 'o', 'n', 'e', 't', '_', 'g', 'e', 'n', 'i', 'u', 's', 0, '`',
+                      0, 0,  0, 0,  0x04, 0x92};
+  const read_back got = read_all(as_string(join({le.section(), le.interface(252, ""), le.packet(0, 0, tags)})));
+  ASSERT_EQ(got.records.size(), 1u);
+  EXPECT_EQ(got.dissectors[0], "trionet_genius");
+  EXPECT_EQ(got.records[0].network, capture_network::genius);
+  EXPECT_EQ(got.payloads[0], (bytes{0x04, 0x92}));
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -460,19 +500,17 @@ TEST(PcapngReader, ABadRecordIsReportedAndReadingGoesOn) {
   const std::string file = as_string(join({
       le.section(),
       le.interface(252, "ring", 9),
-      le.interface(1, "odd", 0x7F),        // 10^-127 s
-      le.interface(1, "seconds", 0),  
+      le.interface(1, "seconds", 0),
       le.packet(5, 0, {}),                 // no interface 5
-      le.packet(1, 0, {}),                 // unsupported resolution
-      le.packet(2, UINT64_MAX, {}),        // seconds that do not fit nanoseconds
+      le.packet(1, UINT64_MAX, {}),        // seconds that do not fit nanoseconds
       le.packet(0, 0, bytes{0, 12, 0, 40, 'x'}),  // tag runs past the record
       le.packet(0, 0, bytes{0, 12, 0, 1, 'x'}),   // no end tag
       le.packet(0, 7, bytes{0, 0, 0, 0, 0x8a}),
   }));
   const read_back got = read_all(file);
   const std::vector<pcapng_read_status> expected = {
-      pcapng_read_status::unknown_interface,      pcapng_read_status::unsupported_resolution,
-      pcapng_read_status::timestamp_out_of_range, pcapng_read_status::bad_exported_pdu,
+      pcapng_read_status::unknown_interface,      pcapng_read_status::timestamp_out_of_range,
+      pcapng_read_status::bad_exported_pdu,
       pcapng_read_status::bad_exported_pdu,       pcapng_read_status::ok,
       pcapng_read_status::end_of_file};
   EXPECT_EQ(got.statuses, expected);

@@ -154,7 +154,6 @@ enum class pcapng_read_status : std::uint8_t {
   too_many_interfaces,  ///< more interfaces in a section than the reader's `max_interfaces`
   read_failed,          ///< the stream reported an error
   unknown_interface,       ///< a packet names an interface that its section does not describe
-  unsupported_resolution,  ///< the packet's interface has an if_tsresol finer than 10^-19 s (or 2^-63 s)
   timestamp_out_of_range,  ///< the packet's time is before 1970 or does not fit 64-bit nanoseconds
   bad_exported_pdu,        ///< a link type 252 packet whose tags run past it or do not end
 };
@@ -187,8 +186,6 @@ constexpr const char* to_string(pcapng_read_status status) noexcept {
       return "read_failed";
     case pcapng_read_status::unknown_interface:
       return "unknown_interface";
-    case pcapng_read_status::unsupported_resolution:
-      return "unsupported_resolution";
     case pcapng_read_status::timestamp_out_of_range:
       return "timestamp_out_of_range";
     case pcapng_read_status::bad_exported_pdu:
