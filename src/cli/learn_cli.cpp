@@ -5,9 +5,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "capture_cli.hpp"
@@ -316,6 +319,7 @@ int genius_input(const arguments& args, std::vector<genius::character>& characte
       if (parsed != exit_ok) return parsed;
     }
   }
+  characters.reserve(words.size());
   for (std::uint16_t w : words) {
     const genius::character_result c = genius::decode_character(w);
     // A damaged character ends the sample it is in: it stands in as a control character the profile's
@@ -330,11 +334,14 @@ int genius_learn_crc(const arguments& args) {
   std::vector<genius::character> characters;
   const int status = genius_input(args, characters);
   if (status != exit_ok) return status;
-  const learn::sample_extraction found =
+  learn::sample_extraction found =
       learn::genius_crc_samples(span<const genius::character>(characters.data(), characters.size()),
                                 active_profile().genius.control);
-  std::vector<learn::crc6_sample> samples = found.blocks;
-  samples.insert(samples.end(), found.stops.begin(), found.stops.end());
+  std::vector<genius::character>().swap(characters);  // the samples hold what is needed from here on
+  std::vector<learn::crc6_sample> samples = std::move(found.blocks);
+  samples.reserve(samples.size() + found.stops.size());
+  std::move(found.stops.begin(), found.stops.end(), std::back_inserter(samples));
+  std::vector<learn::crc6_sample>().swap(found.stops);
   learn::crc6_learn_options options;
   options.even_polynomials = args.flag("--even");
   host::progress shown("genius learn crc", "polynomials tried", 64);
