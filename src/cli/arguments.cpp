@@ -33,7 +33,10 @@ bool parse_arguments(const words& args, const std::set<std::string>& value_optio
         error = "option " + host::printable(name) + " takes no value";
         return false;
       }
-      out.flags.insert(name);
+      if (!out.flags.insert(name).second) {
+        error = "option " + name + " given twice";  // as for an option with a value
+        return false;
+      }
       continue;
     }
     if (value_options.count(name) == 0) {

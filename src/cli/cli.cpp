@@ -207,6 +207,7 @@ int dispatch(const part& p, const words& args) {
     // effect (every command encodes and decodes with it).
     for (std::size_t at = 0; at < rest.size() && rest[at] != "--"; ++at) {
       if (rest[at] != "--fail-on-limit") continue;
+      if (fail_on_limit()) return fail("option --fail-on-limit given twice");
       fail_on_limit() = true;
       rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(at--));
     }

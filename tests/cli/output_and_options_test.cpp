@@ -147,6 +147,12 @@ TEST(Options, EveryOptionTakesTheEqualsForm) {
   EXPECT_EQ(run_cli("can table --fail-on-limit").exit_code, 0);
   // A flag takes no value; an empty value is a value.
   trionet::test::expect_usage_error("ring decode --raw=yes", "option --raw takes no value");
+  // A flag given twice is a usage error, as an option with a value is (s37 item 11: --json --json was taken).
+  trionet::test::expect_usage_error("genius timing --rate 153.6s --after 4 --device 4@0 --json --json",
+                                    "option --json given twice");
+  trionet::test::expect_usage_error("ring decode --raw --raw", "option --raw given twice");
+  trionet::test::expect_usage_error("can table --fail-on-limit --fail-on-limit", "option --fail-on-limit given twice");
+  trionet::test::expect_usage_error("genius encode --from 3 --words --words 1122", "option --words given twice");
   trionet::test::expect_usage_error("can encode --from= --to 4 --vr 1 --value 2", "--from must be");
 }
 
