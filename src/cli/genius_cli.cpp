@@ -627,7 +627,10 @@ int timing_main(const std::vector<std::string>& words) {
   if (analysis.status != genius::layout_status::ok) return fail(layout_problem(analysis.status));
   const genius::rate_properties props = genius::properties(rate);
   // --check: a margin below the detection time (a negative one included) is a collision risk.
-  const int verdict = args.flag("--check") && analysis.too_small_count != 0 ? exit_check : exit_ok;
+  // A layout the rate does not allow (longer, or more devices) fails the check too: its margins are a model's.
+  const bool problem = analysis.too_small_count != 0 || analysis.longer_than_rate_allows ||
+                       analysis.more_devices_than_rate_allows;
+  const int verdict = args.flag("--check") && problem ? exit_check : exit_ok;
 
   if (args.flags.count("--json") != 0) {
     std::string out =

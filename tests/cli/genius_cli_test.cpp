@@ -186,6 +186,16 @@ TEST(GeniusCli, TimingCheckFailsOnACollisionRisk) {
   EXPECT_EQ(run_cli("genius timing --rate 153.6s " + seed_devices + " --check --json").exit_code, 3);
   EXPECT_EQ(run_cli("genius timing --rate 153.6s " + seed_devices + " --skip-us 26 --check").exit_code, 0);
   EXPECT_EQ(run_cli("genius timing --rate 153.6s " + seed_devices).exit_code, 0) << "without --check: a report";
+  // A layout the rate does not allow fails the check as well (s37 item 11: 21 devices at 38.4 passed it).
+  std::string many;
+  for (int i = 0; i < 21; ++i) many += " --device " + std::to_string(i) + "@" + std::to_string(i * 10);
+  const auto crowded = run_cli("genius timing --rate 38.4 --after 0" + many + " --check");
+  EXPECT_EQ(crowded.exit_code, 3) << crowded.out;
+  EXPECT_NE(crowded.out.find("warning: 21 devices; 38.4 allows 16\n"), std::string::npos) << crowded.out;
+  EXPECT_EQ(run_cli("genius timing --rate 38.4 --after 0" + many).exit_code, 0) << "without --check: a report";
+  const auto long_bus = run_cli("genius timing --rate 153.6s --after 4 --device 4@0 --device 5@2500 --skip-us 26 --check");
+  EXPECT_EQ(long_bus.exit_code, 3) << long_bus.out;
+  EXPECT_NE(long_bus.out.find("warning: the bus is 2500 ft long; 153.6s allows 2000 ft\n"), std::string::npos);
 }
 
 TEST(GeniusCli, TimingJsonIsAlwaysFinite) {
