@@ -49,9 +49,10 @@ constexpr const char* decode_usage =
 constexpr const char* timing_usage =
     "usage: trionet genius timing --rate 153.6s|153.6e|76.8|38.4 --after S --device SBA@FEET ... [--skip-us U]\n"
     "                             [--prop-us-per-2000ft P] [--detect-us D] [--json] [--check]\n"
-    "Turn start times and margins after the Stop of SBA S (docs/genius.md). FEET is 0..1000000; U (> 0), P and\n"
-    "D are microseconds up to 1000000. --check: exit status 3 when a margin is below the detection time (a\n"
-    "collision risk), so that a script or CI job can fail on it.\n";
+    "Turn start times and margins after the Stop of SBA S (docs/genius.md). FEET is 0..1000000; U (0.01 and\n"
+    "up), P and D are microseconds up to 1000000. --check: exit status 3 when a margin is below the detection\n"
+    "time (a collision risk) or the bus is longer or has more devices than the rate allows, so that a script\n"
+    "or CI job can fail on it.\n";
 
 constexpr const char* scan_time_usage =
     "usage: trionet genius scan-time --rate 153.6s|153.6e|76.8|38.4 --device BYTES[,BYTES...] ... [--minimum-ms M]\n"
@@ -91,7 +92,7 @@ const option_list timing_options = {
     {"--prop-us-per-2000ft", "P", "", "the propagation delay per 2000 feet in microseconds"},
     {"--detect-us", "D", "", "the detection time in microseconds"},
     {"--json", nullptr, "", "the results as JSON"},
-    {"--check", nullptr, "", "exit status 3 when a margin is below the detection time"},
+    {"--check", nullptr, "", "exit status 3 on a collision risk, or a bus longer or with more devices than the rate allows"},
 };
 
 const option_list scan_time_options = {
