@@ -292,6 +292,7 @@ constexpr motion_word motion_words[] = {
     {"FORWARD", motion_command::forward}, {"REVERSE", motion_command::reverse},
     {"CANCEL", motion_command::cancel},   {"RAPIDSTOP", motion_command::rapidstop},
     {"DATUM", motion_command::datum},     {"DEFPOS", motion_command::defpos},
+    {"DP", motion_command::defpos},  // the manual's alternate format of DEFPOS
 };
 
 // ---- parser and code generator ----
@@ -567,6 +568,11 @@ class compiler {
     }
     if (word == "RETURN" || word == "STOP" || word == "HALT") {
       next();
+      if (word == "STOP" && peek().kind == token_kind::string) {
+        return fail(compile_status::syntax_error, where,
+                    "STOP with a program name stops another program, which the simulator does not model (one "
+                    "program runs on each controller: STOP alone ends it)");
+      }
       emit(word == "RETURN" ? statement_kind::return_from_gosub : statement_kind::stop, where);
       return true;
     }
@@ -698,6 +704,11 @@ class compiler {
         if (target.text == "END" && is_word("IF")) {
           return fail(compile_status::syntax_error, where, "Trio BASIC ends a block IF with ENDIF, one word");
         }
+        if (!is_symbol("=")) {  // LET x=1, END, INCLUDE "f": a word of another BASIC, or a typing error
+          return fail(compile_status::syntax_error, peek().at,
+                      "expected '=' after '" + shown(target.raw) + "', found " + found(peek()) + " ('" +
+                          shown(target.raw) + "' is not a Trio BASIC command: docs/basic.md lists the words)");
+        }
         s.kind = statement_kind::assign_variable;
         s.slot = slot_of(target.raw);
       }
@@ -747,6 +758,11 @@ class compiler {
     }
     double value = 0;
     if (!constant_value(value)) return false;
+    if (!at_end_of_statement()) {
+      return fail(compile_status::syntax_error, peek().at,
+                  std::string(word) + " takes a number (or TRUE, PI, a CONSTANT ...), not an expression: found " +
+                      found(peek()));
+    }
     if (global && !(value >= 0 && value == std::floor(value) && value < 65536))
       return fail(compile_status::syntax_error, where, "GLOBAL takes a VR number (0, 1, 2 ...)");
     const auto [existing, added] = declared_.emplace(key, declared_name{global, value, where.line});
@@ -835,9 +851,14 @@ class compiler {
           if (s.count != 1) return fail(compile_status::syntax_error, where, "CANCEL takes at most one value");
         }
         break;
+      case motion_command::rapidstop:
+        if (is_symbol("(")) {
+          return fail(compile_status::syntax_error, where,
+                      "RAPIDSTOP with a mode is not modelled (RAPIDSTOP alone cancels every axis's moves)");
+        }
+        break;
       case motion_command::forward:
       case motion_command::reverse:
-      case motion_command::rapidstop:
         break;
     }
     if (command != motion_command::rapidstop && !axis_modifier(s.expr[3])) return false;
@@ -985,10 +1006,15 @@ class compiler {
 
   bool print_item_of(print_item& item) {
     item.separator = '\0';
-    if (peek().kind == token_kind::string) {
+    // A string, also in parentheses: PRINT("done") is a PRINT of "done".
+    const bool in_parentheses =
+        is_symbol("(") && peek(1).kind == token_kind::string && is_symbol(")", 2);
+    if (peek().kind == token_kind::string || in_parentheses) {
+      if (in_parentheses) next();
       item.what = print_item::kind::text;
       item.source = static_cast<std::uint32_t>(p_.texts.size());
       p_.texts.push_back(next().text);
+      if (in_parentheses) next();
       return true;
     }
     if (is_word("CHR") || is_word("CURSOR") || is_word("HEX")) {

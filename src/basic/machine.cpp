@@ -255,9 +255,13 @@ double machine::axis_value(std::size_t axis, axis_parameter p) const {
       return m.running ? static_cast<double>(m.type) : 0.0;
     }
     case axis_parameter::ntype: {
-      if (a.queue[1] >= 0) return static_cast<double>(moves_[static_cast<std::size_t>(a.queue[1])].type);
-      if (a.queue[0] >= 0 && !moves_[static_cast<std::size_t>(a.queue[0])].running)
-        return static_cast<double>(moves_[static_cast<std::size_t>(a.queue[0])].type);
+      // The manual's PMOVE: a move command waits in the process's move buffer until the next servo tick loads
+      // it into the axis's next-move buffer; NTYPE shows it from then on, until it starts.
+      for (const int index : {a.queue[1], a.queue[0]}) {
+        if (index < 0) continue;
+        const move_state& m = moves_[static_cast<std::size_t>(index)];
+        if (m.loaded && !m.running) return static_cast<double>(m.type);
+      }
       return 0;
     }
     case axis_parameter::remain:
@@ -580,7 +584,8 @@ void machine::servo_tick() {
   ++ticks_;
   if (offsets_pending_) apply_offsets();
   if (moves_in_use_ == 0) return;
-  start_ready_moves();  // moves commanded since the last tick
+  for (move_state& m : moves_) m.loaded = m.in_use;  // moves commanded since the last tick reach the axes
+  start_ready_moves();
   const double dt = config_.servo_period_us * 1e-6;
   for (std::size_t i = 0; i < moves_.size(); ++i) {
     if (moves_[i].in_use && moves_[i].running) advance(static_cast<int>(i), dt);

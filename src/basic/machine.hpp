@@ -178,6 +178,7 @@ class machine {
     move_type type = move_type::idle;
     bool in_use = false;
     bool running = false;
+    bool loaded = false;    // in an axis's buffers: a move commanded waits in the process until the next tick
     bool stopping = false;  // CANCEL or RAPIDSTOP: decelerating to its end
     std::vector<std::size_t> axes;
     std::vector<double> values;     // as commanded (distances or end positions), user units

@@ -96,6 +96,7 @@ constexpr reserved_word table[] = {
     {"DIR", word_kind::system_command, false, nullptr},
     {"DISABLE_GROUP", word_kind::motion_command, false, nullptr},
     {"DISPLAY", word_kind::system_parameter, false, nullptr},
+    {"DP", word_kind::motion_command, true, nullptr},  // DEFPOS's alternate format (MC216 manual 8-30)
     {"DPOS", word_kind::axis_parameter, true, nullptr},
     {"DRIVE_STATUS", word_kind::axis_parameter, false, nullptr},
     {"D_GAIN", word_kind::axis_parameter, true, nullptr},

@@ -74,7 +74,9 @@ TEST(BasicCompileErrors, SayWhereAndWhatWasExpected) {
                        "test.bas:1:10: expected ',' and data1 after SEND(n,type, found ')'");
   expect_compile_error("WAIT x\n", compile_status::syntax_error,
                        "test.bas:1:6: expected UNTIL, IDLE or LOADED after WAIT, found 'x'");
-  expect_compile_error("x 5\n", compile_status::syntax_error, "test.bas:1:3: expected '=' after 'x', found the number 5");
+  expect_compile_error("x 5\n", compile_status::syntax_error,
+                       "test.bas:1:3: expected '=' after 'x', found the number 5 ('x' is not a Trio BASIC command: "
+                       "docs/basic.md lists the words)");
   expect_compile_error("THEN\n", compile_status::syntax_error,
                        "test.bas:1:1: expected a statement, found the program structure word THEN");
   expect_compile_error("5\n", compile_status::syntax_error, "test.bas:1:1: expected a statement, found the number 5");
@@ -125,6 +127,34 @@ TEST(BasicCompileErrors, WhatTheDialectDoesNotHave) {
   expect_compile_error("IF x THEN REPEAT\n", compile_status::syntax_error,
                        "test.bas:1:11: REPEAT cannot be part of a one-line IF (write IF ... THEN at the end of a line, "
                        "then ENDIF)");
+}
+
+// Forms of Trio BASIC, or of other BASICs, that the simulator does not take are named as such, not as a
+// syntax error of something else (s38: STOP "AUTO" said "expected ':'", PRINT("done") "a string can only be an
+// item of PRINT", LET and END "expected '='").
+TEST(BasicCompileErrors, FormsNotModelledAreNamed) {
+  expect_compile_error("STOP \"AUTO\"\n", compile_status::syntax_error,
+                       "test.bas:1:1: STOP with a program name stops another program, which the simulator does not "
+                       "model (one program runs on each controller: STOP alone ends it)");
+  expect_compile_error("RAPIDSTOP(2)\n", compile_status::syntax_error,
+                       "test.bas:1:1: RAPIDSTOP with a mode is not modelled (RAPIDSTOP alone cancels every axis's "
+                       "moves)");
+  expect_compile_error("LET x=5\n", compile_status::syntax_error,
+                       "test.bas:1:5: expected '=' after 'LET', found 'x' ('LET' is not a Trio BASIC command: "
+                       "docs/basic.md lists the words)");
+  expect_compile_error("x=1\nEND\n", compile_status::syntax_error,
+                       "test.bas:2:4: expected '=' after 'END', found the end of the line ('END' is not a Trio BASIC "
+                       "command: docs/basic.md lists the words)");
+  expect_compile_error("CONSTANT \"twice\", 2*3\n", compile_status::syntax_error,
+                       "test.bas:1:20: CONSTANT takes a number (or TRUE, PI, a CONSTANT ...), not an expression: "
+                       "found '*'");
+}
+
+// DP is DEFPOS's alternate format in the manual (MC216 edition, 8-30), so it is DEFPOS, and a reserved word
+// (s38: DP(100) was "not a Trio BASIC command" and DP=5 a user variable).
+TEST(BasicCompileErrors, DpIsDefposAndReserved) {
+  expect_compile_error("DP=5\n", compile_status::syntax_error,
+                       "test.bas:1:1: `DP` is a Trio BASIC motion command and cannot be assigned");
 }
 
 TEST(BasicCompileErrors, NumberFormats) {

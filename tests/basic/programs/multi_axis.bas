@@ -8,6 +8,7 @@ SERVO=ON: SERVO AXIS(1)=ON
 start=TICKS
 MOVE(30,40)             ' a path of 50 units
 MOVE(-30,-40)           ' buffered behind it
+WA(1)                   ' the next servo tick loads it into the axes' buffers
 PRINT "NTYPE ";NTYPE[1,0];" (buffered)"
 WAIT LOADED
 PRINT "second move loaded after ";start-TICKS;" ms, at ";DPOS[5,1];",";DPOS AXIS(1)[5,1]
