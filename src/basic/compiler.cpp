@@ -706,8 +706,8 @@ class compiler {
         }
         if (!is_symbol("=")) {  // LET x=1, END, INCLUDE "f": a word of another BASIC, or a typing error
           return fail(compile_status::syntax_error, peek().at,
-                      "expected '=' after '" + shown(target.raw) + "', found " + found(peek()) + " ('" +
-                          shown(target.raw) + "' is not a Trio BASIC command: docs/basic.md lists the words)");
+                      "expected '=' after '" + shown(target.raw) + "', found " + found(peek()) +
+                          " (it is not a Trio BASIC command: docs/basic.md lists the words)");
         }
         s.kind = statement_kind::assign_variable;
         s.slot = slot_of(target.raw);

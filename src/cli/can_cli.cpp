@@ -158,7 +158,8 @@ bool record_of(const host::pcapng_record& record, host::candump_record& out, hos
     case host::socketcan_record_status::ok:
       out.frame = read.frame;
       out.can_id = read.frame.id;
-      out.length = read.frame.data_length();
+      out.length = read.frame.remote() ? std::uint16_t{read.frame.dlc > 8 ? std::uint8_t{8} : read.frame.dlc}
+                                       : read.frame.data_length();  // a remote frame: the length it asks for
       return true;
     case host::socketcan_record_status::not_classic:
       if ((record.bytes[5] & 0x80U) != 0) {
@@ -360,7 +361,7 @@ host::candump_record candump_record_of(const can::frame& frame, bool error_frame
   host::candump_record r;
   r.type = error_frame ? host::candump_frame_type::error : host::candump_frame_type::classic;
   r.can_id = error_frame ? (frame.id & can::frame::extended_mask) | host::can_error_flag : frame.id;
-  r.length = frame.remote() ? frame.dlc : frame.data_length();
+  r.length = frame.remote() ? (frame.dlc > 8 ? std::uint8_t{8} : frame.dlc) : frame.data_length();
   r.frame = frame;
   return r;
 }

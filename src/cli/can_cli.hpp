@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "cli.hpp"
 #include "profile_cli.hpp"
@@ -45,6 +46,12 @@ can_frame_class append_can_frame_event(std::string& out, std::uint8_t nodes, con
     where(e);
     e.text("kind", kind).number("id", id).number("length", r.length);
     if (r.type == host::candump_frame_type::xl) e.number("vcid", r.can_id >> 16U & 0xFFU);
+    // A remote request that its kind does not name (an extended or out-of-range identifier): `length` is the
+    // DLC it asks for, no data came.
+    if (r.type == host::candump_frame_type::classic && (r.can_id & can::frame::remote_flag) != 0 &&
+        std::string_view(kind) != "remote") {
+      e.boolean("remote", true);
+    }
     return r.type == host::candump_frame_type::error ? can_frame_class::error_frame : can_frame_class::other;
   };
   const std::uint32_t id = r.can_id;
@@ -52,6 +59,7 @@ can_frame_class append_can_frame_event(std::string& out, std::uint8_t nodes, con
     case host::candump_frame_type::error:
       return other("error_frame", id & can::frame::extended_mask);
     case host::candump_frame_type::fd:
+      if ((id & can::frame::extended_flag) == 0 && (id & 0xFFFFFU) > 0x7FFU) return other("bad_identifier", id & 0xFFFFFU);
       return other("fd", id & ((id & can::frame::extended_flag) != 0 ? can::frame::extended_mask : 0xFFFFFU));
     case host::candump_frame_type::xl:
       return other("xl", id & 0x7FFU);

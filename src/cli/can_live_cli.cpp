@@ -293,7 +293,7 @@ int monitor_main(const words& given) {
   }
   counters_event();
   const int status = loop.finish("can monitor");
-  if (status == exit_ok && !capture.good()) return fail_io("can monitor: writing the capture failed");
+  if (status == exit_ok && !capture.good()) return fail_io("can monitor: writing the capture failed: " + capture.cause());
   return status;
 }
 
@@ -457,7 +457,7 @@ int node_main(const words& given) {
   }
   node_counters();
   const int status = loop.finish("can node");
-  if (status == exit_ok && !capture.good()) return fail_io("can node: writing the capture failed");
+  if (status == exit_ok && !capture.good()) return fail_io("can node: writing the capture failed: " + capture.cause());
   return status;
 }
 

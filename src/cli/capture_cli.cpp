@@ -31,7 +31,10 @@ int read_capture(const std::string& path, host::capture_network network, bool fi
     ++number;
     if (r.status == host::pcapng_read_status::not_pcapng || r.status == host::pcapng_read_status::read_failed) {
       out.flush();
-      return fail_io(host::printable(path) + ": " + host::to_string(r.status));
+      return fail_io(host::printable(path) + (r.status == host::pcapng_read_status::not_pcapng
+                                                  ? ": not a pcapng capture (it does not start with a section header "
+                                                    "block; a libpcap .pcap file converts with editcap -F pcapng)"
+                                                  : ": reading the capture failed"));
     }
     if (!r) {
       if (note) {

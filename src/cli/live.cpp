@@ -206,21 +206,32 @@ bool capture_file::open(const std::string& path, std::string& error) {
     return false;
   }
   writer_ = std::make_unique<host::pcapng_writer>(file_);
-  failed_ = writer_->flush() != host::pcapng_write_status::ok;
+  errno = 0;
+  check(writer_->flush() == host::pcapng_write_status::ok);
   return true;
 }
 
+void capture_file::check(bool ok) noexcept {
+  if (ok || failed_) return;
+  failed_ = true;
+  errno_ = errno != 0 ? errno : EIO;
+}
+
+std::string capture_file::cause() const { return std::strerror(errno_ != 0 ? errno_ : EIO); }
+
 std::uint32_t capture_file::add(const std::string& name, host::capture_network network) {
   if (!writer_) return 0;
+  errno = 0;
   const host::pcapng_interface_result added = writer_->add_interface(name, network);
-  failed_ = failed_ || !added || writer_->flush() != host::pcapng_write_status::ok;
+  check(added && writer_->flush() == host::pcapng_write_status::ok);
   return added.id;
 }
 
 void capture_file::write(std::uint32_t interface, std::uint64_t time_ns, byte_view record) {
   if (!writer_ || failed_) return;
-  failed_ = writer_->write(interface, time_ns, record) != host::pcapng_write_status::ok ||
-            writer_->flush() != host::pcapng_write_status::ok;
+  errno = 0;
+  check(writer_->write(interface, time_ns, record) == host::pcapng_write_status::ok &&
+        writer_->flush() == host::pcapng_write_status::ok);
 }
 
 // ---- command lines ----

@@ -146,11 +146,15 @@ class capture_file {
   void write(std::uint32_t interface, std::uint64_t time_ns, byte_view record);
   /// False once writing failed (disk full ...).
   [[nodiscard]] bool good() const noexcept { return !failed_; }
+  /// Why writing failed: the system's cause of the first failed write ("No space left on device").
+  [[nodiscard]] std::string cause() const;
 
  private:
+  void check(bool ok) noexcept;  // records the first failure and its errno
   std::ofstream file_;
   std::unique_ptr<host::pcapng_writer> writer_;
   bool failed_ = false;
+  int errno_ = 0;
 };
 
 // ---- command lines on standard input ----

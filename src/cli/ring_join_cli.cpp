@@ -245,7 +245,7 @@ int run_session(const join_settings& settings, Node& node, live::capture_file& c
   log.flush();
   st.finish();
   const int status = loop.finish("ring join");
-  if (status == exit_ok && !capture.good()) return fail_io("ring join: writing the capture " + settings.pcap + " failed");
+  if (status == exit_ok && !capture.good()) return fail_io("ring join: writing the capture " + settings.pcap + " failed: " + capture.cause());
   return status;
 }
 

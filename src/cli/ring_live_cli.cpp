@@ -164,7 +164,7 @@ int monitor_main(const words& given) {
   tap.counters(log.text(), live::now_ns());
   port.close();
   const int status = loop.finish("ring monitor");
-  if (status == exit_ok && !capture.good()) return fail_io("ring monitor: writing the capture " + options.pcap + " failed");
+  if (status == exit_ok && !capture.good()) return fail_io("ring monitor: writing the capture " + options.pcap + " failed: " + capture.cause());
   return status;
 }
 
@@ -215,7 +215,7 @@ int send_main(const words& given) {
   }
   port.close();
   if (args.positionals[0] != "-" && !write_stdout(hex_line(frame.data(), frame.size()) + "\n")) return fail_output();
-  if (!capture.good()) return fail_io("ring send: writing the capture " + options.pcap + " failed");
+  if (!capture.good()) return fail_io("ring send: writing the capture " + options.pcap + " failed: " + capture.cause());
   return exit_ok;
 }
 

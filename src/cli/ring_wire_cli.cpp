@@ -684,7 +684,7 @@ class wire {
     for (auto& e : endpoints_) e->close();
     if (!ended.empty()) return fail_io("ring wire: " + ended);
     if (output_failed()) return fail_output();
-    if (!capture_.good()) return fail_io("ring wire: writing the capture " + settings_.pcap + " failed");
+    if (!capture_.good()) return fail_io("ring wire: writing the capture " + settings_.pcap + " failed: " + capture_.cause());
     return exit_ok;
   }
 

@@ -71,6 +71,9 @@ bool parse_timestamp(std::string_view text, candump_record& out) {
   for (std::size_t i = 0; i < 9; ++i) {
     nanoseconds = nanoseconds * 10U + (i < fraction.size() ? static_cast<std::uint32_t>(fraction[i] - '0') : 0U);
   }
+  // The time as 64-bit nanoseconds (captures, the live tools' events): at most 18446744073.709551615 s.
+  constexpr std::uint64_t billion = 1000000000U;
+  if (seconds > UINT64_MAX / billion || seconds * billion > UINT64_MAX - nanoseconds) return false;
   out.timestamp.assign(text.data(), text.size());
   out.has_timestamp = true;
   out.seconds = seconds;
@@ -239,8 +242,9 @@ candump_status parse_screen(words& w, std::string_view first, candump_record& ou
 candump_status parse_candump_frame(std::string_view text, candump_record& out) {
   // The grammar of can-utils' parse_canframe (lib.c), read character by character; a position past the
   // end reads as the string's terminating NUL.
-  const std::size_t nul = text.find('\0');
-  const std::string_view cs = nul == std::string_view::npos ? text : text.substr(0, nul);
+  // A NUL inside the word is a character like any other that is not the grammar's (can-utils' C strings
+  // would end there, and read the frame before it).
+  const std::string_view cs = text;
   const auto at = [&cs](std::size_t i) { return i < cs.size() ? cs[i] : '\0'; };
   const auto nibble = [](char c) { return hex_digit(c) < 0 ? 16U : static_cast<unsigned>(hex_digit(c)); };
   clear_frame(out);
@@ -265,19 +269,23 @@ candump_status parse_candump_frame(std::string_view text, candump_record& out) {
     out.can_id = (id & can_error_flag) != 0 ? id : id | extended_flag;
   }
   std::size_t idx = digits + 1;
+  // Five digits are a CAN XL frame's VCID and priority: its header must follow (no remote or CAN FD form).
+  if (digits == 5 && (at(idx) == 'R' || at(idx) == 'r' || at(idx) == '#')) return candump_status::identifier;
+  if (digits == 5 && (at(idx + 2) != ':' || at(idx + 5) != ':' || at(idx + 14) != '#')) {
+    return candump_status::xl_header;
+  }
 
   if (at(idx) == 'R' || at(idx) == 'r') {  // remote frame: R, an optional length, an optional _D
     out.can_id |= remote_flag;
     ++idx;
     if (at(idx) != '\0') {
       const unsigned length = nibble(at(idx++));
-      if (length <= 8) {
-        out.length = static_cast<std::uint16_t>(length);
-        if (length == 8 && at(idx) == '_') {
-          const unsigned dlc = nibble(at(++idx));
-          if (dlc > 8 && dlc <= 15) out.len8_dlc = static_cast<std::uint8_t>(dlc);
-          ++idx;
-        }
+      if (length > 8) return candump_status::trailing;  // LEN is 0..8: what follows R is not one
+      out.length = static_cast<std::uint16_t>(length);
+      if (length == 8 && at(idx) == '_') {
+        const unsigned dlc = nibble(at(++idx));
+        if (dlc > 8 && dlc <= 15) out.len8_dlc = static_cast<std::uint8_t>(dlc);
+        ++idx;
       }
     }
     // can-utils stops reading here and ignores the rest of the word; a frame with more after it is refused.
@@ -352,8 +360,6 @@ candump_status parse_candump_line(std::string_view line, candump_record& out) {
   out.interface_name.clear();
   out.direction = 0;
   clear_frame(out);
-  const std::size_t nul = line.find('\0');
-  if (nul != std::string_view::npos) line = line.substr(0, nul);
   if (line.size() > candump_max_line_length) return candump_status::too_long;
   std::string_view text = trim(line);
   if (text.empty()) return candump_status::empty;

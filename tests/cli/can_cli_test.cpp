@@ -249,6 +249,57 @@ TEST(CanCli, DecodeACaptureCanFdRecordWithTheErrorFlagAsAnErrorFrame) {
   std::remove(capture.c_str());
 }
 
+// A remote request gives the same event from candump text and from a capture of it (s38: the capture gave
+// length 0 where the record holds 8), an extended one says that it is remote (it read as 8 data bytes), and a
+// 3-digit identifier above 7FF is bad_identifier in a CAN FD frame too (it was kind fd with id 2339).
+TEST(CanCli, RemoteFramesAndIdentifiersAboveTheStandardRangeAreNamed) {
+  const std::string lines = "028#R8\n12345678#R8\n40000028#0100000000020D7A\n923##1AA\n923#01\n";
+  const auto text = run_cli("can decode", lines);
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_EQ(text.out,
+            "{\"event\":\"frame\",\"line\":1,\"kind\":\"remote\",\"id\":40,\"length\":8}\n"
+            "{\"event\":\"frame\",\"line\":2,\"kind\":\"extended\",\"id\":305419896,\"length\":8,\"remote\":true}\n"
+            "{\"event\":\"frame\",\"line\":3,\"kind\":\"extended\",\"id\":40,\"length\":8,\"remote\":true}\n"
+            "{\"event\":\"frame\",\"line\":4,\"kind\":\"bad_identifier\",\"id\":2339,\"length\":1}\n"
+            "{\"event\":\"frame\",\"line\":5,\"kind\":\"bad_identifier\",\"id\":2339,\"length\":1}\n");
+  const std::string capture = "/tmp/trionet-can-remote-" + std::to_string(::getpid()) + ".pcapng";
+  const auto written = run_cli("can monitor - --json --pcap " + capture, "028#R8\n12345678#R8\n");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const auto read = run_cli("can decode --pcap " + capture);
+  EXPECT_EQ(read.exit_code, 0) << read.err;
+  EXPECT_NE(read.out.find("\"kind\":\"remote\",\"id\":40,\"length\":8}\n"), std::string::npos) << read.out;
+  EXPECT_NE(read.out.find("\"kind\":\"extended\",\"id\":305419896,\"length\":8,\"remote\":true}\n"),
+            std::string::npos)
+      << read.out;
+  std::remove(capture.c_str());
+}
+
+// A file that is not pcapng is named in a sentence, not a status name (s38: "FILE: not_pcapng").
+TEST(CanCli, AFileThatIsNotPcapngIsSaidInWords) {
+  const std::string path = "/tmp/trionet-not-pcapng-" + std::to_string(::getpid()) + ".txt";
+  {
+    std::ofstream file(path);
+    file << "028#0100000000020D7A\n";
+  }
+  const auto r = run_cli("can decode --pcap " + path);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "trionet: " + path +
+                       ": not a pcapng capture (it does not start with a section header block; a libpcap .pcap file "
+                       "converts with editcap -F pcapng)\n");
+  std::remove(path.c_str());
+}
+
+// A capture that cannot be written names the system's cause (s38: "writing the capture failed" alone).
+TEST(CanCli, ACaptureThatCannotBeWrittenNamesTheCause) {
+  for (const char* command : {"can monitor - --pcap /dev/full", "can node - --node 4 --pcap /dev/full",
+                              "ring monitor - --pcap /dev/full"}) {
+    const auto r = run_cli(command, "028#0100000000020D7A\n");
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_NE(r.err.find("writing the capture"), std::string::npos) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("failed: No space left on device\n"), std::string::npos) << command << ": " << r.err;
+  }
+}
+
 TEST(CanCli, HelpOnEveryCommand) {
   for (const char* command : {"can encode --help", "can decode -h", "can table --help", "can --help"}) {
     const auto r = run_cli(command);

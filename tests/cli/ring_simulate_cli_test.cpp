@@ -318,7 +318,7 @@ TEST(RingSimulateCli, ACompileErrorEchoesAtMost40CharactersOfTheProgram) {
   const auto r = run_cli("ring simulate --node mc:" + huge.path() + " --node mc");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "trionet: " + huge.path() + ":1:1000002: expected '=' after '" + std::string(40, 'a') +
-                       "...', found the number 5\n");
+                       "...', found the number 5 (it is not a Trio BASIC command: docs/basic.md lists the words)\n");
   const temporary_file control("control.bas", "x=1 \x1b[31m\n");
   const auto escaped = run_cli("ring simulate --node mc:" + control.path() + " --node mc");
   EXPECT_EQ(escaped.exit_code, 2);

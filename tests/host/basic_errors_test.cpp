@@ -75,7 +75,7 @@ TEST(BasicCompileErrors, SayWhereAndWhatWasExpected) {
   expect_compile_error("WAIT x\n", compile_status::syntax_error,
                        "test.bas:1:6: expected UNTIL, IDLE or LOADED after WAIT, found 'x'");
   expect_compile_error("x 5\n", compile_status::syntax_error,
-                       "test.bas:1:3: expected '=' after 'x', found the number 5 ('x' is not a Trio BASIC command: "
+                       "test.bas:1:3: expected '=' after 'x', found the number 5 (it is not a Trio BASIC command: "
                        "docs/basic.md lists the words)");
   expect_compile_error("THEN\n", compile_status::syntax_error,
                        "test.bas:1:1: expected a statement, found the program structure word THEN");
@@ -140,10 +140,10 @@ TEST(BasicCompileErrors, FormsNotModelledAreNamed) {
                        "test.bas:1:1: RAPIDSTOP with a mode is not modelled (RAPIDSTOP alone cancels every axis's "
                        "moves)");
   expect_compile_error("LET x=5\n", compile_status::syntax_error,
-                       "test.bas:1:5: expected '=' after 'LET', found 'x' ('LET' is not a Trio BASIC command: "
+                       "test.bas:1:5: expected '=' after 'LET', found 'x' (it is not a Trio BASIC command: "
                        "docs/basic.md lists the words)");
   expect_compile_error("x=1\nEND\n", compile_status::syntax_error,
-                       "test.bas:2:4: expected '=' after 'END', found the end of the line ('END' is not a Trio BASIC "
+                       "test.bas:2:4: expected '=' after 'END', found the end of the line (it is not a Trio BASIC "
                        "command: docs/basic.md lists the words)");
   expect_compile_error("CONSTANT \"twice\", 2*3\n", compile_status::syntax_error,
                        "test.bas:1:20: CONSTANT takes a number (or TRUE, PI, a CONSTANT ...), not an expression: "

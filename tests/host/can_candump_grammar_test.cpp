@@ -83,13 +83,35 @@ TEST(CanCandumpGrammar, CanUtilsLeniencies) {
   expect_classic("123#11.", 0x123, 1);                        // a '.' at the end
   expect_classic("123#.11", 0x123, 1);                        // a '.' at the start
   expect_classic("123#1122334455667788_3", 0x123, 8, 0);      // `_` with a DLC that is not 9..F
-  expect_classic("123#R9", frame::remote_flag | 0x123, 0);    // a remote length above 8 is no length
   expect_classic("800#11", 0x800, 1);                         // 3 digits above 7FF
   EXPECT_FALSE(read("800#11").classic_frame()) << "read, but not a legal standard frame";
-  expect_classic("12345#1122", 0x120345, 2);                  // 5 digits without an XL header
   expect_classic("C0000123#11", 0xC0000123U, 1);              // flag bits in the digits
   EXPECT_EQ(read("A0000000#").type, candump_frame_type::error);
-  EXPECT_EQ(read(std::string("123#11\0zz", 9)).length, 1) << "the frame ends at a NUL, as a C string does";
+}
+
+// Leniencies of can-utils that made a plausible wrong frame, refused here (s38: 00028#0100000000020D7A was a
+// VR message that `can node` wrote, and junk after a NUL was ignored): 5 digits are a CAN XL VCID and
+// priority and need the XL header; a remote length is 0..8; a NUL is no character of the grammar.
+TEST(CanCandumpGrammar, LenienciesThatMakeAPlausibleWrongFrameAreRefused) {
+  const auto status = [](const std::string& line) { return parse_candump_line(line).status; };
+  EXPECT_EQ(status("12345#1122"), candump_status::xl_header);
+  EXPECT_EQ(status("00028#0100000000020D7A"), candump_status::xl_header);
+  EXPECT_EQ(status("(1.000000) can0 00014#0100000000020D7A"), candump_status::xl_header);
+  EXPECT_EQ(status("00028#80:0:00000000#01"), candump_status::xl_header);
+  EXPECT_EQ(status("00028#R"), candump_status::identifier);
+  EXPECT_EQ(status("00028##1AA"), candump_status::identifier);
+  EXPECT_EQ(read("12028#80:00:00000000#01").type, candump_frame_type::xl) << "with its header it is CAN XL";
+  EXPECT_EQ(status("123#R9"), candump_status::trailing);
+  EXPECT_EQ(status(std::string("123#11\0zz", 9)), candump_status::data);
+  EXPECT_EQ(status(std::string("028#0100000000020D7A\0GARBAGE", 28)), candump_status::trailing);
+  EXPECT_NE(status(std::string("\0\0\0", 3)), candump_status::empty) << "NULs are not a blank line";
+  EXPECT_NE(status(std::string("\0\0\0", 3)), candump_status::ok);
+  // A time that 64-bit nanoseconds cannot hold is refused, not wrapped round (it was 0.290448384).
+  EXPECT_EQ(status("(18446744074.000000) can0 028#0100000000020D7A"), candump_status::timestamp);
+  EXPECT_EQ(status("(18446744073.709551616) can0 028#0100000000020D7A"), candump_status::timestamp);
+  const candump_record last = read("(18446744073.709551615) can0 028#0100000000020D7A");
+  EXPECT_EQ(last.seconds, 18446744073u);
+  EXPECT_EQ(last.nanoseconds, 709551615u);
 }
 
 // Where can-utils reads a frame and ignores the rest of the word, the line is refused: more bytes than a frame

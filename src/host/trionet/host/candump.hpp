@@ -111,11 +111,13 @@ enum class candump_status : std::uint8_t {
   ok,
   empty,           ///< nothing but blanks
   too_long,        ///< longer than candump_max_line_length
-  timestamp,       ///< "(...)" is neither SECONDS.FRACTION (1..20 and 1..9 digits) nor candump -t A's date
+  timestamp,       ///< "(...)" is neither SECONDS.FRACTION (1..9 fraction digits, at most 18446744073.709551615 s:
+                   ///< 64-bit nanoseconds) nor candump -t A's date
   interface_name,  ///< no interface name, or nothing after it
-  identifier,      ///< no '#' after 3, 5 or 8 characters, or those are not hex digits
+  identifier,      ///< no '#' after 3, 5 or 8 characters, or those are not hex digits, or 5 (a CAN XL VCID and
+                   ///< priority) before a remote or CAN FD frame
   fd_flags,        ///< `##` not followed by a hex digit
-  xl_header,       ///< a CAN XL header that is not FF:SS:AAAAAAAA
+  xl_header,       ///< a CAN XL header that is not FF:SS:AAAAAAAA# (one must follow a 5-digit identifier)
   data,            ///< a data byte that is not two hex digits (screen: fewer bytes than the length says)
   length,          ///< screen form: the length is not [N], {N}, [NN] or [NNNN], or is out of range
   trailing,        ///< text after the frame (other than a direction R or T, or candump's ASCII column)
