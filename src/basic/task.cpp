@@ -467,11 +467,27 @@ std::vector<std::size_t> task::base_group(std::size_t count, std::uint32_t axis_
   } else {
     order = base_;
   }
+  const std::vector<std::size_t> named = order;
   for (std::size_t a = 0; a < axes && order.size() < count; ++a) {
     if (std::find(order.begin(), order.end(), a) == order.end()) order.push_back(a);
   }
   if (count > order.size()) {
     fail(std::to_string(count) + " values for " + std::to_string(axes) + " axes");
+    return {};
+  }
+  // The axes after those BASE (or AXIS) named: the manual pages at hand do not say whether they start from
+  // axis 0 (BASE(2): 2, 0, 1, ...) or follow the last one named (2, 3, 4, ...). Where the two readings give
+  // other axes, the command is refused rather than moving axes the controller might not.
+  std::vector<std::size_t> following = named;
+  for (std::size_t step = 1; step <= axes && following.size() < count; ++step) {
+    const std::size_t a = (named.back() + step) % axes;
+    if (std::find(following.begin(), following.end(), a) == following.end()) following.push_back(a);
+  }
+  if (!std::equal(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), following.begin())) {
+    std::string given;
+    for (std::size_t a : named) given += (given.empty() ? "" : ",") + std::to_string(a);
+    fail(std::to_string(count) + " values for the " + std::to_string(named.size()) + (named.size() == 1 ? " axis" : " axes") + " named (" + given +
+         "): which axes follow them is not modelled; name every axis the command moves (BASE(" + given + ",...))");
     return {};
   }
   order.resize(count);

@@ -230,6 +230,17 @@ TEST(BasicRuntimeErrors, StopTheProgramWithItsLine) {
   expect_runtime_error("SEND(10,1,200)\n", 1, "SEND(10,1,200): a direct variable transfer needs a value");
   expect_runtime_error("SEND(10,1,20000,1)\n", 1, "SEND(10,1,20000,...): VR number out of range (0..16383)");
   expect_runtime_error("SEND(10,2,5)\n", 1, "SEND(10,2,5): keypad offset out of range (BASIC addresses 10..24)");
+  // Which axes follow those BASE or AXIS named is not settled by the manual pages at hand (from axis 0, or
+  // after the last named): where the two readings differ the command stops, it does not guess (s38).
+  expect_runtime_error("BASE(2)\nMOVE(10,20)\n", 2,
+                       "2 values for the 1 axis named (2): which axes follow them is not modelled; name every axis "
+                       "the command moves (BASE(2,...))");
+  expect_runtime_error("MOVE(10,20) AXIS(1)\n", 1,
+                       "2 values for the 1 axis named (1): which axes follow them is not modelled; name every axis "
+                       "the command moves (BASE(1,...))");
+  expect_runtime_error("BASE(2,3)\nDEFPOS(1,2,3)\n", 2,
+                       "3 values for the 2 axes named (2,3): which axes follow them is not modelled; name every axis "
+                       "the command moves (BASE(2,3,...))");
   expect_runtime_error("x=1/0\n", 1, "division by zero");
   expect_runtime_error("x=1 MOD 0\n", 1, "MOD by zero");
   // Values beyond the whole numbers a double holds are refused by the integer operations, not clamped.
