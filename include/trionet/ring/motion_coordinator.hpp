@@ -11,8 +11,8 @@
 //   mc.send_variable(10, 200, 99.0);    // SEND(10,1,200,99)
 //   if (mc.key(3)) { auto k = mc.get(3); ... }   // IF KEY#3 THEN GET #3,k
 //
-// Cost (defaults): RAM = receive buffer 256 + forward buffer 16 + transmit queue 32 + 92 bytes of state and
-// counters = 396 bytes on a 32-bit core (456 on a 64-bit host); the VR table and DEFKEY table are the
+// Cost (defaults): RAM = receive buffer 256 + forward buffer 16 + transmit queue 32 + 96 bytes of state and
+// counters = 400 bytes on a 32-bit core (448 on a 64-bit host); the VR table and DEFKEY table are the
 // caller's. Per received byte O(1). `receive`/`transmit` run on the link side (an ISR), the BASIC calls on
 // the program side, with no lock or masking (node.hpp, transport.hpp).
 #pragma once
