@@ -187,7 +187,7 @@ const char* what_name(const genius_turn_record& t) {
 }
 
 // The simulated devices are the library's genius::device, built for CRC-6/G-704 and the control layout of
-// protocol.md 3.2: a profile with other Genius keys is refused (cli.md: a command never ignores a field it
+// docs/protocol.md 3.2: a profile with other Genius keys is refused (cli.md: a command never ignores a field it
 // cannot honour). "" when the profile keeps the defaults, else the message.
 std::string simulate_profile_refusal() {
   const learn::genius_profile& g = active_profile().genius;

@@ -188,7 +188,7 @@ TEST(GeniusSimulateCli, AnOutOfRangeNumberIsNamedWithItsRange) {
   expect_usage_error(run + "--fault cut:x@0+1", "must be noise:FEET@T+D");
 }
 
-// The simulated devices are built for CRC-6/G-704 and the layout of protocol.md 3.2: a profile with other
+// The simulated devices are built for CRC-6/G-704 and the layout of docs/protocol.md 3.2: a profile with other
 // Genius keys is refused with the field, its value and what simulate supports, not ignored (s37 item 3).
 TEST(GeniusSimulateCli, AProfileWithAnotherGeniusCrcOrLayoutIsRefusedNotIgnored) {
   const std::string shown = run_cli("profile show").out;
