@@ -296,6 +296,24 @@ capture_fields genius_record_fields(byte_view record) {
 capture_fields can_record_fields(byte_view record, std::uint8_t node_count) {
   capture_fields out;
   const socketcan_record_result read = read_socketcan_record(record);
+  // The fields Wireshark's SocketCAN dissector shows for a CAN FD frame and an error frame (tshark 4.0).
+  if (read.status == socketcan_record_status::not_classic && (record[5] & 0x80U) == 0 &&
+      (record[0] & 0x20U) == 0) {
+    const bool extended = (record[0] & 0x80U) != 0;
+    const std::uint32_t id = std::uint32_t{record[0]} << 24 | std::uint32_t{record[1]} << 16 |
+                             std::uint32_t{record[2]} << 8 | record[3];
+    add_unsigned(out, "can.id", id & (extended ? can::frame::extended_mask : 0x7FFU));
+    add_boolean(out, "can.flags.xtd", extended);
+    add_unsigned(out, "can.len", record[4]);
+    add_boolean(out, "canfd.flags.brs", (record[5] & 0x01U) != 0);
+    add_boolean(out, "canfd.flags.esi", (record[5] & 0x02U) != 0);
+    return out;
+  }
+  if (read.status == socketcan_record_status::error_frame) {
+    add_boolean(out, "can.flags.err", true);
+    add_unsigned(out, "can.len", record[4]);
+    return out;
+  }
   if (!read) return out;
   const can::frame& frame = read.frame;
   add_unsigned(out, "can.id", frame.identifier());

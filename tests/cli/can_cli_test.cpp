@@ -274,6 +274,26 @@ TEST(CanCli, RemoteFramesAndIdentifiersAboveTheStandardRangeAreNamed) {
   std::remove(capture.c_str());
 }
 
+// `decode --pcap --json` gives a CAN FD frame's and an error frame's fields as Wireshark's SocketCAN dissector
+// shows them (s38: no field at all; wireshark_dissect_random checks their values against tshark).
+TEST(CanCli, CaptureFieldsOfCanFdAndErrorFrames) {
+  const std::string capture = "/tmp/trionet-can-fd-fields-" + std::to_string(::getpid()) + ".pcapng";
+  const auto written = run_cli("can monitor - --json --pcap " + capture, "028##1AA\n12345678##3112233\n20000080#0000000000000000\n");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const auto fields = run_cli("can decode --pcap " + capture + " --json");
+  EXPECT_EQ(fields.exit_code, 0) << fields.err;
+  EXPECT_NE(fields.out.find("\"can.id\":40,\"can.flags.xtd\":false,\"can.len\":1,\"canfd.flags.brs\":true,"
+                            "\"canfd.flags.esi\":false}"),
+            std::string::npos)
+      << fields.out;
+  EXPECT_NE(fields.out.find("\"can.id\":305419896,\"can.flags.xtd\":true,\"can.len\":3,\"canfd.flags.brs\":true,"
+                            "\"canfd.flags.esi\":true}"),
+            std::string::npos)
+      << fields.out;
+  EXPECT_NE(fields.out.find("\"can.flags.err\":true,\"can.len\":8}"), std::string::npos) << fields.out;
+  std::remove(capture.c_str());
+}
+
 // A file that is not pcapng is named in a sentence, not a status name (s38: "FILE: not_pcapng").
 TEST(CanCli, AFileThatIsNotPcapngIsSaidInWords) {
   const std::string path = "/tmp/trionet-not-pcapng-" + std::to_string(::getpid()) + ".txt";

@@ -469,6 +469,22 @@ void write_random(const std::string& dir) {
     const auto record = socketcan_record(random_can_frame(r));
     check(writer.write(bus, epoch + static_cast<std::uint64_t>(i) * 1000000u, byte_view(record.data(), record.size())));
   }
+  // CAN FD frames (standard and extended, flags BRS and ESI) and error frames: the view gives the fields
+  // Wireshark's SocketCAN dissector shows for them.
+  for (int i = 0; i < 40; ++i) {
+    const bool error_frame = r.below(4) == 0;
+    const bool fd = !error_frame;
+    std::vector<std::uint8_t> record(fd ? 72 : 16, 0);
+    const bool extended = r.below(2) == 0;
+    const std::uint32_t id = error_frame ? 0x20000000U | static_cast<std::uint32_t>(r.below(0x200))
+                             : extended  ? 0x80000000U | static_cast<std::uint32_t>(r.below(0x20000000))
+                                         : static_cast<std::uint32_t>(r.below(0x800));
+    for (int b = 0; b < 4; ++b) record[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(id >> (24 - 8 * b));
+    record[4] = static_cast<std::uint8_t>(fd ? r.below(65) : 8);
+    if (fd) record[5] = static_cast<std::uint8_t>(0x04U | r.below(4));  // CANFD_FDF, BRS and ESI at random
+    for (std::size_t k = 8; k < record.size(); ++k) record[k] = static_cast<std::uint8_t>(r.below(256));
+    check(writer.write(bus, epoch + static_cast<std::uint64_t>(400 + i) * 1000000u, byte_view(record.data(), record.size())));
+  }
   link.flush();
   splitter.flush(sink);
   if (!file) die("cannot write random.pcapng");
