@@ -79,7 +79,12 @@ void check_records(const std::uint8_t* data, std::size_t size) {
 
   const capture_fields can_fields = can_record_fields(record, static_cast<std::uint8_t>(size % 13));
   const socketcan_record_result frame = read_socketcan_record(record);
-  FUZZ_CHECK(count(can_fields, "can.id") == (frame ? 1u : 0u));
+  // An identifier for a classic frame that reads, and for a CAN FD frame (not CAN XL, no error flag).
+  const bool fd = frame.status == socketcan_record_status::not_classic && (record[5] & 0x80U) == 0 &&
+                  (record[0] & 0x20U) == 0;
+  FUZZ_CHECK(count(can_fields, "can.id") == (frame || fd ? 1u : 0u));
+  FUZZ_CHECK(count(can_fields, "can.flags.err") ==
+             (frame || frame.status == socketcan_record_status::error_frame ? 1u : 0u));
   if (frame) {
     const auto again = socketcan_record(frame.frame);
     const socketcan_record_result back = read_socketcan_record(byte_view(again.data(), again.size()));
